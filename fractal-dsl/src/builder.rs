@@ -1,0 +1,456 @@
+//! The builder API: plain functions and chained methods (glam's feel) that construct the IR.
+//!
+//! The parser lowers source text through these same functions, so `scene! { sphere(1.0).translate(..) }` and
+//! `sphere(1.0).translate(..)` in Rust build the same [`Node`]. Building never fails; [`crate::validate`] reports
+//! out-of-range values with the parameter's name when the scene is compiled.
+
+use crate::ir::*;
+
+// ---- numbers and vectors ----------------------------------------------------------------------------------------
+
+/// Scene time in seconds (`t` in scene source).
+pub fn time() -> Expr {
+    Expr::Time
+}
+
+/// A named uniform: changeable at run time without recompiling, `default` within `range`.
+pub fn param(name: &str, default: f64, range: core::ops::Range<f64>) -> Expr {
+    Expr::Param(Box::new(ParamDecl { name: name.to_string(), default, min: range.start, max: range.end }))
+}
+
+macro_rules! unary_fns {
+    ($($name:ident $f:ident),*) => {$(
+        #[doc = concat!("`", stringify!($name), "(x)` in scene source.")]
+        pub fn $name(x: impl Into<Expr>) -> Expr { Expr::Call(Func::$f, vec![x.into()]) }
+    )*};
+}
+unary_fns!(sin Sin, cos Cos, abs Abs, sqrt Sqrt);
+
+/// `min(a, b)` in scene source.
+pub fn min(a: impl Into<Expr>, b: impl Into<Expr>) -> Expr {
+    Expr::Call(Func::Min, vec![a.into(), b.into()])
+}
+/// `max(a, b)` in scene source.
+pub fn max(a: impl Into<Expr>, b: impl Into<Expr>) -> Expr {
+    Expr::Call(Func::Max, vec![a.into(), b.into()])
+}
+/// `pow(a, b)` in scene source.
+pub fn pow(a: impl Into<Expr>, b: impl Into<Expr>) -> Expr {
+    Expr::Call(Func::Pow, vec![a.into(), b.into()])
+}
+/// `clamp(x, lo, hi)` in scene source.
+pub fn clamp(x: impl Into<Expr>, lo: impl Into<Expr>, hi: impl Into<Expr>) -> Expr {
+    Expr::Call(Func::Clamp, vec![x.into(), lo.into(), hi.into()])
+}
+/// `mix(a, b, s)` in scene source: a + (b − a)·s.
+pub fn mix(a: impl Into<Expr>, b: impl Into<Expr>, s: impl Into<Expr>) -> Expr {
+    Expr::Call(Func::Mix, vec![a.into(), b.into(), s.into()])
+}
+
+/// A 3-vector whose components may be expressions. glam's `Vec3` converts into the same type.
+pub fn vec3(x: impl Into<Expr>, y: impl Into<Expr>, z: impl Into<Expr>) -> Vec3Expr {
+    Vec3Expr([x.into(), y.into(), z.into()])
+}
+
+/// A 4-vector (the quaternion Julia constant).
+pub fn vec4(x: impl Into<Expr>, y: impl Into<Expr>, z: impl Into<Expr>, w: impl Into<Expr>) -> Vec4Expr {
+    Vec4Expr([x.into(), y.into(), z.into(), w.into()])
+}
+
+// ---- primitives --------------------------------------------------------------------------------------------------
+
+pub fn sphere(radius: impl Into<Expr>) -> Node {
+    Node::Prim(Prim::Sphere { radius: radius.into() })
+}
+/// A box with half extents `half` (`box3` because `box` is a Rust keyword).
+pub fn box3(half: impl Into<Vec3Expr>) -> Node {
+    Node::Prim(Prim::Box { half: half.into() })
+}
+pub fn round_box(half: impl Into<Vec3Expr>, radius: impl Into<Expr>) -> Node {
+    Node::Prim(Prim::RoundBox { half: half.into(), radius: radius.into() })
+}
+pub fn torus(major: impl Into<Expr>, minor: impl Into<Expr>) -> Node {
+    Node::Prim(Prim::Torus { major: major.into(), minor: minor.into() })
+}
+pub fn capsule(a: impl Into<Vec3Expr>, b: impl Into<Vec3Expr>, radius: impl Into<Expr>) -> Node {
+    Node::Prim(Prim::Capsule { a: a.into(), b: b.into(), radius: radius.into() })
+}
+/// Capped cylinder along y.
+pub fn cylinder(radius: impl Into<Expr>, half_height: impl Into<Expr>) -> Node {
+    Node::Prim(Prim::Cylinder { radius: radius.into(), half_height: half_height.into() })
+}
+/// Capped cone along y, radius `bottom` at −half_height and `top` at +half_height.
+pub fn cone(half_height: impl Into<Expr>, bottom: impl Into<Expr>, top: impl Into<Expr>) -> Node {
+    Node::Prim(Prim::Cone { half_height: half_height.into(), bottom: bottom.into(), top: top.into() })
+}
+/// The half-space below the plane dot(p, normal) + offset = 0. The normal is normalised here when constant.
+pub fn plane(normal: impl Into<Vec3Expr>, offset: impl Into<Expr>) -> Node {
+    let mut normal = normal.into();
+    if let Some(n) = normal.lits() {
+        let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        if len > 0.0 {
+            normal = n.map(|c| c / len).into();
+        }
+    }
+    Node::Prim(Prim::Plane { normal, offset: offset.into() })
+}
+pub fn octahedron(size: impl Into<Expr>) -> Node {
+    Node::Prim(Prim::Octahedron { size: size.into() })
+}
+pub fn ellipsoid(radii: impl Into<Vec3Expr>) -> Node {
+    Node::Prim(Prim::Ellipsoid { radii: radii.into() })
+}
+
+// ---- fractals ----------------------------------------------------------------------------------------------------
+
+/// Mandelbulb of the given power (may animate; an integer 8 compiles to the trig-free polynomial form).
+pub fn mandelbulb(power: impl Into<Expr>) -> Fractal {
+    Fractal::new(FractalKind::Mandelbulb { power: power.into() })
+}
+pub fn menger(levels: u32) -> Fractal {
+    Fractal { iterations: Some(levels), ..Fractal::new(FractalKind::Menger) }
+}
+pub fn sierpinski_tetrahedron(levels: u32) -> Fractal {
+    Fractal { iterations: Some(levels), ..Fractal::new(FractalKind::Sierpinski) }
+}
+/// Quaternion Julia set for the constant `c`.
+pub fn julia(c: impl Into<Vec4Expr>) -> Fractal {
+    Fractal::new(FractalKind::Julia { c: c.into() })
+}
+pub fn mandelbox(scale: impl Into<Expr>) -> Fractal {
+    Fractal::new(FractalKind::Mandelbox { scale: scale.into() })
+}
+
+impl Fractal {
+    pub fn iterations(mut self, n: u32) -> Fractal {
+        self.iterations = Some(n);
+        self
+    }
+    pub fn bailout(mut self, b: impl Into<Expr>) -> Fractal {
+        self.bailout = Some(b.into());
+        self
+    }
+    /// Mandelbox only: the inner radius of the sphere fold.
+    pub fn min_radius(mut self, r: impl Into<Expr>) -> Fractal {
+        self.min_radius = Some(r.into());
+        self
+    }
+    /// Mandelbox only: the box fold limit.
+    pub fn fold_limit(mut self, f: impl Into<Expr>) -> Fractal {
+        self.fold_limit = Some(f.into());
+        self
+    }
+}
+
+impl From<Fractal> for Node {
+    fn from(f: Fractal) -> Node {
+        Node::Fractal(f)
+    }
+}
+
+// ---- CSG -------------------------------------------------------------------------------------------------------
+
+fn flatten(nodes: impl IntoIterator<Item = Node>, same: fn(Node) -> Result<Vec<Node>, Node>) -> Vec<Node> {
+    let mut out = Vec::new();
+    for n in nodes {
+        match same(n) {
+            Ok(children) => out.extend(children),
+            Err(n) => out.push(n),
+        }
+    }
+    out
+}
+
+pub fn union(a: impl Into<Node>, b: impl Into<Node>) -> Node {
+    union_all([a.into(), b.into()])
+}
+/// n-ary union; nested unions flatten into one.
+pub fn union_all(nodes: impl IntoIterator<Item = Node>) -> Node {
+    Node::Union(flatten(nodes, |n| match n {
+        Node::Union(c) => Ok(c),
+        n => Err(n),
+    }))
+}
+pub fn intersect(a: impl Into<Node>, b: impl Into<Node>) -> Node {
+    intersect_all([a.into(), b.into()])
+}
+pub fn intersect_all(nodes: impl IntoIterator<Item = Node>) -> Node {
+    Node::Intersect(flatten(nodes, |n| match n {
+        Node::Intersect(c) => Ok(c),
+        n => Err(n),
+    }))
+}
+/// `a` with `b` cut away.
+pub fn subtract(a: impl Into<Node>, b: impl Into<Node>) -> Node {
+    Node::Subtract(Box::new(a.into()), Box::new(b.into()))
+}
+pub fn smooth_union(a: impl Into<Node>, b: impl Into<Node>, k: impl Into<Expr>) -> Node {
+    smooth_union_all([a.into(), b.into()], k)
+}
+pub fn smooth_union_all(nodes: impl IntoIterator<Item = Node>, k: impl Into<Expr>) -> Node {
+    Node::SmoothUnion(nodes.into_iter().collect(), k.into())
+}
+pub fn smooth_intersect(a: impl Into<Node>, b: impl Into<Node>, k: impl Into<Expr>) -> Node {
+    Node::SmoothIntersect(vec![a.into(), b.into()], k.into())
+}
+pub fn smooth_subtract(a: impl Into<Node>, b: impl Into<Node>, k: impl Into<Expr>) -> Node {
+    Node::SmoothSubtract(Box::new(a.into()), Box::new(b.into()), k.into())
+}
+
+// ---- transforms, domain operations, materials: methods on anything that is a shape -----------------------------
+
+/// Chained operations on shapes (nodes and fractals).
+pub trait ShapeExt: Into<Node> + Sized {
+    fn translate(self, offset: impl Into<Vec3Expr>) -> Node {
+        Node::Translate(Box::new(self.into()), offset.into())
+    }
+    fn rotate_x(self, angle: impl Into<Expr>) -> Node {
+        Node::Rotate(Box::new(self.into()), Axis::X, angle.into())
+    }
+    fn rotate_y(self, angle: impl Into<Expr>) -> Node {
+        Node::Rotate(Box::new(self.into()), Axis::Y, angle.into())
+    }
+    fn rotate_z(self, angle: impl Into<Expr>) -> Node {
+        Node::Rotate(Box::new(self.into()), Axis::Z, angle.into())
+    }
+    /// Rotation about an arbitrary axis (normalised here; a zero axis is left for validation to report).
+    fn rotate(self, axis: impl Into<glam::DVec3>, angle: impl Into<Expr>) -> Node {
+        let a: glam::DVec3 = axis.into();
+        let unit = a.try_normalize().unwrap_or(a);
+        Node::Rotate(Box::new(self.into()), Axis::Any(unit.to_array()), angle.into())
+    }
+    /// Uniform scale; distances are scaled back so they stay distances.
+    fn scale(self, factor: impl Into<Expr>) -> Node {
+        Node::Scale(Box::new(self.into()), factor.into())
+    }
+    /// Infinite repetition with `period` per axis (0 leaves that axis alone).
+    fn repeat(self, period: impl Into<Vec3Expr>) -> Node {
+        Node::Repeat(Box::new(self.into()), period.into())
+    }
+    /// Repetition over cells −count..=count per axis.
+    fn repeat_limited(self, period: impl Into<Vec3Expr>, count: [u32; 3]) -> Node {
+        Node::RepeatLimited(Box::new(self.into()), period.into(), count)
+    }
+    fn twist(self, rate: impl Into<Expr>) -> Node {
+        Node::Twist(Box::new(self.into()), rate.into())
+    }
+    fn bend(self, rate: impl Into<Expr>) -> Node {
+        Node::Bend(Box::new(self.into()), rate.into())
+    }
+    fn round(self, radius: impl Into<Expr>) -> Node {
+        Node::Round(Box::new(self.into()), radius.into())
+    }
+    fn onion(self, thickness: impl Into<Expr>) -> Node {
+        Node::Onion(Box::new(self.into()), thickness.into())
+    }
+    fn elongate(self, h: impl Into<Vec3Expr>) -> Node {
+        Node::Elongate(Box::new(self.into()), h.into())
+    }
+    fn material(self, m: impl Into<Material>) -> Node {
+        Node::Material(Box::new(self.into()), m.into())
+    }
+}
+impl ShapeExt for Node {}
+impl ShapeExt for Fractal {}
+
+// ---- materials --------------------------------------------------------------------------------------------------
+
+/// A colour; converts into a [`Material`] with default Blinn-Phong terms.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Color(pub Vec3Expr);
+
+pub fn rgb(r: impl Into<Expr>, g: impl Into<Expr>, b: impl Into<Expr>) -> Color {
+    Color(vec3(r, g, b))
+}
+
+impl From<Color> for Material {
+    fn from(c: Color) -> Material {
+        Material::from_albedo(Albedo::Rgb(c.0))
+    }
+}
+
+/// An explicit Blinn-Phong material.
+pub fn phong(
+    color: Color,
+    ambient: impl Into<Expr>,
+    diffuse: impl Into<Expr>,
+    specular: impl Into<Expr>,
+    shininess: impl Into<Expr>,
+) -> Material {
+    Material {
+        albedo: Albedo::Rgb(color.0),
+        ambient: ambient.into(),
+        diffuse: diffuse.into(),
+        specular: specular.into(),
+        shininess: shininess.into(),
+    }
+}
+
+/// Orbit-trap colouring for fractals: mix(a, b, trap).
+pub fn orbit_trap(a: Color, b: Color) -> Material {
+    Material::from_albedo(Albedo::OrbitTrap(a.0, b.0))
+}
+
+macro_rules! material_setters {
+    ($($name:ident),*) => {
+        impl Material {$(
+            pub fn $name(mut self, v: impl Into<Expr>) -> Material { self.$name = v.into(); self }
+        )*}
+        impl Color {$(
+            pub fn $name(self, v: impl Into<Expr>) -> Material { Material::from(self).$name(v) }
+        )*}
+    };
+}
+material_setters!(ambient, diffuse, specular, shininess);
+
+// ---- lights and camera ------------------------------------------------------------------------------------------
+
+/// Light arriving from `direction` (pointing from the scene towards the light).
+pub fn directional(direction: impl Into<Vec3Expr>, color: Color) -> Light {
+    Light { kind: LightKind::Directional { direction: direction.into() }, color: color.0, intensity: Expr::Lit(1.0) }
+}
+/// A point light with inverse-square fall-off.
+pub fn point_light(position: impl Into<Vec3Expr>, color: Color) -> Light {
+    Light { kind: LightKind::Point { position: position.into() }, color: color.0, intensity: Expr::Lit(1.0) }
+}
+impl Light {
+    pub fn intensity(mut self, i: impl Into<Expr>) -> Light {
+        self.intensity = i.into();
+        self
+    }
+}
+
+/// A camera at `position` looking at `target`.
+pub fn camera(position: impl Into<Vec3Expr>, target: impl Into<Vec3Expr>) -> Camera {
+    Camera {
+        placement: CameraPlacement::LookAt { position: position.into(), target: target.into() },
+        ..Camera::default()
+    }
+}
+/// One key of a camera path: at `time` seconds the camera is at `position` looking at `target`.
+pub fn key(time: f64, position: impl Into<glam::DVec3>, target: impl Into<glam::DVec3>) -> CameraKey {
+    CameraKey { time, position: position.into().to_array(), target: target.into().to_array() }
+}
+/// A keyed camera path, Catmull-Rom by default.
+pub fn camera_path(keys: impl IntoIterator<Item = CameraKey>) -> Camera {
+    Camera {
+        placement: CameraPlacement::Path {
+            keys: keys.into_iter().collect(),
+            interpolation: PathInterpolation::CatmullRom,
+            looped: false,
+        },
+        ..Camera::default()
+    }
+}
+impl Camera {
+    /// Vertical field of view in degrees.
+    pub fn fov(mut self, degrees: f64) -> Camera {
+        self.fov_degrees = degrees;
+        self
+    }
+    pub fn linear(mut self) -> Camera {
+        if let CameraPlacement::Path { interpolation, .. } = &mut self.placement {
+            *interpolation = PathInterpolation::Linear;
+        }
+        self
+    }
+    pub fn looped(mut self) -> Camera {
+        if let CameraPlacement::Path { looped, .. } = &mut self.placement {
+            *looped = true;
+        }
+        self
+    }
+}
+
+// ---- scene --------------------------------------------------------------------------------------------------------
+
+/// A scene of `root` with default lights, camera and settings.
+pub fn scene(root: impl Into<Node>) -> Scene {
+    Scene { root: root.into(), lights: Vec::new(), camera: Camera::default(), settings: RenderSettings::default() }
+}
+
+impl From<Node> for Scene {
+    fn from(n: Node) -> Scene {
+        scene(n)
+    }
+}
+impl From<Fractal> for Scene {
+    fn from(f: Fractal) -> Scene {
+        scene(f)
+    }
+}
+
+fn constant_color(c: &Color) -> [f64; 3] {
+    c.0.lits().unwrap_or_else(|| c.0.eval_default(0.0))
+}
+
+impl Scene {
+    /// Adds a light; the first one replaces the default key light.
+    pub fn light(mut self, l: Light) -> Scene {
+        self.lights.push(l);
+        self
+    }
+    pub fn camera(mut self, c: Camera) -> Scene {
+        self.camera = c;
+        self
+    }
+    pub fn max_steps(mut self, n: u32) -> Scene {
+        self.settings.max_steps = n;
+        self
+    }
+    pub fn max_distance(mut self, d: f64) -> Scene {
+        self.settings.max_distance = d;
+        self
+    }
+    /// A fixed hit distance.
+    pub fn epsilon(mut self, e: f64) -> Scene {
+        self.settings.epsilon = HitEpsilon::Fixed(e);
+        self
+    }
+    /// A hit distance of `k` pixel footprints at the ray's distance.
+    pub fn pixel_epsilon(mut self, k: f64) -> Scene {
+        self.settings.epsilon = HitEpsilon::Pixel(k);
+        self
+    }
+    pub fn no_shadows(mut self) -> Scene {
+        self.settings.shadows = Shadows::None;
+        self
+    }
+    pub fn hard_shadows(mut self) -> Scene {
+        self.settings.shadows = Shadows::Hard;
+        self
+    }
+    /// Soft shadows with penumbra sharpness `k`.
+    pub fn soft_shadows(mut self, k: f64) -> Scene {
+        self.settings.shadows = Shadows::Soft(k);
+        self
+    }
+    pub fn ambient_occlusion(mut self, strength: f64) -> Scene {
+        self.settings.ambient_occlusion = Some(strength);
+        self
+    }
+    pub fn glow(mut self, c: Color) -> Scene {
+        self.settings.glow = Some(constant_color(&c));
+        self
+    }
+    pub fn fog(mut self, c: Color, density: f64) -> Scene {
+        self.settings.fog = Some(Fog { color: constant_color(&c), density });
+        self
+    }
+    pub fn background(mut self, c: Color) -> Scene {
+        self.settings.background = constant_color(&c);
+        self
+    }
+    pub fn gamma(mut self, g: f64) -> Scene {
+        self.settings.gamma = g;
+        self
+    }
+    /// The lights in effect: the scene's own, or the default key light when it names none.
+    pub fn effective_lights(&self) -> Vec<Light> {
+        if self.lights.is_empty() {
+            vec![Light::default_key()]
+        } else {
+            self.lights.clone()
+        }
+    }
+}

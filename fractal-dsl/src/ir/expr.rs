@@ -1,0 +1,272 @@
+//! Scalar expressions: anything that stands where a number goes (a literal, `t`, a `param(..)`, arithmetic).
+
+use std::fmt;
+
+/// A named uniform the viewer can change without recompiling: `param("name", default, min..max)`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ParamDecl {
+    pub name: String,
+    pub default: f64,
+    pub min: f64,
+    pub max: f64,
+}
+
+/// Binary arithmetic operators.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum BinOp {
+    Add,
+    Sub,
+    Mul,
+    Div,
+}
+
+/// Built-in scalar functions callable in expressions.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Func {
+    Sin,
+    Cos,
+    Abs,
+    Sqrt,
+    Min,
+    Max,
+    Pow,
+    Clamp,
+    Mix,
+}
+
+impl Func {
+    pub const ALL: [Func; 9] = [
+        Func::Sin,
+        Func::Cos,
+        Func::Abs,
+        Func::Sqrt,
+        Func::Min,
+        Func::Max,
+        Func::Pow,
+        Func::Clamp,
+        Func::Mix,
+    ];
+    /// The name used in scene source, and by every shading language.
+    pub fn name(self) -> &'static str {
+        match self {
+            Func::Sin => "sin",
+            Func::Cos => "cos",
+            Func::Abs => "abs",
+            Func::Sqrt => "sqrt",
+            Func::Min => "min",
+            Func::Max => "max",
+            Func::Pow => "pow",
+            Func::Clamp => "clamp",
+            Func::Mix => "mix",
+        }
+    }
+    pub fn arity(self) -> usize {
+        match self {
+            Func::Sin | Func::Cos | Func::Abs | Func::Sqrt => 1,
+            Func::Min | Func::Max | Func::Pow => 2,
+            Func::Clamp | Func::Mix => 3,
+        }
+    }
+    pub fn from_name(name: &str) -> Option<Func> {
+        Func::ALL.into_iter().find(|f| f.name() == name)
+    }
+}
+
+/// A scalar expression.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Expr {
+    Lit(f64),
+    /// Scene time in seconds, `t` in source.
+    Time,
+    Param(Box<ParamDecl>),
+    Neg(Box<Expr>),
+    Bin(BinOp, Box<Expr>, Box<Expr>),
+    Call(Func, Vec<Expr>),
+}
+
+impl Expr {
+    /// The literal value, if this expression is one.
+    pub fn as_lit(&self) -> Option<f64> {
+        match self {
+            Expr::Lit(v) => Some(*v),
+            _ => None,
+        }
+    }
+    /// Number of nodes, for the size cap.
+    pub fn size(&self) -> usize {
+        match self {
+            Expr::Lit(_) | Expr::Time | Expr::Param(_) => 1,
+            Expr::Neg(e) => 1 + e.size(),
+            Expr::Bin(_, a, b) => 1 + a.size() + b.size(),
+            Expr::Call(_, args) => 1 + args.iter().map(Expr::size).sum::<usize>(),
+        }
+    }
+    /// Calls `f` on every parameter declaration in this expression.
+    pub fn visit_params<'a>(&'a self, f: &mut dyn FnMut(&'a ParamDecl)) {
+        match self {
+            Expr::Lit(_) | Expr::Time => {}
+            Expr::Param(p) => f(p),
+            Expr::Neg(e) => e.visit_params(f),
+            Expr::Bin(_, a, b) => {
+                a.visit_params(f);
+                b.visit_params(f);
+            }
+            Expr::Call(_, args) => args.iter().for_each(|a| a.visit_params(f)),
+        }
+    }
+    /// Whether the expression reads `t`.
+    pub fn uses_time(&self) -> bool {
+        match self {
+            Expr::Time => true,
+            Expr::Lit(_) | Expr::Param(_) => false,
+            Expr::Neg(e) => e.uses_time(),
+            Expr::Bin(_, a, b) => a.uses_time() || b.uses_time(),
+            Expr::Call(_, args) => args.iter().any(Expr::uses_time),
+        }
+    }
+    /// Evaluates with the given time and parameter lookup (host-side: lights, camera, folding checks).
+    pub fn eval(&self, time: f64, param: &dyn Fn(&ParamDecl) -> f64) -> f64 {
+        match self {
+            Expr::Lit(v) => *v,
+            Expr::Time => time,
+            Expr::Param(p) => param(p),
+            Expr::Neg(e) => -e.eval(time, param),
+            Expr::Bin(op, a, b) => op.apply(a.eval(time, param), b.eval(time, param)),
+            Expr::Call(f, args) => {
+                let v: Vec<f64> = args.iter().map(|a| a.eval(time, param)).collect();
+                f.apply(&v)
+            }
+        }
+    }
+    /// Evaluates with parameters at their defaults.
+    pub fn eval_default(&self, time: f64) -> f64 {
+        self.eval(time, &|p| p.default)
+    }
+}
+
+impl BinOp {
+    pub fn apply(self, a: f64, b: f64) -> f64 {
+        match self {
+            BinOp::Add => a + b,
+            BinOp::Sub => a - b,
+            BinOp::Mul => a * b,
+            BinOp::Div => a / b,
+        }
+    }
+    pub fn symbol(self) -> &'static str {
+        match self {
+            BinOp::Add => "+",
+            BinOp::Sub => "-",
+            BinOp::Mul => "*",
+            BinOp::Div => "/",
+        }
+    }
+}
+
+impl Func {
+    /// Applies the function in f64; the semantics every backend must reproduce.
+    pub fn apply(self, v: &[f64]) -> f64 {
+        match self {
+            Func::Sin => v[0].sin(),
+            Func::Cos => v[0].cos(),
+            Func::Abs => v[0].abs(),
+            Func::Sqrt => v[0].sqrt(),
+            Func::Min => v[0].min(v[1]),
+            Func::Max => v[0].max(v[1]),
+            Func::Pow => v[0].powf(v[1]),
+            Func::Clamp => v[0].max(v[1]).min(v[2]),
+            Func::Mix => v[0] + (v[1] - v[0]) * v[2],
+        }
+    }
+}
+
+macro_rules! from_num {
+    ($($t:ty),*) => {$(
+        impl From<$t> for Expr {
+            fn from(v: $t) -> Expr { Expr::Lit(v as f64) }
+        }
+    )*};
+}
+from_num!(f32, f64, i32, u32);
+
+macro_rules! expr_ops {
+    ($($tr:ident $f:ident $op:ident),*) => {$(
+        impl<R: Into<Expr>> core::ops::$tr<R> for Expr {
+            type Output = Expr;
+            fn $f(self, r: R) -> Expr { Expr::Bin(BinOp::$op, Box::new(self), Box::new(r.into())) }
+        }
+        impl core::ops::$tr<Expr> for f64 {
+            type Output = Expr;
+            fn $f(self, r: Expr) -> Expr { Expr::Bin(BinOp::$op, Box::new(Expr::Lit(self)), Box::new(r)) }
+        }
+        impl core::ops::$tr<Expr> for f32 {
+            type Output = Expr;
+            fn $f(self, r: Expr) -> Expr { Expr::Bin(BinOp::$op, Box::new(Expr::Lit(self as f64)), Box::new(r)) }
+        }
+    )*};
+}
+expr_ops!(Add add Add, Sub sub Sub, Mul mul Mul, Div div Div);
+
+impl core::ops::Neg for Expr {
+    type Output = Expr;
+    fn neg(self) -> Expr {
+        Expr::Neg(Box::new(self))
+    }
+}
+
+/// A 3-vector of expressions (`vec3(..)` and `rgb(..)` in source).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Vec3Expr(pub [Expr; 3]);
+
+impl Vec3Expr {
+    pub fn lits(&self) -> Option<[f64; 3]> {
+        Some([self.0[0].as_lit()?, self.0[1].as_lit()?, self.0[2].as_lit()?])
+    }
+    pub fn eval(&self, time: f64, param: &dyn Fn(&ParamDecl) -> f64) -> [f64; 3] {
+        [self.0[0].eval(time, param), self.0[1].eval(time, param), self.0[2].eval(time, param)]
+    }
+    pub fn eval_default(&self, time: f64) -> [f64; 3] {
+        self.eval(time, &|p| p.default)
+    }
+    pub fn splat(e: impl Into<Expr>) -> Vec3Expr {
+        let e = e.into();
+        Vec3Expr([e.clone(), e.clone(), e])
+    }
+}
+
+impl From<glam::Vec3> for Vec3Expr {
+    fn from(v: glam::Vec3) -> Self {
+        Vec3Expr([v.x.into(), v.y.into(), v.z.into()])
+    }
+}
+impl From<glam::DVec3> for Vec3Expr {
+    fn from(v: glam::DVec3) -> Self {
+        Vec3Expr([v.x.into(), v.y.into(), v.z.into()])
+    }
+}
+impl From<[f64; 3]> for Vec3Expr {
+    fn from(v: [f64; 3]) -> Self {
+        Vec3Expr(v.map(Expr::Lit))
+    }
+}
+
+/// A 4-vector of expressions (`vec4(..)`: the quaternion Julia constant).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Vec4Expr(pub [Expr; 4]);
+
+impl From<glam::Vec4> for Vec4Expr {
+    fn from(v: glam::Vec4) -> Self {
+        Vec4Expr([v.x.into(), v.y.into(), v.z.into(), v.w.into()])
+    }
+}
+impl From<[f64; 4]> for Vec4Expr {
+    fn from(v: [f64; 4]) -> Self {
+        Vec4Expr(v.map(Expr::Lit))
+    }
+}
+
+impl fmt::Display for BinOp {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.symbol())
+    }
+}

@@ -1,0 +1,399 @@
+//! The scene IR: the one description every reader (writers, interpreter, analyses) walks.
+//!
+//! A [`Scene`] is a distance tree ([`Node`]) plus what is needed to light and look at it. Leaves are primitives
+//! ([`Prim`]) and fractals ([`Fractal`]); inner nodes are CSG, transforms, domain operations and materials.
+//! Numbers are [`Expr`]s so that `t` and `param(..)` can stand wherever a literal can.
+
+mod expr;
+
+pub use expr::{BinOp, Expr, Func, ParamDecl, Vec3Expr, Vec4Expr};
+
+/// Exact signed-distance primitives. Each is 1-Lipschitz and, except where noted, the exact Euclidean distance.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Prim {
+    Sphere { radius: Expr },
+    /// Axis-aligned box centred at the origin, `half` its half extents.
+    Box { half: Vec3Expr },
+    /// A box of half extents `half` with edges rounded by `radius` (the outer size stays `half`).
+    RoundBox { half: Vec3Expr, radius: Expr },
+    /// Torus in the xz plane: `major` is the ring radius, `minor` the tube radius.
+    Torus { major: Expr, minor: Expr },
+    /// Segment from `a` to `b` swept by a sphere of `radius`.
+    Capsule { a: Vec3Expr, b: Vec3Expr, radius: Expr },
+    /// Capped cylinder along y.
+    Cylinder { radius: Expr, half_height: Expr },
+    /// Capped cone along y: radius `bottom` at y = -half_height, `top` at y = +half_height.
+    Cone { half_height: Expr, bottom: Expr, top: Expr },
+    /// Half-space `dot(p, normal) + offset <= 0`; `normal` is normalised by the builder. Unbounded.
+    Plane { normal: Vec3Expr, offset: Expr },
+    /// Regular octahedron `|x|+|y|+|z| = size`.
+    Octahedron { size: Expr },
+    /// Ellipsoid with semi-axes `radii`: a lower bound of the distance, not exact (IQ's bound).
+    Ellipsoid { radii: Vec3Expr },
+}
+
+/// The fractal families. Their distance estimators are not exactly 1-Lipschitz, so each carries a measured step
+/// factor ([`FractalKind::step_factor`]).
+#[derive(Clone, Debug, PartialEq)]
+pub enum FractalKind {
+    /// Power-`power` Mandelbulb, polar axis z (theta = acos(z/r), phi = atan2(y, x)).
+    Mandelbulb { power: Expr },
+    /// Menger sponge in the cube [-1, 1]³; `iterations` is the number of levels.
+    Menger,
+    /// Sierpinski tetrahedron with vertices (1,1,1), (-1,-1,1), (1,-1,-1), (-1,1,-1); `iterations` = levels.
+    Sierpinski,
+    /// Quaternion Julia set z ← z² + c in the slice w = 0.
+    Julia { c: Vec4Expr },
+    /// Mandelbox of `scale` (box fold at `fold_limit`, sphere fold with `min_radius` and fixed radius 1).
+    Mandelbox { scale: Expr },
+}
+
+/// A fractal leaf with its iteration settings. `None` means the family's default ([`Fractal::iterations`] etc.).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Fractal {
+    pub kind: FractalKind,
+    pub iterations: Option<u32>,
+    pub bailout: Option<Expr>,
+    pub min_radius: Option<Expr>,
+    pub fold_limit: Option<Expr>,
+}
+
+/// The cap on fractal iterations (validation refuses more).
+pub const MAX_ITERATIONS: u32 = 64;
+
+impl FractalKind {
+    pub fn name(&self) -> &'static str {
+        match self {
+            FractalKind::Mandelbulb { .. } => "mandelbulb",
+            FractalKind::Menger => "menger",
+            FractalKind::Sierpinski => "sierpinski_tetrahedron",
+            FractalKind::Julia { .. } => "julia",
+            FractalKind::Mandelbox { .. } => "mandelbox",
+        }
+    }
+    /// Factor applied to the estimator so a step never overshoots the surface: measured by the Lipschitz tests
+    /// (`fractal-dsl/tests/lipschitz.rs`) as the largest |f(p) − f(q)| / |p − q| seen over sampled pairs, inverted.
+    pub fn step_factor(&self) -> f64 {
+        match self {
+            FractalKind::Mandelbulb { .. } => 1.0,
+            FractalKind::Menger => 1.0,
+            FractalKind::Sierpinski => 1.0,
+            FractalKind::Julia { .. } => 1.0,
+            FractalKind::Mandelbox { .. } => 1.0,
+        }
+    }
+    pub fn default_iterations(&self) -> u32 {
+        match self {
+            FractalKind::Mandelbulb { .. } => 8,
+            FractalKind::Menger => 4,
+            FractalKind::Sierpinski => 8,
+            FractalKind::Julia { .. } => 11,
+            FractalKind::Mandelbox { .. } => 12,
+        }
+    }
+}
+
+impl Fractal {
+    pub fn new(kind: FractalKind) -> Fractal {
+        Fractal { kind, iterations: None, bailout: None, min_radius: None, fold_limit: None }
+    }
+    pub fn iterations_or_default(&self) -> u32 {
+        self.iterations.unwrap_or_else(|| self.kind.default_iterations())
+    }
+    pub fn bailout_or_default(&self) -> Expr {
+        self.bailout.clone().unwrap_or(Expr::Lit(match self.kind {
+            FractalKind::Julia { .. } => 4.0,
+            _ => 2.0,
+        }))
+    }
+    pub fn min_radius_or_default(&self) -> Expr {
+        self.min_radius.clone().unwrap_or(Expr::Lit(0.5))
+    }
+    pub fn fold_limit_or_default(&self) -> Expr {
+        self.fold_limit.clone().unwrap_or(Expr::Lit(1.0))
+    }
+}
+
+/// Axis of a rotation. Arbitrary axes are normalised constants; angles may animate.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Axis {
+    X,
+    Y,
+    Z,
+    /// A unit vector.
+    Any([f64; 3]),
+}
+
+impl Axis {
+    pub fn unit(self) -> [f64; 3] {
+        match self {
+            Axis::X => [1.0, 0.0, 0.0],
+            Axis::Y => [0.0, 1.0, 0.0],
+            Axis::Z => [0.0, 0.0, 1.0],
+            Axis::Any(a) => a,
+        }
+    }
+}
+
+/// The distance tree.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Node {
+    Prim(Prim),
+    Fractal(Fractal),
+    /// Minimum of the children; n-ary.
+    Union(Vec<Node>),
+    /// Maximum of the children; n-ary.
+    Intersect(Vec<Node>),
+    /// `a` with `b` cut away: max(a, −b).
+    Subtract(Box<Node>, Box<Node>),
+    /// Polynomial smooth minimum with blend radius `k`, folded left over the children.
+    SmoothUnion(Vec<Node>, Expr),
+    SmoothIntersect(Vec<Node>, Expr),
+    SmoothSubtract(Box<Node>, Box<Node>, Expr),
+    Translate(Box<Node>, Vec3Expr),
+    /// Rotation of the shape by `angle` radians about the axis (right-handed).
+    Rotate(Box<Node>, Axis, Expr),
+    /// Uniform scale; the distance is multiplied back so it stays a true distance.
+    Scale(Box<Node>, Expr),
+    /// Infinite repetition with the given period on each axis (0 = not repeated on that axis). Unbounded.
+    Repeat(Box<Node>, Vec3Expr),
+    /// Repetition limited to cells −count..=count on each axis.
+    RepeatLimited(Box<Node>, Vec3Expr, [u32; 3]),
+    /// Twist about y: the xz plane rotates by `rate`·y radians.
+    Twist(Box<Node>, Expr),
+    /// Bend in the xy plane: x rotates by `rate`·x radians.
+    Bend(Box<Node>, Expr),
+    /// Rounds the shape outward by a radius: d − r.
+    Round(Box<Node>, Expr),
+    /// Hollows the shape to a shell: |d| − thickness.
+    Onion(Box<Node>, Expr),
+    /// Stretches the shape by `h` along each axis, inserting straight sections.
+    Elongate(Box<Node>, Vec3Expr),
+    Material(Box<Node>, Material),
+}
+
+impl Node {
+    /// The direct children, in order.
+    pub fn children(&self) -> Vec<&Node> {
+        match self {
+            Node::Prim(_) | Node::Fractal(_) => vec![],
+            Node::Union(c) | Node::Intersect(c) | Node::SmoothUnion(c, _) | Node::SmoothIntersect(c, _) => {
+                c.iter().collect()
+            }
+            Node::Subtract(a, b) | Node::SmoothSubtract(a, b, _) => vec![a, b],
+            Node::Translate(c, _)
+            | Node::Rotate(c, _, _)
+            | Node::Scale(c, _)
+            | Node::Repeat(c, _)
+            | Node::RepeatLimited(c, _, _)
+            | Node::Twist(c, _)
+            | Node::Bend(c, _)
+            | Node::Round(c, _)
+            | Node::Onion(c, _)
+            | Node::Elongate(c, _)
+            | Node::Material(c, _) => vec![c],
+        }
+    }
+    /// Number of nodes in the tree.
+    pub fn size(&self) -> usize {
+        1 + self.children().iter().map(|c| c.size()).sum::<usize>()
+    }
+    pub fn depth(&self) -> usize {
+        1 + self.children().iter().map(|c| c.depth()).max().unwrap_or(0)
+    }
+    /// Whether this subtree contains a fractal (the expensive leaves the bound guard protects).
+    pub fn has_fractal(&self) -> bool {
+        matches!(self, Node::Fractal(_)) || self.children().iter().any(|c| c.has_fractal())
+    }
+}
+
+/// How a surface's base colour is chosen.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Albedo {
+    Rgb(Vec3Expr),
+    /// For fractals: mix(a, b, trap), where trap is the orbit's closest approach to the origin, clamped to [0, 1].
+    /// Non-fractal leaves under it take `a`.
+    OrbitTrap(Vec3Expr, Vec3Expr),
+}
+
+/// Blinn-Phong material.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Material {
+    pub albedo: Albedo,
+    pub ambient: Expr,
+    pub diffuse: Expr,
+    pub specular: Expr,
+    pub shininess: Expr,
+}
+
+impl Material {
+    pub const DEFAULT_AMBIENT: f64 = 0.15;
+    pub const DEFAULT_DIFFUSE: f64 = 0.85;
+    pub const DEFAULT_SPECULAR: f64 = 0.0;
+    pub const DEFAULT_SHININESS: f64 = 32.0;
+    pub fn from_albedo(albedo: Albedo) -> Material {
+        Material {
+            albedo,
+            ambient: Expr::Lit(Self::DEFAULT_AMBIENT),
+            diffuse: Expr::Lit(Self::DEFAULT_DIFFUSE),
+            specular: Expr::Lit(Self::DEFAULT_SPECULAR),
+            shininess: Expr::Lit(Self::DEFAULT_SHININESS),
+        }
+    }
+    /// The material of geometry no `.material(..)` covers.
+    pub fn default_surface() -> Material {
+        Material::from_albedo(Albedo::Rgb([0.95, 0.75, 0.55].into()))
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum LightKind {
+    /// Light from infinitely far away in `direction` (pointing from the scene towards the light).
+    Directional { direction: Vec3Expr },
+    /// Light at `position`, falling off with the inverse square of distance.
+    Point { position: Vec3Expr },
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Light {
+    pub kind: LightKind,
+    pub color: Vec3Expr,
+    pub intensity: Expr,
+}
+
+impl Light {
+    /// The light of a scene that names none: the baseline's key light.
+    pub fn default_key() -> Light {
+        Light {
+            kind: LightKind::Directional { direction: [0.6, 0.8, -0.4].into() },
+            color: [1.0, 1.0, 1.0].into(),
+            intensity: Expr::Lit(1.0),
+        }
+    }
+}
+
+/// Interpolation between camera path keys.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PathInterpolation {
+    Linear,
+    CatmullRom,
+}
+
+/// One key of a camera path.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CameraKey {
+    pub time: f64,
+    pub position: [f64; 3],
+    pub target: [f64; 3],
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum CameraPlacement {
+    LookAt { position: Vec3Expr, target: Vec3Expr },
+    Path { keys: Vec<CameraKey>, interpolation: PathInterpolation, looped: bool },
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Camera {
+    pub placement: CameraPlacement,
+    /// Vertical field of view in degrees.
+    pub fov_degrees: f64,
+}
+
+impl Default for Camera {
+    fn default() -> Camera {
+        Camera {
+            placement: CameraPlacement::LookAt {
+                position: [1.2, 1.0, -2.2].into(),
+                target: [0.0, 0.0, 0.0].into(),
+            },
+            // The baseline's focal length 1.8: fov = 2·atan(1/1.8).
+            fov_degrees: 2.0 * (1.0f64 / 1.8).atan().to_degrees(),
+        }
+    }
+}
+
+/// When the march counts as a hit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum HitEpsilon {
+    /// A fixed distance.
+    Fixed(f64),
+    /// A multiple of the pixel footprint at the ray's distance: detail scales with the view.
+    Pixel(f64),
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Shadows {
+    None,
+    Hard,
+    /// Penumbra sharpness k (IQ's soft shadows): larger is sharper.
+    Soft(f64),
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Fog {
+    pub color: [f64; 3],
+    pub density: f64,
+}
+
+/// Everything about how rays are marched and shaded; compiled into the kernel, so a disabled effect costs nothing.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RenderSettings {
+    pub max_steps: u32,
+    pub max_distance: f64,
+    pub epsilon: HitEpsilon,
+    pub shadows: Shadows,
+    /// Ambient occlusion strength (5 samples along the normal); None disables it.
+    pub ambient_occlusion: Option<f64>,
+    pub glow: Option<[f64; 3]>,
+    pub fog: Option<Fog>,
+    pub background: [f64; 3],
+    pub gamma: f64,
+}
+
+impl Default for RenderSettings {
+    fn default() -> Self {
+        RenderSettings {
+            max_steps: 128,
+            max_distance: 20.0,
+            epsilon: HitEpsilon::Fixed(0.0005),
+            shadows: Shadows::None,
+            ambient_occlusion: None,
+            glow: None,
+            fog: None,
+            background: [0.08, 0.09, 0.12],
+            gamma: 2.0,
+        }
+    }
+}
+
+/// A complete scene: geometry, lights, camera and render settings.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    pub root: Node,
+    /// The scene's lights; empty means the default key light ([`Scene::effective_lights`]).
+    pub lights: Vec<Light>,
+    pub camera: Camera,
+    pub settings: RenderSettings,
+}
+
+impl Scene {
+    /// The scene's parameters in order of first appearance (geometry, then materials, then lights);
+    /// index i is uniform slot i.
+    pub fn params(&self) -> Vec<ParamDecl> {
+        let mut out: Vec<ParamDecl> = Vec::new();
+        let mut add = |p: &ParamDecl| {
+            if !out.iter().any(|q| q.name == p.name) {
+                out.push(p.clone());
+            }
+        };
+        crate::visit::visit_exprs(self, &mut |e| e.visit_params(&mut add));
+        out
+    }
+    /// Whether anything in the kernel reads `t`.
+    pub fn uses_time(&self) -> bool {
+        let mut used = false;
+        crate::visit::visit_node_exprs(&self.root, &mut |e| used |= e.uses_time());
+        used
+    }
+}

@@ -1,0 +1,98 @@
+//! Walks over every expression of a scene, for analyses that only care about the numbers (params, time, size).
+
+use crate::ir::{Albedo, CameraPlacement, Expr, FractalKind, LightKind, Material, Node, Prim, Scene};
+
+/// Calls `f` on every expression in the distance tree (geometry and materials), in tree order.
+pub fn visit_node_exprs<'a>(node: &'a Node, f: &mut dyn FnMut(&'a Expr)) {
+    match node {
+        Node::Prim(p) => prim_exprs(p, f),
+        Node::Fractal(fr) => {
+            match &fr.kind {
+                FractalKind::Mandelbulb { power } => f(power),
+                FractalKind::Julia { c } => c.0.iter().for_each(&mut *f),
+                FractalKind::Mandelbox { scale } => f(scale),
+                FractalKind::Menger | FractalKind::Sierpinski => {}
+            }
+            for e in [&fr.bailout, &fr.min_radius, &fr.fold_limit].into_iter().flatten() {
+                f(e)
+            }
+        }
+        Node::Union(_) | Node::Intersect(_) | Node::Subtract(..) => {}
+        Node::SmoothUnion(_, k) | Node::SmoothIntersect(_, k) | Node::SmoothSubtract(_, _, k) => f(k),
+        Node::Translate(_, v) | Node::Repeat(_, v) | Node::RepeatLimited(_, v, _) | Node::Elongate(_, v) => {
+            v.0.iter().for_each(&mut *f)
+        }
+        Node::Rotate(_, _, e)
+        | Node::Scale(_, e)
+        | Node::Twist(_, e)
+        | Node::Bend(_, e)
+        | Node::Round(_, e)
+        | Node::Onion(_, e) => f(e),
+        Node::Material(_, m) => material_exprs(m, f),
+    }
+    for c in node.children() {
+        visit_node_exprs(c, f);
+    }
+}
+
+fn prim_exprs<'a>(p: &'a Prim, f: &mut dyn FnMut(&'a Expr)) {
+    let v3 = |v: &'a crate::ir::Vec3Expr, f: &mut dyn FnMut(&'a Expr)| v.0.iter().for_each(f);
+    match p {
+        Prim::Sphere { radius } => f(radius),
+        Prim::Box { half } => v3(half, f),
+        Prim::RoundBox { half, radius } => {
+            v3(half, f);
+            f(radius)
+        }
+        Prim::Torus { major, minor } => {
+            f(major);
+            f(minor)
+        }
+        Prim::Capsule { a, b, radius } => {
+            v3(a, f);
+            v3(b, f);
+            f(radius)
+        }
+        Prim::Cylinder { radius, half_height } => {
+            f(radius);
+            f(half_height)
+        }
+        Prim::Cone { half_height, bottom, top } => {
+            f(half_height);
+            f(bottom);
+            f(top)
+        }
+        Prim::Plane { normal, offset } => {
+            v3(normal, f);
+            f(offset)
+        }
+        Prim::Octahedron { size } => f(size),
+        Prim::Ellipsoid { radii } => v3(radii, f),
+    }
+}
+
+/// Calls `f` on every expression of a material.
+pub fn material_exprs<'a>(m: &'a Material, f: &mut dyn FnMut(&'a Expr)) {
+    match &m.albedo {
+        Albedo::Rgb(c) => c.0.iter().for_each(&mut *f),
+        Albedo::OrbitTrap(a, b) => a.0.iter().chain(b.0.iter()).for_each(&mut *f),
+    }
+    for e in [&m.ambient, &m.diffuse, &m.specular, &m.shininess] {
+        f(e)
+    }
+}
+
+/// Calls `f` on every expression of the scene: the tree, then lights, then the camera.
+pub fn visit_exprs<'a>(scene: &'a Scene, f: &mut dyn FnMut(&'a Expr)) {
+    visit_node_exprs(&scene.root, f);
+    for l in &scene.lights {
+        match &l.kind {
+            LightKind::Directional { direction: v } | LightKind::Point { position: v } => v.0.iter().for_each(&mut *f),
+        }
+        l.color.0.iter().for_each(&mut *f);
+        f(&l.intensity);
+    }
+    if let CameraPlacement::LookAt { position, target } = &scene.camera.placement {
+        position.0.iter().chain(target.0.iter()).for_each(&mut *f);
+    }
+}
