@@ -1,9 +1,17 @@
 //! fractal-dsl: the scene language of fractal — IR, builder API, parser, analyses, code writers and interpreter.
 
+pub mod analyse;
+pub mod back;
 pub mod builder;
+pub mod compiled;
+pub mod eval;
 pub mod ir;
 pub mod math;
+pub mod parse;
+pub mod print;
 pub mod sdf;
+pub mod validate;
 pub mod visit;
 
+pub use compiled::{CompiledScene, NativeFns};
 pub use ir::*;

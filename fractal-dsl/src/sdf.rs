@@ -177,8 +177,8 @@ pub fn de_mandelbulb8<F: Real>(p: V3<F>, iterations: u32, bailout: F) -> [F; 2] 
         dr = c::<F>(8.0) * r2 * r2 * r2 * r * dr + F::one();
         let a2 = a * a;
         let b2 = b * b;
-        let cos_part = a2 * a2 - c::<F>(28.0) * a2 * a * b + c::<F>(70.0) * a2 * b2 - c::<F>(28.0) * a * b2 * b
-            + b2 * b2;
+        let cos_part =
+            a2 * a2 - c::<F>(28.0) * a2 * a * b + c::<F>(70.0) * a2 * b2 - c::<F>(28.0) * a * b2 * b + b2 * b2;
         let sin_part = c::<F>(8.0) * z.z * (a2 * a - c::<F>(7.0) * a2 * b + c::<F>(7.0) * a * b2 - b2 * b);
         let inv_rho = if b > F::zero() { F::one() / b.sqrt() } else { F::zero() };
         let ux = z.x * inv_rho;

@@ -35,17 +35,8 @@ pub enum Func {
 }
 
 impl Func {
-    pub const ALL: [Func; 9] = [
-        Func::Sin,
-        Func::Cos,
-        Func::Abs,
-        Func::Sqrt,
-        Func::Min,
-        Func::Max,
-        Func::Pow,
-        Func::Clamp,
-        Func::Mix,
-    ];
+    pub const ALL: [Func; 9] =
+        [Func::Sin, Func::Cos, Func::Abs, Func::Sqrt, Func::Min, Func::Max, Func::Pow, Func::Clamp, Func::Mix];
     /// The name used in scene source, and by every shading language.
     pub fn name(self) -> &'static str {
         match self {

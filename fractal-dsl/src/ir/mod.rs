@@ -11,25 +11,53 @@ pub use expr::{BinOp, Expr, Func, ParamDecl, Vec3Expr, Vec4Expr};
 /// Exact signed-distance primitives. Each is 1-Lipschitz and, except where noted, the exact Euclidean distance.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Prim {
-    Sphere { radius: Expr },
+    Sphere {
+        radius: Expr,
+    },
     /// Axis-aligned box centred at the origin, `half` its half extents.
-    Box { half: Vec3Expr },
+    Box {
+        half: Vec3Expr,
+    },
     /// A box of half extents `half` with edges rounded by `radius` (the outer size stays `half`).
-    RoundBox { half: Vec3Expr, radius: Expr },
+    RoundBox {
+        half: Vec3Expr,
+        radius: Expr,
+    },
     /// Torus in the xz plane: `major` is the ring radius, `minor` the tube radius.
-    Torus { major: Expr, minor: Expr },
+    Torus {
+        major: Expr,
+        minor: Expr,
+    },
     /// Segment from `a` to `b` swept by a sphere of `radius`.
-    Capsule { a: Vec3Expr, b: Vec3Expr, radius: Expr },
+    Capsule {
+        a: Vec3Expr,
+        b: Vec3Expr,
+        radius: Expr,
+    },
     /// Capped cylinder along y.
-    Cylinder { radius: Expr, half_height: Expr },
+    Cylinder {
+        radius: Expr,
+        half_height: Expr,
+    },
     /// Capped cone along y: radius `bottom` at y = -half_height, `top` at y = +half_height.
-    Cone { half_height: Expr, bottom: Expr, top: Expr },
+    Cone {
+        half_height: Expr,
+        bottom: Expr,
+        top: Expr,
+    },
     /// Half-space `dot(p, normal) + offset <= 0`; `normal` is normalised by the builder. Unbounded.
-    Plane { normal: Vec3Expr, offset: Expr },
+    Plane {
+        normal: Vec3Expr,
+        offset: Expr,
+    },
     /// Regular octahedron `|x|+|y|+|z| = size`.
-    Octahedron { size: Expr },
+    Octahedron {
+        size: Expr,
+    },
     /// Ellipsoid with semi-axes `radii`: a lower bound of the distance, not exact (IQ's bound).
-    Ellipsoid { radii: Vec3Expr },
+    Ellipsoid {
+        radii: Vec3Expr,
+    },
 }
 
 /// The fractal families. Their distance estimators are not exactly 1-Lipschitz, so each carries a measured step
@@ -303,10 +331,7 @@ pub struct Camera {
 impl Default for Camera {
     fn default() -> Camera {
         Camera {
-            placement: CameraPlacement::LookAt {
-                position: [1.2, 1.0, -2.2].into(),
-                target: [0.0, 0.0, 0.0].into(),
-            },
+            placement: CameraPlacement::LookAt { position: [1.2, 1.0, -2.2].into(), target: [0.0, 0.0, 0.0].into() },
             // The baseline's focal length 1.8: fov = 2·atan(1/1.8).
             fov_degrees: 2.0 * (1.0f64 / 1.8).atan().to_degrees(),
         }

@@ -1,0 +1,29 @@
+//! Analyses over the IR: constant folding, conservative bounds, value ranges of expressions, and evaluation order.
+
+pub mod bounds;
+pub mod fold;
+pub mod interval;
+
+pub use bounds::{bound, Aabb};
+
+use crate::ir::Node;
+
+/// The order a union evaluates its children in: everything without a fractal first, then the fractal subtrees, each
+/// group in source order. Cheap children first make the nearest-so-far distance small before an expensive child's
+/// bound is tested against it.
+pub fn union_order(children: &[Node]) -> Vec<usize> {
+    let (mut cheap, expensive): (Vec<usize>, Vec<usize>) =
+        (0..children.len()).partition(|&i| !children[i].has_fractal());
+    cheap.extend(expensive);
+    cheap
+}
+
+/// Whether a union child is evaluated behind a bound test: it contains a fractal, has a finite bound, and is not the
+/// first child evaluated (the first has no nearest-so-far distance to compare with).
+pub fn guarded_bound(children: &[Node], order_pos: usize) -> Option<Aabb> {
+    let child = &children[union_order(children)[order_pos]];
+    if order_pos == 0 || !child.has_fractal() {
+        return None;
+    }
+    bound(child)
+}

@@ -1,0 +1,205 @@
+//! Code writers, one module per target language, all of the same shape (naga's `back/` is the model):
+//! `back/<lang>/writer.rs` walks the lowered program ([`crate::lower`]) and spells it; `back/<lang>/library.rs`
+//! holds that language's spelling of each leaf function ([`Helper`]). What is shared lives here: the helper set and
+//! its dependencies, the uniform layout both GPU languages read, indentation and number formatting.
+
+pub mod opencl;
+pub mod rust;
+pub mod wgsl;
+
+use std::fmt;
+
+/// A leaf function a kernel may call. A kernel contains exactly the helpers its scene uses (and their dependencies),
+/// in this enum's order. Each corresponds to the function of the same name in [`crate::sdf`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Helper {
+    SdSphere,
+    SdBox,
+    SdRoundBox,
+    SdTorus,
+    SdCapsule,
+    SdCylinder,
+    SdCone,
+    SdPlane,
+    SdOctahedron,
+    SdEllipsoid,
+    SmoothMin,
+    SmoothMax,
+    BlendWeight,
+    DeMandelbulb,
+    DeMandelbulb8,
+    DeMenger,
+    DeSierpinski,
+    DeJulia,
+    DeMandelbox,
+}
+
+impl Helper {
+    pub const ALL: [Helper; 19] = [
+        Helper::SdSphere,
+        Helper::SdBox,
+        Helper::SdRoundBox,
+        Helper::SdTorus,
+        Helper::SdCapsule,
+        Helper::SdCylinder,
+        Helper::SdCone,
+        Helper::SdPlane,
+        Helper::SdOctahedron,
+        Helper::SdEllipsoid,
+        Helper::SmoothMin,
+        Helper::SmoothMax,
+        Helper::BlendWeight,
+        Helper::DeMandelbulb,
+        Helper::DeMandelbulb8,
+        Helper::DeMenger,
+        Helper::DeSierpinski,
+        Helper::DeJulia,
+        Helper::DeMandelbox,
+    ];
+
+    /// The function's name, the same in every language (and in [`crate::sdf`]).
+    pub fn name(self) -> &'static str {
+        match self {
+            Helper::SdSphere => "sd_sphere",
+            Helper::SdBox => "sd_box",
+            Helper::SdRoundBox => "sd_round_box",
+            Helper::SdTorus => "sd_torus",
+            Helper::SdCapsule => "sd_capsule",
+            Helper::SdCylinder => "sd_cylinder",
+            Helper::SdCone => "sd_cone",
+            Helper::SdPlane => "sd_plane",
+            Helper::SdOctahedron => "sd_octahedron",
+            Helper::SdEllipsoid => "sd_ellipsoid",
+            Helper::SmoothMin => "smooth_min",
+            Helper::SmoothMax => "smooth_max",
+            Helper::BlendWeight => "blend_weight",
+            Helper::DeMandelbulb => "de_mandelbulb",
+            Helper::DeMandelbulb8 => "de_mandelbulb8",
+            Helper::DeMenger => "de_menger",
+            Helper::DeSierpinski => "de_sierpinski",
+            Helper::DeJulia => "de_julia",
+            Helper::DeMandelbox => "de_mandelbox",
+        }
+    }
+
+    /// Helpers this one calls.
+    pub fn deps(self) -> &'static [Helper] {
+        match self {
+            Helper::SdRoundBox | Helper::DeMenger => &[Helper::SdBox],
+            Helper::SmoothMax => &[Helper::SmoothMin],
+            _ => &[],
+        }
+    }
+
+    /// Whether it returns a pair (distance, orbit trap) rather than a distance.
+    pub fn returns_pair(self) -> bool {
+        matches!(
+            self,
+            Helper::DeMandelbulb
+                | Helper::DeMandelbulb8
+                | Helper::DeMenger
+                | Helper::DeSierpinski
+                | Helper::DeJulia
+                | Helper::DeMandelbox
+        )
+    }
+}
+
+/// The helpers in `used` plus everything they depend on, in emission order.
+pub fn with_dependencies(used: impl IntoIterator<Item = Helper>) -> Vec<Helper> {
+    let mut all = std::collections::BTreeSet::new();
+    let mut stack: Vec<Helper> = used.into_iter().collect();
+    while let Some(h) = stack.pop() {
+        if all.insert(h) {
+            stack.extend_from_slice(h.deps());
+        }
+    }
+    all.into_iter().collect()
+}
+
+/// Indentation level; `Display` writes four spaces per level (naga's `back::Level`).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Level(pub usize);
+
+impl Level {
+    pub fn next(self) -> Level {
+        Level(self.0 + 1)
+    }
+}
+
+impl fmt::Display for Level {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        (0..self.0).try_for_each(|_| f.write_str("    "))
+    }
+}
+
+/// Formats a constant as the shortest decimal that reads back as the same f32, with a decimal point or exponent so
+/// every language takes it as floating point. Kernels run in f32, so this is exact for them.
+pub fn f32_literal(v: f64) -> String {
+    let v = v as f32;
+    if v.is_nan() || v.is_infinite() {
+        // Validation rejects these; a clear marker beats a silently wrong kernel.
+        return "(0.0 /* non-finite constant */)".to_string();
+    }
+    let s = format!("{v:?}");
+    if s.contains('.') || s.contains('e') {
+        s
+    } else {
+        format!("{s}.0")
+    }
+}
+
+/// The uniform block both GPU languages read, as float4 slots (16 bytes each), in this order:
+///
+/// | slot | xyz | w |
+/// |---|---|---|
+/// | 0 | camera position | time in seconds |
+/// | 1 | camera right · tan(fov/2) | image width in pixels |
+/// | 2 | camera up · tan(fov/2) | image height in pixels |
+/// | 3 | camera forward (unit) | pixel footprint per unit distance: 2·tan(fov/2)/height |
+/// | 4 + 2i | light i: direction towards the light (directional, unit) or position (point) | 0 directional, 1 point |
+/// | 5 + 2i | light i: colour · intensity | unused |
+/// | 4 + 2L + j/4 | params[j] in component j % 4 | |
+///
+/// Pixel (x, y) looks along forward + u·right + v·up with u = (2(x + 0.5) − w)/h and v = −(2(y + 0.5) − h)/h.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FrameLayout {
+    pub lights: usize,
+    pub params: usize,
+}
+
+impl FrameLayout {
+    pub const CAMERA_SLOTS: usize = 4;
+    pub fn light_slot(&self, i: usize) -> usize {
+        Self::CAMERA_SLOTS + 2 * i
+    }
+    pub fn params_slot(&self) -> usize {
+        Self::CAMERA_SLOTS + 2 * self.lights
+    }
+    /// Number of float4 slots holding params.
+    pub fn param_slots(&self) -> usize {
+        self.params.div_ceil(4)
+    }
+    pub fn slots(&self) -> usize {
+        self.params_slot() + self.param_slots()
+    }
+    pub fn bytes(&self) -> usize {
+        self.slots() * 16
+    }
+}
+
+/// Which kernel a writer produces for a scene.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Entry {
+    /// `render`: one invocation per pixel, packed RGBA8 (R in the low byte) into `out[y·w + x]`.
+    /// OpenCL: `__kernel void render(__global uint* out, __constant Frame* frame)`, global size ≥ (w, h).
+    /// WGSL: `@compute @workgroup_size(8, 8, 1) fn render`, binding 0 = `array<u32>` (read_write storage),
+    /// binding 1 = the frame uniform.
+    Render,
+    /// `probe`: evaluates the scene at points, for agreement tests. Input point i is `points[i].xyz`; output
+    /// `out[2i] = (distance, ambient, diffuse, specular)`, `out[2i + 1] = (albedo.rgb, shininess)`.
+    /// OpenCL: `__kernel void probe(__global const float4* points, __global float4* out, __constant Frame* frame,
+    /// uint n)`. WGSL: `@compute @workgroup_size(64) fn probe`, binding 0 = out `array<vec4<f32>>`, binding 1 = frame,
+    /// binding 2 = points `array<vec4<f32>>` (read-only storage); n = arrayLength(points).
+    Probe,
+}
