@@ -87,3 +87,27 @@ impl Evaluator<f64> for NativeFns {
         (self.sample_f64)(p, env)
     }
 }
+
+/// Everything the compiler writes for one scene.
+#[derive(Clone, Debug)]
+pub struct Kernels {
+    /// Canonical scene source.
+    pub source: String,
+    /// OpenCL C program with kernel `render`.
+    pub opencl: String,
+    /// WGSL module with entry point `render`.
+    pub wgsl: String,
+    /// The lowered program (for the probe kernels and the native evaluator's source).
+    pub program: crate::lower::Program,
+}
+
+/// Compiles a scene: lowers it once and spells the render kernels in both GPU languages.
+pub fn compile(scene: &Scene) -> Kernels {
+    let program = crate::lower::lower(scene);
+    Kernels {
+        source: crate::print::to_source(scene),
+        opencl: crate::back::opencl::write(&program, crate::back::Entry::Render),
+        wgsl: crate::back::wgsl::write(&program, crate::back::Entry::Render),
+        program,
+    }
+}

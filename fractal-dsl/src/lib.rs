@@ -6,6 +6,7 @@ pub mod builder;
 pub mod compiled;
 pub mod eval;
 pub mod ir;
+pub mod lower;
 pub mod math;
 pub mod parse;
 pub mod print;
@@ -13,5 +14,5 @@ pub mod sdf;
 pub mod validate;
 pub mod visit;
 
-pub use compiled::{CompiledScene, NativeFns};
+pub use compiled::{compile, CompiledScene, Kernels, NativeFns};
 pub use ir::*;

@@ -1,1 +1,94 @@
-//! placeholder
+//! `scene!` and `scene_file!`: compile a scene at build time. The macro only parses (with fractal-dsl's parser), asks
+//! fractal-dsl's writers for the kernels and the native evaluator, and wraps them in a `CompiledScene`; it has no code
+//! generation of its own.
+
+use proc_macro::TokenStream;
+use proc_macro2::{Span, TokenStream as TokenStream2};
+use quote::quote;
+
+/// Compiles a scene written as a Rust expression into OpenCL C, WGSL and a native evaluator:
+///
+/// ```ignore
+/// let s = scene! { union(mandelbulb(8), sphere(1.0).translate(vec3(1.5, 0.0, 0.0))) };
+/// ```
+/// A malformed scene is a compile error at the offending token.
+#[proc_macro]
+pub fn scene(input: TokenStream) -> TokenStream {
+    match fractal_dsl::parse::parse_tokens(input.into()) {
+        Ok(scene) => expand(&scene, Span::call_site()).into(),
+        Err(e) => e.to_compile_error().into(),
+    }
+}
+
+/// Compiles a `.fractal` file (path relative to the crate's manifest directory) exactly like `scene!`.
+#[proc_macro]
+pub fn scene_file(input: TokenStream) -> TokenStream {
+    let lit = syn::parse_macro_input!(input as syn::LitStr);
+    let dir = std::env::var("CARGO_MANIFEST_DIR").unwrap_or_default();
+    let path = std::path::Path::new(&dir).join(lit.value());
+    let text = match std::fs::read_to_string(&path) {
+        Ok(t) => t,
+        Err(e) => {
+            return syn::Error::new(lit.span(), format!("cannot read {}: {e}", path.display()))
+                .to_compile_error()
+                .into()
+        }
+    };
+    match fractal_dsl::parse::parse_str(&text) {
+        Ok(scene) => {
+            let expanded = expand(&scene, lit.span());
+            // Rebuild when the file changes.
+            let path_str = path.to_string_lossy().into_owned();
+            quote!({ const _: &[u8] = include_bytes!(#path_str); #expanded }).into()
+        }
+        Err(e) => syn::Error::new(lit.span(), format!("{}:{e}", lit.value())).to_compile_error().into(),
+    }
+}
+
+/// The path of fractal-dsl as the calling crate sees it: directly, or through the `fractal` facade.
+fn dsl_path() -> TokenStream2 {
+    use proc_macro_crate::{crate_name, FoundCrate};
+    match crate_name("fractal-dsl") {
+        Ok(FoundCrate::Itself) => quote!(crate),
+        Ok(FoundCrate::Name(name)) => {
+            let ident = syn::Ident::new(&name, Span::call_site());
+            quote!(::#ident)
+        }
+        Err(_) => match crate_name("fractal") {
+            Ok(FoundCrate::Name(name)) => {
+                let ident = syn::Ident::new(&name, Span::call_site());
+                quote!(::#ident::dsl)
+            }
+            _ => quote!(::fractal::dsl),
+        },
+    }
+}
+
+fn expand(scene: &fractal_dsl::Scene, span: Span) -> TokenStream2 {
+    if let Err(errors) = fractal_dsl::validate::validate(scene) {
+        let message = errors.iter().map(|e| e.to_string()).collect::<Vec<_>>().join("\n");
+        return syn::Error::new(span, message).to_compile_error();
+    }
+    let krate = dsl_path();
+    let kernels = fractal_dsl::compile(scene);
+    let native_src = fractal_dsl::back::rust::write(&kernels.program, &krate.to_string().replace(' ', ""));
+    let native: TokenStream2 = match native_src.parse() {
+        Ok(tokens) => tokens,
+        Err(e) => {
+            return syn::Error::new(span, format!("internal error: the native evaluator does not lex: {e}"))
+                .to_compile_error()
+        }
+    };
+    let distance = syn::Ident::new(fractal_dsl::back::rust::DISTANCE_FN, Span::call_site());
+    let sample = syn::Ident::new(fractal_dsl::back::rust::SAMPLE_FN, Span::call_site());
+    let (source, opencl, wgsl) = (kernels.source, kernels.opencl, kernels.wgsl);
+    quote! {{
+        #native
+        #krate::CompiledScene::new(#source, #opencl, #wgsl, #krate::NativeFns {
+            distance_f32: #distance::<f32>,
+            distance_f64: #distance::<f64>,
+            sample_f32: #sample::<f32>,
+            sample_f64: #sample::<f64>,
+        })
+    }}
+}

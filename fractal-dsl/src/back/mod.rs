@@ -4,6 +4,8 @@
 //! its dependencies, the uniform layout both GPU languages read, indentation and number formatting.
 
 pub mod opencl;
+pub mod render;
+pub mod syntax;
 pub mod rust;
 pub mod wgsl;
 

@@ -1,0 +1,373 @@
+//! The CPU renderer: the render algorithm of [`fractal_dsl::back::render`] over a scene's [`Evaluator`], one rayon
+//! task per image row. Generic over the precision, so the f64 instance renders reference images for accuracy work.
+//!
+//! It reads the camera, lights, time and parameters from the same [`Frame`] uniforms the kernels read, so the three
+//! renderers draw the same pose from the same numbers.
+
+use fractal_dsl::analyse::{bound, fold::fold_node};
+use fractal_dsl::back::render::{
+    AO_SAMPLES, AO_SPAN, AO_START, GLOW_FALLOFF, GLOW_NORM, MIN_DIRECTION, T_SPACING,
+};
+use fractal_dsl::back::FrameLayout;
+use fractal_dsl::eval::{Env, Evaluator};
+use fractal_dsl::math::{dot, length, normalize, v3, Real, V3};
+use fractal_dsl::{HitEpsilon, Node, RenderSettings, Scene, Shadows};
+use rayon::prelude::*;
+
+use crate::error::{FrameError, RenderError};
+use crate::frame::{Frame, LightSlot};
+use crate::image::Image;
+use crate::renderer::{Backend, DeviceInfo, RenderJob, Renderer};
+
+/// Renders with the job's CPU evaluator on all cores.
+#[derive(Clone, Debug, Default)]
+pub struct CpuRenderer {
+    _private: (),
+}
+
+impl CpuRenderer {
+    pub fn new() -> CpuRenderer {
+        CpuRenderer { _private: () }
+    }
+}
+
+impl Renderer for CpuRenderer {
+    fn render(&mut self, job: &RenderJob) -> Result<Image, RenderError> {
+        let kernel =
+            job.kernels.cpu.ok_or(RenderError::MissingKernel { backend: Backend::Cpu, what: "CPU evaluator" })?;
+        render_scene::<f32, _>(kernel.evaluator, kernel.scene, job.frame)
+    }
+
+    fn device(&self) -> DeviceInfo {
+        DeviceInfo {
+            backend: Backend::Cpu,
+            api: "rayon".to_string(),
+            name: cpu_name(),
+            driver: format!("{} threads", rayon::current_num_threads()),
+            device_type: "Cpu".to_string(),
+        }
+    }
+}
+
+fn cpu_name() -> String {
+    // Linux names the CPU in /proc/cpuinfo; elsewhere the architecture is the best cheap description.
+    std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|info| {
+            info.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split_once(':'))
+                .map(|(_, name)| name.trim().to_string())
+        })
+        .unwrap_or_else(|| std::env::consts::ARCH.to_string())
+}
+
+/// Renders `scene` seen through `frame` with `evaluator`, in precision `F`.
+pub fn render_scene<F: Real, E: Evaluator<F> + ?Sized>(
+    evaluator: &E,
+    scene: &Scene,
+    frame: &Frame,
+) -> Result<Image, RenderError> {
+    let view = View::<F>::new(scene, frame)?;
+    let width = frame.width() as usize;
+    let mut pixels = vec![0u32; width * frame.height() as usize];
+    pixels.par_chunks_mut(width).enumerate().for_each(|(y, row)| {
+        let env = Env { time: view.time, params: &view.params };
+        for (x, px) in row.iter_mut().enumerate() {
+            *px = pack(view.shade_pixel(evaluator, &env, x as u32, y as u32), view.gamma);
+        }
+    });
+    Ok(Image { width: frame.width(), height: frame.height(), pixels })
+}
+
+/// Whether some material may have a specular term (a literal 0 is the only certain "no").
+pub fn has_specular(node: &Node) -> bool {
+    let own = matches!(node, Node::Material(_, m) if m.specular.as_lit() != Some(0.0));
+    own || node.children().into_iter().any(has_specular)
+}
+
+struct View<F> {
+    origin: V3<F>,
+    right: V3<F>,
+    up: V3<F>,
+    forward: V3<F>,
+    width: F,
+    height: F,
+    footprint: F,
+    time: F,
+    params: Vec<F>,
+    lights: Vec<Light<F>>,
+    bound: Option<(V3<F>, V3<F>)>,
+    specular: bool,
+    max_steps: u32,
+    max_distance: F,
+    epsilon: HitEpsilon,
+    shadows: Shadows,
+    ambient_occlusion: Option<F>,
+    glow: Option<V3<F>>,
+    fog: Option<(V3<F>, F)>,
+    background: V3<F>,
+    gamma: f64,
+}
+
+enum Light<F> {
+    Directional { direction: V3<F>, radiance: V3<F> },
+    Point { position: V3<F>, radiance: V3<F> },
+}
+
+fn f3<F: Real>(v: [f32; 3]) -> V3<F> {
+    v3(F::c(v[0] as f64), F::c(v[1] as f64), F::c(v[2] as f64))
+}
+
+fn d3<F: Real>(v: [f64; 3]) -> V3<F> {
+    v3(F::c(v[0]), F::c(v[1]), F::c(v[2]))
+}
+
+fn c<F: Real>(v: f64) -> F {
+    F::c(v)
+}
+
+impl<F: Real> View<F> {
+    fn new(scene: &Scene, frame: &Frame) -> Result<View<F>, RenderError> {
+        let expected = FrameLayout { lights: scene.effective_lights().len(), params: scene.params().len() };
+        if frame.layout() != expected {
+            return Err(FrameError::SlotCount { expected: expected.slots(), got: frame.layout().slots() }.into());
+        }
+        let [origin, right, up, forward] = frame.camera();
+        let RenderSettings {
+            max_steps,
+            max_distance,
+            epsilon,
+            shadows,
+            ambient_occlusion,
+            glow,
+            ref fog,
+            background,
+            gamma,
+        } = scene.settings;
+        let lights = frame
+            .lights()
+            .into_iter()
+            .map(|l| match l {
+                LightSlot::Directional { direction, radiance } => {
+                    Light::Directional { direction: f3(direction), radiance: f3(radiance) }
+                }
+                LightSlot::Point { position, radiance } => Light::Point { position: f3(position), radiance: f3(radiance) },
+            })
+            .collect();
+        let bound = bound(&fold_node(&scene.root)).map(|b| (d3(b.min), d3(b.max)));
+        Ok(View {
+            origin: f3(origin),
+            right: f3(right),
+            up: f3(up),
+            forward: f3(forward),
+            width: c(frame.width() as f64),
+            height: c(frame.height() as f64),
+            footprint: c(frame.pixel_footprint() as f64),
+            time: c(frame.time() as f64),
+            params: frame.params().into_iter().map(|p| c(p as f64)).collect(),
+            lights,
+            bound,
+            specular: has_specular(&scene.root),
+            max_steps,
+            max_distance: c(max_distance),
+            epsilon,
+            shadows,
+            ambient_occlusion: ambient_occlusion.map(c),
+            glow: glow.map(d3),
+            fog: fog.as_ref().map(|f| (d3(f.color), c(f.density))),
+            background: d3(background),
+            gamma,
+        })
+    }
+
+    /// Steps 2–6 of the render algorithm for pixel (x, y): the linear colour before gamma.
+    fn shade_pixel<E: Evaluator<F> + ?Sized>(&self, eval: &E, env: &Env<F>, x: u32, y: u32) -> V3<F> {
+        let two = c::<F>(2.0);
+        let half = c::<F>(0.5);
+        let u = (two * (c::<F>(x as f64) + half) - self.width) / self.height;
+        let v = -(two * (c::<F>(y as f64) + half) - self.height) / self.height;
+        let rd = normalize(self.forward + self.right * u + self.up * v);
+        let ro = self.origin;
+
+        let Some((t_near, t_far)) = self.clip(ro, rd) else {
+            return self.background;
+        };
+
+        let mut t = t_near;
+        let mut glow = F::zero();
+        let mut eps = F::zero();
+        let mut hit = false;
+        for _ in 0..self.max_steps {
+            let d = eval.distance(ro + rd * t, env);
+            eps = self.hit_epsilon(t);
+            if d < eps {
+                hit = true;
+                break;
+            }
+            if self.glow.is_some() {
+                glow = glow + F::one() / (F::one() + c::<F>(GLOW_FALLOFF) * d * d);
+            }
+            t = t + d;
+            if t > t_far {
+                break;
+            }
+        }
+
+        let mut colour = if hit { self.shade_hit(eval, env, ro + rd * t, rd, t, eps) } else { self.background };
+        if let Some(glow_colour) = self.glow {
+            colour = colour + glow_colour * (glow / c(GLOW_NORM)).min(F::one());
+        }
+        colour
+    }
+
+    fn hit_epsilon(&self, t: F) -> F {
+        let eps = match self.epsilon {
+            HitEpsilon::Fixed(e) => c(e),
+            HitEpsilon::Pixel(k) => c::<F>(k) * self.footprint * t,
+        };
+        eps.max(c::<F>(T_SPACING) * t)
+    }
+
+    /// The part of the ray to march: inside the scene's bound (slab test) and before max_distance; `None` misses.
+    fn clip(&self, ro: V3<F>, rd: V3<F>) -> Option<(F, F)> {
+        let Some((lo, hi)) = self.bound else {
+            return Some((F::zero(), self.max_distance));
+        };
+        let min_dir = c::<F>(MIN_DIRECTION);
+        let safe = |d: F| {
+            if d.abs() >= min_dir {
+                d
+            } else if d < F::zero() {
+                -min_dir
+            } else {
+                min_dir
+            }
+        };
+        let inv = rd.map(|d| F::one() / safe(d));
+        let t0 = (lo - ro).zip(inv, |a, b| a * b);
+        let t1 = (hi - ro).zip(inv, |a, b| a * b);
+        let entry = t0.zip(t1, F::min).max_element();
+        let exit = t0.zip(t1, F::max).min_element();
+        let t_near = entry.max(F::zero());
+        let t_far = exit.min(self.max_distance);
+        (t_near <= t_far).then_some((t_near, t_far))
+    }
+
+    fn shade_hit<E: Evaluator<F> + ?Sized>(&self, eval: &E, env: &Env<F>, p: V3<F>, rd: V3<F>, t: F, eps: F) -> V3<F> {
+        let de = |q: V3<F>| eval.distance(q, env);
+        let (one, neg) = (F::one(), -F::one());
+        let taps = [v3(one, neg, neg), v3(neg, neg, one), v3(neg, one, neg), v3(one, one, one)];
+        let mut gradient = V3::splat(F::zero());
+        for k in taps {
+            gradient = gradient + k * de(p + k * eps);
+        }
+        let n = normalize(gradient);
+        let m = eval.sample(p, env);
+
+        let ao = match self.ambient_occlusion {
+            None => F::one(),
+            Some(strength) => {
+                let mut occ = F::zero();
+                let mut weight = F::one();
+                for i in 0..AO_SAMPLES {
+                    let h = c::<F>(AO_START) + c::<F>(AO_SPAN) * c::<F>(i as f64) / c::<F>(4.0);
+                    occ = occ + (h - de(p + n * h)) * weight;
+                    weight = weight * c::<F>(0.95);
+                }
+                (one - c::<F>(3.0) * strength * occ).max(F::zero()).min(one)
+            }
+        };
+
+        let mut colour = m.albedo * (m.ambient * ao);
+        for light in &self.lights {
+            let (l, radiance, limit) = match *light {
+                Light::Directional { direction, radiance } => (direction, radiance, self.max_distance),
+                Light::Point { position, radiance } => {
+                    let to_light = position - p;
+                    let distance = length(to_light);
+                    (to_light / distance, radiance / (distance * distance), distance)
+                }
+            };
+            let ndl = dot(n, l).max(F::zero());
+            let shadow = if ndl > F::zero() { self.shadow(&de, p + n * (c::<F>(2.0) * eps), l, limit, eps) } else { one };
+            colour = colour + m.albedo * radiance * (m.diffuse * ndl * shadow);
+            if self.specular {
+                let h = normalize(l - rd);
+                let highlight = dot(n, h).max(F::zero()).powf(m.shininess);
+                colour = colour + radiance * (m.specular * highlight * shadow);
+            }
+        }
+        if let Some((fog_colour, density)) = self.fog {
+            let f = one - (-density * t).exp();
+            colour = colour + (fog_colour - colour) * f;
+        }
+        colour
+    }
+
+    /// Light reaching `origin` from direction `l` within `limit`: 1 lit, 0 blocked, soft shadows in between.
+    fn shadow(&self, de: &impl Fn(V3<F>) -> F, origin: V3<F>, l: V3<F>, limit: F, eps: F) -> F {
+        let soft_k = match self.shadows {
+            Shadows::None => return F::one(),
+            Shadows::Hard => None,
+            Shadows::Soft(k) => Some(c::<F>(k)),
+        };
+        let mut res = F::one();
+        let mut t = c::<F>(2.0) * eps;
+        for _ in 0..self.max_steps {
+            if t >= limit {
+                break;
+            }
+            let d = de(origin + l * t);
+            if d < eps {
+                res = F::zero();
+                break;
+            }
+            if let Some(k) = soft_k {
+                res = res.min(k * d / t);
+            }
+            t = t + d;
+        }
+        match soft_k {
+            None => res,
+            Some(_) => res * res * (c::<F>(3.0) - c::<F>(2.0) * res),
+        }
+    }
+}
+
+/// Step 7: clamp, gamma, pack RGBA8 with R in the low byte.
+fn pack<F: Real>(colour: V3<F>, gamma: f64) -> u32 {
+    let channel = |v: F| {
+        // Rust's max/min drop NaN, so a NaN channel becomes 0 rather than poisoning the pixel.
+        let v = v.max(F::zero()).min(F::one());
+        let v = if gamma == 2.0 {
+            v.sqrt()
+        } else if gamma == 1.0 {
+            v
+        } else {
+            v.powf(c(1.0 / gamma))
+        };
+        ((v * c(255.0) + c(0.5)).f64() as u32).min(255)
+    };
+    channel(colour.x) | (channel(colour.y) << 8) | (channel(colour.z) << 16) | (255 << 24)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use fractal_dsl::builder::*;
+
+    #[test]
+    fn packing_rounds_and_applies_gamma() {
+        assert_eq!(pack(v3(1.0f32, 0.0, 0.25), 2.0), 0xff80_00ff);
+        assert_eq!(pack(v3(0.5f32, 2.0, -1.0), 1.0), 0xff00_ff80);
+        assert_eq!(pack(v3(f32::NAN, 0.0, 0.0), 2.0), 0xff00_0000);
+    }
+
+    #[test]
+    fn specular_is_detected_from_materials() {
+        assert!(!has_specular(&sphere(1.0)));
+        assert!(!has_specular(&sphere(1.0).material(rgb(1.0, 0.0, 0.0))));
+        assert!(has_specular(&union(sphere(1.0), box3([1.0, 1.0, 1.0]).material(rgb(1.0, 0.0, 0.0).specular(0.5)))));
+    }
+}

@@ -1,0 +1,215 @@
+//! The OpenCL renderer (cargo feature `opencl`): builds a scene's OpenCL C program on the first device of the first
+//! platform and runs its `render` or `probe` kernel ([`fractal_dsl::back::Entry`]).
+//!
+//! Programs are built with `-cl-fast-relaxed-math` unless the renderer is precise; a build failure returns the
+//! driver's build log. Programs are cached per source text and precision.
+
+use fractal_dsl::back::Entry;
+use ocl::enums::{DeviceInfo as ClDeviceInfo, DeviceInfoResult};
+use ocl::{flags, Buffer, Context, Device, Kernel, Platform, Program, Queue};
+
+use crate::error::RenderError;
+use crate::frame::Frame;
+use crate::image::Image;
+use crate::renderer::{Backend, DeviceInfo, ProbeSample, RenderJob, Renderer};
+
+/// The build option that trades strict IEEE semantics for speed; off in precise mode.
+pub const FAST_MATH: &str = "-cl-fast-relaxed-math";
+const PROGRAM_CACHE: usize = 8;
+
+/// Renders OpenCL C kernels on an OpenCL device.
+pub struct OpenClRenderer {
+    device: Device,
+    context: Context,
+    queue: Queue,
+    precise: bool,
+    programs: Vec<(String, bool, Program)>,
+    info: DeviceInfo,
+}
+
+fn no_device(reason: impl ToString) -> RenderError {
+    RenderError::NoDevice { backend: Backend::OpenCl, reason: reason.to_string() }
+}
+
+fn device_error(message: impl ToString) -> RenderError {
+    RenderError::Device { backend: Backend::OpenCl, message: message.to_string() }
+}
+
+fn rejected(log: impl ToString) -> RenderError {
+    RenderError::KernelRejected { backend: Backend::OpenCl, log: log.to_string() }
+}
+
+fn entry_name(entry: Entry) -> &'static str {
+    match entry {
+        Entry::Render => "render",
+        Entry::Probe => "probe",
+    }
+}
+
+impl OpenClRenderer {
+    /// Opens the first device of the first platform; `precise` leaves out `-cl-fast-relaxed-math`.
+    pub fn new(precise: bool) -> Result<OpenClRenderer, RenderError> {
+        let platform = Platform::first().map_err(no_device)?;
+        let device = Device::first(platform).map_err(no_device)?;
+        let context = Context::builder().platform(platform).devices(device).build().map_err(no_device)?;
+        let queue = Queue::new(&context, device, Some(flags::QUEUE_PROFILING_ENABLE)).map_err(no_device)?;
+        let text = |r: ocl::Result<String>| r.unwrap_or_else(|e| format!("unknown ({e})"));
+        let info_text = |kind| match device.info(kind) {
+            Ok(DeviceInfoResult::Type(t)) => format!("{t:?}"),
+            Ok(other) => other.to_string(),
+            Err(e) => format!("unknown ({e})"),
+        };
+        let info = DeviceInfo {
+            backend: Backend::OpenCl,
+            api: text(platform.version()),
+            name: text(device.name()),
+            driver: format!("{} {}", text(platform.name()), info_text(ClDeviceInfo::DriverVersion)),
+            device_type: info_text(ClDeviceInfo::Type),
+        };
+        Ok(OpenClRenderer { device, context, queue, precise, programs: Vec::new(), info })
+    }
+
+    pub fn precise(&self) -> bool {
+        self.precise
+    }
+
+    /// Switches fast math off (`true`) or on; programs are rebuilt on next use.
+    pub fn set_precise(&mut self, precise: bool) {
+        self.precise = precise;
+    }
+
+    /// The build options programs get.
+    pub fn build_options(&self) -> &'static str {
+        if self.precise {
+            ""
+        } else {
+            FAST_MATH
+        }
+    }
+
+    /// Builds (or finds in the cache) `source`; a failed build returns the build log.
+    pub fn program(&mut self, source: &str) -> Result<Program, RenderError> {
+        let precise = self.precise;
+        if let Some(i) = self.programs.iter().position(|(s, p, _)| *p == precise && s == source) {
+            let hit = self.programs.remove(i);
+            let program = hit.2.clone();
+            self.programs.push(hit);
+            return Ok(program);
+        }
+        let mut builder = Program::builder();
+        builder.src(source).devices(self.device);
+        if !precise {
+            builder.cmplr_opt(FAST_MATH);
+        }
+        let program = builder.build(&self.context).map_err(rejected)?;
+        if self.programs.len() >= PROGRAM_CACHE {
+            self.programs.remove(0);
+        }
+        self.programs.push((source.to_string(), precise, program.clone()));
+        Ok(program)
+    }
+
+    fn frame_buffer(&self, frame: &Frame) -> Result<Buffer<f32>, RenderError> {
+        let floats: &[f32] = bytemuck::cast_slice(frame.slots());
+        Buffer::<f32>::builder()
+            .queue(self.queue.clone())
+            .flags(flags::MEM_READ_ONLY)
+            .len(floats.len())
+            .copy_host_slice(floats)
+            .build()
+            .map_err(device_error)
+    }
+
+    /// Evaluates a probe kernel (`probe(points, out, frame, n)`) at `points` (xyz; w ignored).
+    pub fn probe(&mut self, source: &str, frame: &Frame, points: &[[f32; 4]]) -> Result<Vec<ProbeSample>, RenderError> {
+        if points.is_empty() {
+            return Ok(Vec::new());
+        }
+        let n = u32::try_from(points.len()).map_err(|_| RenderError::TooLarge {
+            backend: Backend::OpenCl,
+            what: format!("{} probe points", points.len()),
+            detail: "at most 2^32 - 1".to_string(),
+        })?;
+        let program = self.program(source)?;
+        let flat: &[f32] = bytemuck::cast_slice(points);
+        let input = Buffer::<f32>::builder()
+            .queue(self.queue.clone())
+            .flags(flags::MEM_READ_ONLY)
+            .len(flat.len())
+            .copy_host_slice(flat)
+            .build()
+            .map_err(device_error)?;
+        let out = Buffer::<f32>::builder()
+            .queue(self.queue.clone())
+            .flags(flags::MEM_WRITE_ONLY)
+            .len(points.len() * 8)
+            .build()
+            .map_err(device_error)?;
+        let frame_buffer = self.frame_buffer(frame)?;
+        let kernel = Kernel::builder()
+            .program(&program)
+            .name(entry_name(Entry::Probe))
+            .queue(self.queue.clone())
+            .global_work_size(points.len())
+            .arg(&input)
+            .arg(&out)
+            .arg(&frame_buffer)
+            .arg(n)
+            .build()
+            .map_err(rejected)?;
+        // Safety: the kernel's arguments are live buffers of the sizes its interface promises to stay within.
+        unsafe { kernel.enq() }.map_err(device_error)?;
+        let mut floats = vec![0.0f32; points.len() * 8];
+        out.read(&mut floats).enq().map_err(device_error)?;
+        Ok(floats.chunks_exact(8).map(|c| std::array::from_fn(|i| c[i])).collect())
+    }
+}
+
+impl Renderer for OpenClRenderer {
+    fn render(&mut self, job: &RenderJob) -> Result<Image, RenderError> {
+        let source =
+            job.kernels.opencl.ok_or(RenderError::MissingKernel { backend: Backend::OpenCl, what: "OpenCL kernel" })?;
+        let (width, height) = (job.width(), job.height());
+        let count = width as usize * height as usize;
+        let program = self.program(source)?;
+        let out = Buffer::<u32>::builder()
+            .queue(self.queue.clone())
+            .flags(flags::MEM_WRITE_ONLY)
+            .len(count)
+            .build()
+            .map_err(|e| RenderError::TooLarge {
+                backend: Backend::OpenCl,
+                what: format!("a {width}x{height} image"),
+                detail: e.to_string(),
+            })?;
+        let frame_buffer = self.frame_buffer(job.frame)?;
+        let kernel = Kernel::builder()
+            .program(&program)
+            .name(entry_name(Entry::Render))
+            .queue(self.queue.clone())
+            .global_work_size((width as usize, height as usize))
+            .arg(&out)
+            .arg(&frame_buffer)
+            .build()
+            .map_err(rejected)?;
+        // Safety: `out` holds one u32 per pixel and the kernel writes only pixels inside the frame's size.
+        unsafe { kernel.enq() }.map_err(device_error)?;
+        let mut pixels = vec![0u32; count];
+        out.read(&mut pixels).enq().map_err(device_error)?;
+        Ok(Image { width, height, pixels })
+    }
+
+    fn device(&self) -> DeviceInfo {
+        self.info.clone()
+    }
+}
+
+/// Evaluates an OpenCL probe kernel at `points` on the first OpenCL device, with fast math unless `precise`.
+pub fn probe_opencl(
+    source: &str,
+    frame: &Frame,
+    points: &[[f32; 4]],
+    precise: bool,
+) -> Result<Vec<ProbeSample>, RenderError> {
+    OpenClRenderer::new(precise)?.probe(source, frame, points)
+}

@@ -1,0 +1,414 @@
+//! The wgpu renderer: runs a scene's WGSL kernel as a compute pass and reads the image back.
+//!
+//! Bindings follow [`fractal_dsl::back::Entry`]: `render` writes packed pixels to binding 0 and reads the frame
+//! uniform at binding 1, in 8×8 workgroups; `probe` writes two vec4 per point to binding 0, reads the frame at 1 and
+//! the points at 2, in workgroups of 64. Every wgpu call that can fail runs inside error scopes, so a kernel the
+//! driver refuses, or a device that cannot allocate, is a [`RenderError`] and never a panic. Pipelines are cached
+//! per source text; output buffers are reused while the image size stays the same.
+
+use std::sync::{mpsc, Arc, Mutex};
+
+use fractal_dsl::back::Entry;
+use wgpu::util::DeviceExt;
+
+use crate::error::RenderError;
+use crate::frame::Frame;
+use crate::image::Image;
+use crate::renderer::{Backend, DeviceInfo, ProbeSample, RenderJob, Renderer};
+
+/// Workgroup edge of the `render` entry point (8×8).
+pub const RENDER_WORKGROUP: u32 = 8;
+/// Workgroup size of the `probe` entry point.
+pub const PROBE_WORKGROUP: u32 = 64;
+/// Pipelines kept per renderer; a hot-reloading viewer compiles a new one per edit.
+const PIPELINE_CACHE: usize = 8;
+
+/// Renders WGSL kernels on a wgpu device.
+pub struct WgpuRenderer {
+    instance: wgpu::Instance,
+    adapter: wgpu::Adapter,
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    info: wgpu::AdapterInfo,
+    render_layout: (wgpu::BindGroupLayout, wgpu::PipelineLayout),
+    probe_layout: (wgpu::BindGroupLayout, wgpu::PipelineLayout),
+    pipelines: Vec<(Entry, String, wgpu::ComputePipeline)>,
+    targets: Option<Targets>,
+    /// Errors raised outside any error scope (wgpu would otherwise panic on them).
+    uncaptured: Arc<Mutex<Vec<String>>>,
+}
+
+/// Output and read-back buffers of one size.
+struct Targets {
+    bytes: u64,
+    out: wgpu::Buffer,
+    readback: wgpu::Buffer,
+}
+
+fn device_error(message: impl ToString) -> RenderError {
+    RenderError::Device { backend: Backend::Wgpu, message: message.to_string() }
+}
+
+fn entry_name(entry: Entry) -> &'static str {
+    match entry {
+        Entry::Render => "render",
+        Entry::Probe => "probe",
+    }
+}
+
+impl WgpuRenderer {
+    /// Opens the preferred adapter of the default backends (the `WGPU_BACKEND` environment variable may narrow them).
+    pub fn new() -> Result<WgpuRenderer, RenderError> {
+        WgpuRenderer::with_backends(wgpu::Backends::all())
+    }
+
+    /// Opens the preferred adapter among `backends`.
+    pub fn with_backends(backends: wgpu::Backends) -> Result<WgpuRenderer, RenderError> {
+        let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
+        desc.backends = backends.with_env();
+        // Release-build flags in every build: validation layers would make debug builds measure something else.
+        // WGPU_DEBUG / WGPU_VALIDATION still turn them on.
+        desc.flags = wgpu::InstanceFlags::VALIDATION_INDIRECT_CALL.with_env();
+        let instance = wgpu::Instance::new(desc);
+        let options = wgpu::RequestAdapterOptions {
+            power_preference: wgpu::PowerPreference::HighPerformance,
+            ..Default::default()
+        };
+        let adapter = pollster::block_on(instance.request_adapter(&options))
+            .map_err(|e| RenderError::NoDevice { backend: Backend::Wgpu, reason: e.to_string() })?;
+        let info = adapter.get_info();
+        let descriptor = wgpu::DeviceDescriptor {
+            label: Some("fractal"),
+            // The adapter's own limits, so large images are limited by the device rather than by WebGPU defaults.
+            required_limits: adapter.limits(),
+            memory_hints: wgpu::MemoryHints::Performance,
+            ..Default::default()
+        };
+        let (device, queue) = pollster::block_on(adapter.request_device(&descriptor)).map_err(|e| {
+            RenderError::NoDevice { backend: Backend::Wgpu, reason: format!("{} ({}): {e}", info.name, info.backend) }
+        })?;
+        let uncaptured = Arc::new(Mutex::new(Vec::new()));
+        let sink = Arc::clone(&uncaptured);
+        device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
+            if let Ok(mut errors) = sink.lock() {
+                errors.push(e.to_string());
+            }
+        }));
+        let render_layout = pipeline_layout(&device, Entry::Render);
+        let probe_layout = pipeline_layout(&device, Entry::Probe);
+        Ok(WgpuRenderer {
+            instance,
+            adapter,
+            device,
+            queue,
+            info,
+            render_layout,
+            probe_layout,
+            pipelines: Vec::new(),
+            targets: None,
+            uncaptured,
+        })
+    }
+
+    /// The wgpu objects, for callers that draw to a surface with the same device.
+    pub fn instance(&self) -> &wgpu::Instance {
+        &self.instance
+    }
+    pub fn adapter(&self) -> &wgpu::Adapter {
+        &self.adapter
+    }
+    pub fn wgpu_device(&self) -> &wgpu::Device {
+        &self.device
+    }
+    pub fn queue(&self) -> &wgpu::Queue {
+        &self.queue
+    }
+    pub fn adapter_info(&self) -> &wgpu::AdapterInfo {
+        &self.info
+    }
+
+    /// Compiles (or finds in the cache) the pipeline of `entry` in `source`.
+    pub fn pipeline(&mut self, entry: Entry, source: &str) -> Result<wgpu::ComputePipeline, RenderError> {
+        if let Some(i) = self.pipelines.iter().position(|(e, s, _)| *e == entry && s == source) {
+            let hit = self.pipelines.remove(i);
+            let pipeline = hit.2.clone();
+            self.pipelines.push(hit);
+            return Ok(pipeline);
+        }
+        let layout = match entry {
+            Entry::Render => &self.render_layout.1,
+            Entry::Probe => &self.probe_layout.1,
+        };
+        let ((module, pipeline), error) = capture(&self.device, || {
+            let module = self.device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some("fractal kernel"),
+                source: wgpu::ShaderSource::Wgsl(source.into()),
+            });
+            let pipeline = self.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(entry_name(entry)),
+                layout: Some(layout),
+                module: &module,
+                entry_point: Some(entry_name(entry)),
+                compilation_options: Default::default(),
+                cache: None,
+            });
+            (module, pipeline)
+        });
+        if let Some(error) = error {
+            let info = pollster::block_on(module.get_compilation_info());
+            let located: Vec<String> = info
+                .messages
+                .iter()
+                .filter(|m| m.message_type == wgpu::CompilationMessageType::Error)
+                .map(|m| match &m.location {
+                    Some(at) => format!("{}:{}: {}", at.line_number, at.line_position, m.message),
+                    None => m.message.clone(),
+                })
+                .collect();
+            let log = if located.is_empty() { error.to_string() } else { located.join("\n") };
+            return Err(RenderError::KernelRejected { backend: Backend::Wgpu, log });
+        }
+        if self.pipelines.len() >= PIPELINE_CACHE {
+            self.pipelines.remove(0);
+        }
+        self.pipelines.push((entry, source.to_string(), pipeline.clone()));
+        Ok(pipeline)
+    }
+
+    /// Evaluates a probe kernel (entry `probe`) at `points` (xyz; w ignored): one [`ProbeSample`] per point.
+    pub fn probe(&mut self, source: &str, frame: &Frame, points: &[[f32; 4]]) -> Result<Vec<ProbeSample>, RenderError> {
+        if points.is_empty() {
+            return Ok(Vec::new());
+        }
+        let groups = (points.len() as u64).div_ceil(PROBE_WORKGROUP as u64);
+        let out_bytes = points.len() as u64 * 32;
+        let limits = self.device.limits();
+        if groups > limits.max_compute_workgroups_per_dimension as u64
+            || out_bytes > limits.max_storage_buffer_binding_size
+        {
+            return Err(RenderError::TooLarge {
+                backend: Backend::Wgpu,
+                what: format!("{} probe points", points.len()),
+                detail: format!("at most {} workgroups of 64", limits.max_compute_workgroups_per_dimension),
+            });
+        }
+        let pipeline = self.pipeline(Entry::Probe, source)?;
+        let (readback, error) = capture(&self.device, || {
+            let uniform = self.uniform_buffer(frame);
+            let input = self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("probe points"),
+                contents: bytemuck::cast_slice(points),
+                usage: wgpu::BufferUsages::STORAGE,
+            });
+            let out = self.storage_buffer("probe out", out_bytes);
+            let readback = self.readback_buffer(out_bytes);
+            let bind_group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("probe"),
+                layout: &self.probe_layout.0,
+                entries: &[
+                    wgpu::BindGroupEntry { binding: 0, resource: out.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 1, resource: uniform.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 2, resource: input.as_entire_binding() },
+                ],
+            });
+            self.dispatch(&pipeline, &bind_group, (groups as u32, 1), &out, &readback, out_bytes);
+            readback
+        });
+        self.check(error)?;
+        let floats: Vec<f32> = self.read(&readback, out_bytes)?.into_iter().map(f32::from_bits).collect();
+        Ok(floats.chunks_exact(8).map(|c| std::array::from_fn(|i| c[i])).collect())
+    }
+
+    fn uniform_buffer(&self, frame: &Frame) -> wgpu::Buffer {
+        self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("frame"),
+            contents: frame.as_bytes(),
+            usage: wgpu::BufferUsages::UNIFORM,
+        })
+    }
+
+    fn storage_buffer(&self, label: &str, bytes: u64) -> wgpu::Buffer {
+        self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some(label),
+            size: bytes,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        })
+    }
+
+    fn readback_buffer(&self, bytes: u64) -> wgpu::Buffer {
+        self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("readback"),
+            size: bytes,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        })
+    }
+
+    /// Records and submits one dispatch followed by the copy of `out` into `readback`.
+    fn dispatch(
+        &self,
+        pipeline: &wgpu::ComputePipeline,
+        bind_group: &wgpu::BindGroup,
+        groups: (u32, u32),
+        out: &wgpu::Buffer,
+        readback: &wgpu::Buffer,
+        bytes: u64,
+    ) {
+        let mut encoder = self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("fractal") });
+        {
+            let mut pass =
+                encoder.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("fractal"), timestamp_writes: None });
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, bind_group, &[]);
+            pass.dispatch_workgroups(groups.0, groups.1, 1);
+        }
+        encoder.copy_buffer_to_buffer(out, 0, readback, 0, bytes);
+        self.queue.submit([encoder.finish()]);
+    }
+
+    /// Waits for the GPU and reads `bytes` of `readback` as u32 words.
+    fn read(&self, readback: &wgpu::Buffer, bytes: u64) -> Result<Vec<u32>, RenderError> {
+        let slice = readback.slice(..bytes);
+        let (sender, receiver) = mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |result| {
+            let _ = sender.send(result);
+        });
+        self.device.poll(wgpu::PollType::wait_indefinitely()).map_err(device_error)?;
+        receiver.recv().map_err(device_error)?.map_err(device_error)?;
+        let words = {
+            let view = slice.get_mapped_range().map_err(device_error)?;
+            view.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect()
+        };
+        readback.unmap();
+        self.check(None)?;
+        Ok(words)
+    }
+
+    /// Turns a scoped error, or any error that escaped the scopes, into a device error.
+    fn check(&self, scoped: Option<wgpu::Error>) -> Result<(), RenderError> {
+        let mut messages: Vec<String> = scoped.into_iter().map(|e| e.to_string()).collect();
+        if let Ok(mut escaped) = self.uncaptured.lock() {
+            messages.append(&mut escaped);
+        }
+        if messages.is_empty() {
+            Ok(())
+        } else {
+            Err(device_error(messages.join("\n")))
+        }
+    }
+}
+
+/// Runs `f` inside validation, out-of-memory and internal error scopes and returns the first error they caught.
+fn capture<T>(device: &wgpu::Device, f: impl FnOnce() -> T) -> (T, Option<wgpu::Error>) {
+    let internal = device.push_error_scope(wgpu::ErrorFilter::Internal);
+    let memory = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
+    let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let value = f();
+    // Scopes pop innermost first.
+    let errors = [validation.pop(), memory.pop(), internal.pop()].map(pollster::block_on);
+    (value, errors.into_iter().flatten().next())
+}
+
+fn pipeline_layout(device: &wgpu::Device, entry: Entry) -> (wgpu::BindGroupLayout, wgpu::PipelineLayout) {
+    let buffer = |binding, ty| wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer { ty, has_dynamic_offset: false, min_binding_size: None },
+        count: None,
+    };
+    let out = buffer(0, wgpu::BufferBindingType::Storage { read_only: false });
+    let frame = buffer(1, wgpu::BufferBindingType::Uniform);
+    let entries = match entry {
+        Entry::Render => vec![out, frame],
+        Entry::Probe => vec![out, frame, buffer(2, wgpu::BufferBindingType::Storage { read_only: true })],
+    };
+    let bind_group_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some(entry_name(entry)),
+        entries: &entries,
+    });
+    let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(entry_name(entry)),
+        bind_group_layouts: &[Some(&bind_group_layout)],
+        immediate_size: 0,
+    });
+    (bind_group_layout, layout)
+}
+
+impl Renderer for WgpuRenderer {
+    fn render(&mut self, job: &RenderJob) -> Result<Image, RenderError> {
+        let source = job.kernels.wgsl.ok_or(RenderError::MissingKernel { backend: Backend::Wgpu, what: "WGSL kernel" })?;
+        let (width, height) = (job.width(), job.height());
+        let bytes = width as u64 * height as u64 * 4;
+        let limits = self.device.limits();
+        let groups = (width.div_ceil(RENDER_WORKGROUP), height.div_ceil(RENDER_WORKGROUP));
+        let max_groups = limits.max_compute_workgroups_per_dimension;
+        if bytes > limits.max_storage_buffer_binding_size.min(limits.max_buffer_size)
+            || groups.0 > max_groups
+            || groups.1 > max_groups
+        {
+            return Err(RenderError::TooLarge {
+                backend: Backend::Wgpu,
+                what: format!("a {width}x{height} image"),
+                detail: format!(
+                    "storage buffers up to {} bytes, {max_groups} workgroups per dimension",
+                    limits.max_storage_buffer_binding_size.min(limits.max_buffer_size)
+                ),
+            });
+        }
+        let pipeline = self.pipeline(Entry::Render, source)?;
+        if self.targets.as_ref().is_none_or(|t| t.bytes != bytes) {
+            self.targets = None;
+            let (targets, error) = capture(&self.device, || Targets {
+                bytes,
+                out: self.storage_buffer("pixels", bytes),
+                readback: self.readback_buffer(bytes),
+            });
+            self.check(error)?;
+            self.targets = Some(targets);
+        }
+        let Some(targets) = self.targets.as_ref() else {
+            return Err(device_error("output buffers were not created"));
+        };
+        let ((), error) = capture(&self.device, || {
+            let uniform = self.uniform_buffer(job.frame);
+            let bind_group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("render"),
+                layout: &self.render_layout.0,
+                entries: &[
+                    wgpu::BindGroupEntry { binding: 0, resource: targets.out.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 1, resource: uniform.as_entire_binding() },
+                ],
+            });
+            self.dispatch(&pipeline, &bind_group, groups, &targets.out, &targets.readback, bytes);
+        });
+        self.check(error)?;
+        let pixels = self.read(&targets.readback, bytes)?;
+        Ok(Image { width, height, pixels })
+    }
+
+    fn device(&self) -> DeviceInfo {
+        let driver = match (self.info.driver.is_empty(), self.info.driver_info.is_empty()) {
+            (false, false) => format!("{} {}", self.info.driver, self.info.driver_info),
+            (false, true) => self.info.driver.clone(),
+            (true, _) => self.info.driver_info.clone(),
+        };
+        DeviceInfo {
+            backend: Backend::Wgpu,
+            api: format!("{:?}", self.info.backend),
+            name: self.info.name.clone(),
+            driver,
+            device_type: format!("{:?}", self.info.device_type),
+        }
+    }
+}
+
+/// Evaluates a WGSL probe kernel at `points` on `renderer`'s device; see [`WgpuRenderer::probe`].
+pub fn probe_wgsl(
+    renderer: &mut WgpuRenderer,
+    source: &str,
+    frame: &Frame,
+    points: &[[f32; 4]],
+) -> Result<Vec<ProbeSample>, RenderError> {
+    renderer.probe(source, frame, points)
+}

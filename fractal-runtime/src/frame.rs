@@ -1,0 +1,359 @@
+//! Host-side packing of the frame uniforms every kernel reads ([`FrameLayout`]): camera, time, image size, lights
+//! and parameter values, evaluated on the host for one time and one set of parameter values.
+//!
+//! Lights are expressions of `t` and `param(..)`; they are evaluated here (in f64, then rounded to f32), so a kernel
+//! only reads numbers and a moving light never recompiles anything.
+
+use fractal_dsl::back::FrameLayout;
+use fractal_dsl::{LightKind, ParamDecl, Scene};
+use glam::DVec3;
+
+use crate::camera::Pose;
+use crate::error::FrameError;
+
+/// The largest image side any renderer accepts; larger sizes are refused before anything is allocated.
+pub const MAX_IMAGE_SIDE: u32 = 16384;
+
+/// Values of a scene's parameters, in [`Scene::params`] order (the uniform order).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ParamValues {
+    decls: Vec<ParamDecl>,
+    values: Vec<f64>,
+}
+
+impl ParamValues {
+    /// Every parameter of `scene` at its default.
+    pub fn defaults(scene: &Scene) -> ParamValues {
+        let decls = scene.params();
+        let values = decls.iter().map(|p| p.default).collect();
+        ParamValues { decls, values }
+    }
+
+    /// The given values, one per parameter of `scene` in order; each must lie within its declared range.
+    pub fn from_values(scene: &Scene, values: &[f64]) -> Result<ParamValues, FrameError> {
+        let decls = scene.params();
+        if decls.len() != values.len() {
+            return Err(FrameError::ParamCount { expected: decls.len(), got: values.len() });
+        }
+        let mut out = ParamValues::defaults(scene);
+        for (decl, &value) in decls.iter().zip(values) {
+            out.set(&decl.name, value)?;
+        }
+        Ok(out)
+    }
+
+    /// Sets one parameter by name; refuses unknown names and values outside the declared range.
+    pub fn set(&mut self, name: &str, value: f64) -> Result<(), FrameError> {
+        let index = self
+            .decls
+            .iter()
+            .position(|p| p.name == name)
+            .ok_or_else(|| FrameError::UnknownParam(name.to_string()))?;
+        let decl = &self.decls[index];
+        if !(value.is_finite() && value >= decl.min && value <= decl.max) {
+            return Err(FrameError::ParamOutOfRange { name: name.to_string(), value, min: decl.min, max: decl.max });
+        }
+        self.values[index] = value;
+        Ok(())
+    }
+
+    pub fn get(&self, name: &str) -> Option<f64> {
+        self.decls.iter().position(|p| p.name == name).map(|i| self.values[i])
+    }
+
+    /// The declarations, in uniform order.
+    pub fn decls(&self) -> &[ParamDecl] {
+        &self.decls
+    }
+
+    /// The values, in uniform order.
+    pub fn values(&self) -> &[f64] {
+        &self.values
+    }
+
+    /// The value of `decl` (by name), or its default when these values do not name it.
+    pub fn lookup(&self, decl: &ParamDecl) -> f64 {
+        self.get(&decl.name).unwrap_or(decl.default)
+    }
+
+    fn check_matches(&self, scene_params: &[ParamDecl]) -> Result<(), FrameError> {
+        if self.decls.len() != scene_params.len() {
+            return Err(FrameError::ParamCount { expected: scene_params.len(), got: self.decls.len() });
+        }
+        for (want, have) in scene_params.iter().zip(&self.decls) {
+            if want.name != have.name {
+                return Err(FrameError::ParamMismatch { expected: want.name.clone(), found: have.name.clone() });
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The frame uniforms of one image: [`FrameLayout`] slots of four f32 each, plus the image size they were packed
+/// for.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Frame {
+    layout: FrameLayout,
+    width: u32,
+    height: u32,
+    slots: Vec<[f32; 4]>,
+}
+
+/// One light as a kernel reads it from its two slots.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LightSlot {
+    /// Unit direction towards the light, and colour · intensity.
+    Directional { direction: [f32; 3], radiance: [f32; 3] },
+    /// Position, and colour · intensity (falls off with the squared distance).
+    Point { position: [f32; 3], radiance: [f32; 3] },
+}
+
+/// Checks an image size against [`MAX_IMAGE_SIDE`].
+pub fn check_image_size(width: u32, height: u32) -> Result<(), FrameError> {
+    if width == 0 || height == 0 || width > MAX_IMAGE_SIDE || height > MAX_IMAGE_SIDE {
+        return Err(FrameError::ImageSize { width, height, max: MAX_IMAGE_SIDE });
+    }
+    Ok(())
+}
+
+fn finite3(v: [f64; 3]) -> bool {
+    v.iter().all(|c| c.is_finite())
+}
+
+fn f32x3(v: DVec3) -> [f32; 3] {
+    v.as_vec3().to_array()
+}
+
+impl Frame {
+    /// Packs the uniforms of `scene` seen from `pose` at `time` for a `width`×`height` image.
+    pub fn new(
+        scene: &Scene,
+        pose: &Pose,
+        time: f64,
+        width: u32,
+        height: u32,
+        params: &ParamValues,
+    ) -> Result<Frame, FrameError> {
+        check_image_size(width, height)?;
+        if !time.is_finite() {
+            return Err(FrameError::Time(time));
+        }
+        let scene_params = scene.params();
+        params.check_matches(&scene_params)?;
+        let lights = scene.effective_lights();
+        let layout = FrameLayout { lights: lights.len(), params: scene_params.len() };
+
+        let fov = pose.fov_degrees;
+        if !(fov.is_finite() && fov > 0.0 && fov < 180.0) {
+            return Err(crate::error::CameraError::FieldOfView(fov).into());
+        }
+        if !pose.position.is_finite() || !pose.forward.is_finite() || !pose.up.is_finite() {
+            return Err(crate::error::CameraError::NonFinite { time }.into());
+        }
+        let (right, up, forward) = pose.basis();
+        let tan_half = (0.5 * fov.to_radians()).tan();
+        let (w, h) = (width as f32, height as f32);
+
+        let mut slots = vec![[0.0f32; 4]; layout.slots()];
+        let p = f32x3(pose.position);
+        slots[0] = [p[0], p[1], p[2], time as f32];
+        let r = f32x3(right * tan_half);
+        slots[1] = [r[0], r[1], r[2], w];
+        let u = f32x3(up * tan_half);
+        slots[2] = [u[0], u[1], u[2], h];
+        let f = f32x3(forward);
+        slots[3] = [f[0], f[1], f[2], (2.0 * tan_half / height as f64) as f32];
+
+        let lookup = |d: &ParamDecl| params.lookup(d);
+        for (index, light) in lights.iter().enumerate() {
+            let (xyz, kind) = match &light.kind {
+                LightKind::Directional { direction } => {
+                    let d = direction.eval(time, &lookup);
+                    if !finite3(d) {
+                        return Err(FrameError::NonFiniteLight { index, what: "direction", time });
+                    }
+                    let unit = DVec3::from_array(d).try_normalize().ok_or(FrameError::ZeroLightDirection { index, time })?;
+                    (unit, 0.0)
+                }
+                LightKind::Point { position } => {
+                    let pos = position.eval(time, &lookup);
+                    if !finite3(pos) {
+                        return Err(FrameError::NonFiniteLight { index, what: "position", time });
+                    }
+                    (DVec3::from_array(pos), 1.0)
+                }
+            };
+            let colour = DVec3::from_array(light.color.eval(time, &lookup));
+            let intensity = light.intensity.eval(time, &lookup);
+            let radiance = colour * intensity;
+            if !radiance.is_finite() {
+                return Err(FrameError::NonFiniteLight { index, what: "colour · intensity", time });
+            }
+            let slot = layout.light_slot(index);
+            let xyz = f32x3(xyz);
+            slots[slot] = [xyz[0], xyz[1], xyz[2], kind];
+            let rad = f32x3(radiance);
+            slots[slot + 1] = [rad[0], rad[1], rad[2], 0.0];
+        }
+
+        let first = layout.params_slot();
+        for (j, &v) in params.values().iter().enumerate() {
+            slots[first + j / 4][j % 4] = v as f32;
+        }
+        Ok(Frame { layout, width, height, slots })
+    }
+
+    /// A frame from slots packed elsewhere (hand-written kernels, replays); the slot count must match `layout`.
+    pub fn from_slots(
+        layout: FrameLayout,
+        width: u32,
+        height: u32,
+        slots: Vec<[f32; 4]>,
+    ) -> Result<Frame, FrameError> {
+        check_image_size(width, height)?;
+        if slots.len() != layout.slots() {
+            return Err(FrameError::SlotCount { expected: layout.slots(), got: slots.len() });
+        }
+        Ok(Frame { layout, width, height, slots })
+    }
+
+    pub fn layout(&self) -> FrameLayout {
+        self.layout
+    }
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+    pub fn slots(&self) -> &[[f32; 4]] {
+        &self.slots
+    }
+    /// The slots as the bytes of the uniform buffer.
+    pub fn as_bytes(&self) -> &[u8] {
+        bytemuck::cast_slice(&self.slots)
+    }
+    /// The time, as the kernels read it.
+    pub fn time(&self) -> f32 {
+        self.slots[0][3]
+    }
+    /// Camera position, right·tan(fov/2), up·tan(fov/2) and forward, as the kernels read them.
+    pub fn camera(&self) -> [[f32; 3]; 4] {
+        [0, 1, 2, 3].map(|i| [self.slots[i][0], self.slots[i][1], self.slots[i][2]])
+    }
+    /// Pixel footprint per unit distance: 2·tan(fov/2)/height.
+    pub fn pixel_footprint(&self) -> f32 {
+        self.slots[3][3]
+    }
+    /// The lights, as the kernels read them.
+    pub fn lights(&self) -> Vec<LightSlot> {
+        (0..self.layout.lights)
+            .map(|i| {
+                let a = self.slots[self.layout.light_slot(i)];
+                let b = self.slots[self.layout.light_slot(i) + 1];
+                if a[3] == 0.0 {
+                    LightSlot::Directional { direction: [a[0], a[1], a[2]], radiance: [b[0], b[1], b[2]] }
+                } else {
+                    LightSlot::Point { position: [a[0], a[1], a[2]], radiance: [b[0], b[1], b[2]] }
+                }
+            })
+            .collect()
+    }
+    /// The parameter values, as the kernels read them.
+    pub fn params(&self) -> Vec<f32> {
+        let first = self.layout.params_slot();
+        (0..self.layout.params).map(|j| self.slots[first + j / 4][j % 4]).collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use fractal_dsl::builder::*;
+
+    fn pose() -> Pose {
+        Pose::look_at(DVec3::new(0.0, 0.0, -3.0), DVec3::ZERO, 90.0).unwrap()
+    }
+
+    #[test]
+    fn camera_slots_follow_the_layout() {
+        let s = scene(sphere(1.0));
+        let f = Frame::new(&s, &pose(), 2.5, 200, 100, &ParamValues::defaults(&s)).unwrap();
+        assert_eq!(f.layout(), FrameLayout { lights: 1, params: 0 });
+        assert_eq!(f.slots().len(), 6);
+        assert_eq!(f.as_bytes().len(), 6 * 16);
+        let s0 = f.slots()[0];
+        assert_eq!(s0, [0.0, 0.0, -3.0, 2.5]);
+        // fov 90°: tan(45°) = 1, so right and up are unit vectors.
+        let close = |a: [f32; 4], b: [f32; 4]| a.iter().zip(&b).all(|(x, y)| (x - y).abs() < 1e-6);
+        assert!(close(f.slots()[1], [1.0, 0.0, 0.0, 200.0]), "{:?}", f.slots()[1]);
+        assert!(close(f.slots()[2], [0.0, 1.0, 0.0, 100.0]), "{:?}", f.slots()[2]);
+        assert!(close(f.slots()[3], [0.0, 0.0, 1.0, 0.02]), "{:?}", f.slots()[3]);
+        // The default key light, normalised.
+        let l = DVec3::new(0.6, 0.8, -0.4).normalize().as_vec3();
+        assert!(close(f.slots()[4], [l.x, l.y, l.z, 0.0]));
+        assert_eq!(f.slots()[5], [1.0, 1.0, 1.0, 0.0]);
+    }
+
+    #[test]
+    fn lights_and_params_are_evaluated_on_the_host() {
+        let glow = param("glow", 2.0, 0.0..10.0);
+        let s = scene(sphere(param("radius", 1.0, 0.1..2.0)))
+            .light(point_light(vec3(time(), 2.0, 0.0), rgb(1.0, 0.5, 0.25)).intensity(glow.clone() * 3.0))
+            .light(directional([0.0, 2.0, 0.0], rgb(0.5, 0.5, 0.5)).intensity(sin(time())));
+        let mut params = ParamValues::defaults(&s);
+        assert_eq!(params.values(), &[1.0, 2.0]);
+        params.set("glow", 4.0).unwrap();
+        let f = Frame::new(&s, &pose(), 0.5, 8, 8, &params).unwrap();
+        assert_eq!(f.layout(), FrameLayout { lights: 2, params: 2 });
+        assert_eq!(f.slots()[4], [0.5, 2.0, 0.0, 1.0]);
+        assert_eq!(f.slots()[5], [12.0, 6.0, 3.0, 0.0]);
+        assert_eq!(f.slots()[6], [0.0, 1.0, 0.0, 0.0]);
+        let s7 = (0.5f64.sin() * 0.5) as f32;
+        assert_eq!(f.slots()[7], [s7, s7, s7, 0.0]);
+        assert_eq!(f.slots()[8], [1.0, 4.0, 0.0, 0.0]);
+        assert_eq!(f.params(), vec![1.0, 4.0]);
+        assert!(matches!(f.lights()[0], LightSlot::Point { position: [0.5, 2.0, 0.0], .. }));
+    }
+
+    #[test]
+    fn five_params_take_two_slots() {
+        let p = |n: &str| param(n, 0.5, 0.0..1.0);
+        let r = p("a") + p("b") + p("c") + p("d") + p("e");
+        let s = scene(sphere(r));
+        let values = [0.1, 0.2, 0.3, 0.4, 0.5];
+        let f = Frame::new(&s, &pose(), 0.0, 4, 4, &ParamValues::from_values(&s, &values).unwrap()).unwrap();
+        assert_eq!(f.layout().param_slots(), 2);
+        assert_eq!(f.slots().len(), 4 + 2 + 2);
+        assert_eq!(f.slots()[6], [0.1, 0.2, 0.3, 0.4]);
+        assert_eq!(f.slots()[7], [0.5, 0.0, 0.0, 0.0]);
+    }
+
+    #[test]
+    fn bad_inputs_are_errors() {
+        let s = scene(sphere(param("radius", 1.0, 0.1..2.0)));
+        let ok = ParamValues::defaults(&s);
+        for (w, h) in [(0, 0), (0, 10), (100_000, 100_000), (MAX_IMAGE_SIDE + 1, 1)] {
+            assert!(matches!(Frame::new(&s, &pose(), 0.0, w, h, &ok), Err(FrameError::ImageSize { .. })));
+        }
+        assert!(matches!(Frame::new(&s, &pose(), f64::NAN, 8, 8, &ok), Err(FrameError::Time(_))));
+        let mut p = ok.clone();
+        assert!(matches!(p.set("radius", 3.0), Err(FrameError::ParamOutOfRange { .. })));
+        assert!(matches!(p.set("nope", 1.0), Err(FrameError::UnknownParam(_))));
+        assert!(matches!(ParamValues::from_values(&s, &[]), Err(FrameError::ParamCount { expected: 1, got: 0 })));
+        let other = ParamValues::defaults(&scene(sphere(1.0)));
+        assert!(matches!(Frame::new(&s, &pose(), 0.0, 8, 8, &other), Err(FrameError::ParamCount { .. })));
+        let dark = scene(sphere(1.0)).light(directional([0.0, 0.0, 0.0], rgb(1.0, 1.0, 1.0)));
+        let dark_params = ParamValues::defaults(&dark);
+        assert!(matches!(
+            Frame::new(&dark, &pose(), 0.0, 8, 8, &dark_params),
+            Err(FrameError::ZeroLightDirection { index: 0, .. })
+        ));
+        let mut wide = pose();
+        wide.fov_degrees = 0.0;
+        assert!(matches!(
+            Frame::new(&s, &wide, 0.0, 8, 8, &ok),
+            Err(FrameError::Camera(crate::error::CameraError::FieldOfView(_)))
+        ));
+    }
+}

@@ -1,0 +1,148 @@
+//! The one interface every renderer implements: a [`RenderJob`] (the scene's kernels plus the frame uniforms) in,
+//! an [`Image`] out, and a description of the device that drew it.
+//!
+//! A job carries every form of the scene a caller has (WGSL, OpenCL C, a CPU evaluator); each renderer takes the one
+//! it runs, so the same job can be handed to whichever backend was selected, or retried on the next one.
+
+use std::fmt;
+
+use fractal_dsl::eval::Evaluator;
+use fractal_dsl::Scene;
+
+use crate::error::RenderError;
+use crate::frame::Frame;
+use crate::image::Image;
+
+/// The three renderer families.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Backend {
+    /// WGSL through wgpu (Vulkan, Metal, DX12, GL; lavapipe without a GPU).
+    Wgpu,
+    /// OpenCL C through an OpenCL platform (a GPU driver, or pocl on a CPU).
+    OpenCl,
+    /// The scene's CPU evaluator, threaded with rayon.
+    Cpu,
+}
+
+impl Backend {
+    pub const ALL: [Backend; 3] = [Backend::Wgpu, Backend::OpenCl, Backend::Cpu];
+    /// The name used on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Backend::Wgpu => "wgpu",
+            Backend::OpenCl => "opencl",
+            Backend::Cpu => "cpu",
+        }
+    }
+}
+
+impl fmt::Display for Backend {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// One probe result: `[distance, ambient, diffuse, specular, albedo.r, albedo.g, albedo.b, shininess]`.
+pub type ProbeSample = [f32; 8];
+
+/// Which device a renderer got.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct DeviceInfo {
+    pub backend: Backend,
+    /// The API under the backend: "Vulkan", "Metal", "OpenCL 3.0 PoCL …", "rayon".
+    pub api: String,
+    /// Device name, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)".
+    pub name: String,
+    /// Driver name and version, as the driver reports them.
+    pub driver: String,
+    /// Device kind: "Cpu", "DiscreteGpu", "IntegratedGpu", …
+    pub device_type: String,
+}
+
+impl fmt::Display for DeviceInfo {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{} on {} ({}, {}), driver {}", self.backend, self.name, self.api, self.device_type, self.driver)
+    }
+}
+
+/// What the CPU renderer runs: an f32 evaluator of the scene (native or interpreted) and the scene itself (for its
+/// render settings, bound and materials).
+#[derive(Clone, Copy)]
+pub struct CpuKernel<'a> {
+    pub evaluator: &'a dyn Evaluator<f32>,
+    pub scene: &'a Scene,
+}
+
+impl fmt::Debug for CpuKernel<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("CpuKernel").finish_non_exhaustive()
+    }
+}
+
+/// The forms of one scene a job carries; a renderer uses the one for its backend.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Kernels<'a> {
+    /// WGSL module with entry `render` (see [`fractal_dsl::back::Entry::Render`]).
+    pub wgsl: Option<&'a str>,
+    /// OpenCL C program with kernel `render`.
+    pub opencl: Option<&'a str>,
+    pub cpu: Option<CpuKernel<'a>>,
+}
+
+impl<'a> Kernels<'a> {
+    pub fn with_wgsl(mut self, source: &'a str) -> Self {
+        self.wgsl = Some(source);
+        self
+    }
+    pub fn with_opencl(mut self, source: &'a str) -> Self {
+        self.opencl = Some(source);
+        self
+    }
+    pub fn with_cpu(mut self, evaluator: &'a dyn Evaluator<f32>, scene: &'a Scene) -> Self {
+        self.cpu = Some(CpuKernel { evaluator, scene });
+        self
+    }
+}
+
+/// One image to render. Its size is the frame's: the kernels read it from the uniforms.
+#[derive(Clone, Copy, Debug)]
+pub struct RenderJob<'a> {
+    pub kernels: Kernels<'a>,
+    pub frame: &'a Frame,
+}
+
+impl<'a> RenderJob<'a> {
+    pub fn new(kernels: Kernels<'a>, frame: &'a Frame) -> Self {
+        RenderJob { kernels, frame }
+    }
+    pub fn width(&self) -> u32 {
+        self.frame.width()
+    }
+    pub fn height(&self) -> u32 {
+        self.frame.height()
+    }
+}
+
+/// A renderer: draws jobs on one device.
+pub trait Renderer {
+    /// Renders the job's scene into an image of the frame's size.
+    fn render(&mut self, job: &RenderJob) -> Result<Image, RenderError>;
+    /// The device this renderer draws on.
+    fn device(&self) -> DeviceInfo;
+    /// Messages about backend changes since the last call (a fallback chain reports which backend failed and why).
+    fn take_notes(&mut self) -> Vec<String> {
+        Vec::new()
+    }
+}
+
+impl<R: Renderer + ?Sized> Renderer for Box<R> {
+    fn render(&mut self, job: &RenderJob) -> Result<Image, RenderError> {
+        (**self).render(job)
+    }
+    fn device(&self) -> DeviceInfo {
+        (**self).device()
+    }
+    fn take_notes(&mut self) -> Vec<String> {
+        (**self).take_notes()
+    }
+}
