@@ -271,7 +271,8 @@ pub fn de_julia<F: Real>(p: V3<F>, cq: [F; 4], iterations: u32, bailout: F) -> [
         m = dot4(z);
         trap = trap.min(m);
     }
-    [c::<F>(0.25) * m.max(c(TINY)).ln() * (m / dot4(dz)).sqrt(), trap.min(F::one())]
+    // At an exactly-zero iterate the derivative vanishes too; the floor keeps the estimate finite.
+    [c::<F>(0.25) * m.max(c(TINY)).ln() * (m / dot4(dz).max(c(TINY))).sqrt(), trap.min(F::one())]
 }
 
 /// Mandelbox: box fold at `fold_limit`, sphere fold with `min_radius` and fixed radius 1, then z ← scale·z + p.

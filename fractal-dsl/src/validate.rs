@@ -1,1 +1,861 @@
 //! Validation: every value a scene names is checked against its allowed range, with a message naming the parameter.
+//!
+//! The rules live here once. [`validate`] applies them to a whole scene (scenes made with the builder), and the parser
+//! calls the per-value checks ([`check_prim`], [`check_fractal`], [`check_node`], ...) on each value it builds while
+//! it still knows the argument's span, so a rule reports the same message at the token in `scene!`, at `line:column`
+//! in a `.fractal` file and with a node path here.
+//!
+//! A value that is not a constant (it reads `t` or a `param`) is checked over the range it can take
+//! ([`crate::analyse::interval::range`]): an animated radius must stay positive for all time, and one whose range is
+//! unknown is refused where the rule has a limit.
+
+use std::fmt;
+
+use crate::analyse::interval::{range, Interval};
+use crate::ir::*;
+
+/// Most nodes a distance tree may have.
+pub const MAX_NODES: usize = 10_000;
+/// Deepest a distance tree may nest.
+pub const MAX_DEPTH: usize = 64;
+/// Deepest one scalar expression may nest.
+pub const MAX_EXPR_DEPTH: usize = 64;
+/// Most expression nodes a whole scene may hold.
+pub const MAX_EXPR_NODES: usize = 100_000;
+/// Most lights a scene may have (each is a uniform slot pair and a shading loop iteration).
+pub const MAX_LIGHTS: usize = 16;
+/// Largest `max_steps`.
+pub const MAX_MARCH_STEPS: u32 = 10_000;
+/// Largest cell count per axis of `repeat_limited`.
+pub const MAX_REPEAT_COUNT: u32 = 1000;
+/// Menger sponge levels allowed: each level multiplies the detail by 3, and 8 is already below f32 resolution.
+pub const MENGER_LEVELS: (u32, u32) = (1, 8);
+/// Sierpinski tetrahedron levels allowed: each halves the detail; 24 reaches f32 resolution.
+pub const SIERPINSKI_LEVELS: (u32, u32) = (1, 24);
+/// Mandelbulb powers allowed.
+pub const MANDELBULB_POWER: (f64, f64) = (2.0, 64.0);
+/// Mandelbox |scale| allowed: below 1.05 the estimator's convergence breaks down; above 8 it leaves f32 range.
+pub const MANDELBOX_SCALE: (f64, f64) = (1.05, 8.0);
+
+/// A broken rule in a scene, located by the path of the node (or the scene part) it concerns.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ValidationError {
+    /// Where: e.g. `union > child 2 > translate > sphere`, `light 1`, `camera`, `scene`, `param "power"`.
+    pub path: String,
+    pub message: String,
+}
+
+impl fmt::Display for ValidationError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: {}", self.path, self.message)
+    }
+}
+
+impl std::error::Error for ValidationError {}
+
+/// One broken rule found by a per-value check: which argument it concerns (by the name the vocabulary gives it;
+/// `""` for the value as a whole) and, for an argument that repeats (the keys of a camera path), which one.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Problem {
+    pub arg: &'static str,
+    pub index: Option<usize>,
+    pub message: String,
+}
+
+impl Problem {
+    fn new(arg: &'static str, message: String) -> Problem {
+        Problem { arg, index: None, message }
+    }
+}
+
+/// Checks a whole scene; every broken rule is reported.
+pub fn validate(scene: &Scene) -> Result<(), Vec<ValidationError>> {
+    let mut errors = Vec::new();
+    let at = |path: &str, problems: Vec<Problem>, errors: &mut Vec<ValidationError>| {
+        errors.extend(problems.into_iter().map(|p| ValidationError { path: path.to_string(), message: p.message }))
+    };
+
+    // Sizes first and without recursion: a tree too deep is refused before anything recurses into it.
+    if let Some(message) = size_problem(scene) {
+        errors.push(ValidationError { path: "scene".into(), message });
+        return Err(errors);
+    }
+
+    let mut path = Vec::new();
+    walk(&scene.root, &mut path, &mut errors);
+    for (i, light) in scene.lights.iter().enumerate() {
+        at(&format!("light {}", i + 1), check_light(light), &mut errors);
+    }
+    at("camera", check_camera(&scene.camera), &mut errors);
+    at("scene", check_scene(scene), &mut errors);
+
+    let mut declared: Vec<&ParamDecl> = Vec::new();
+    let mut params: Vec<&ParamDecl> = Vec::new();
+    crate::visit::visit_exprs(scene, &mut |e| e.visit_params(&mut |p| params.push(p)));
+    for p in params {
+        let path = format!("param {:?}", p.name);
+        match declared.iter().find(|q| q.name == p.name) {
+            Some(first) => {
+                if let Some(message) = check_param_again(first, p) {
+                    if !errors.iter().any(|e| e.path == path && e.message == message) {
+                        errors.push(ValidationError { path, message });
+                    }
+                }
+            }
+            None => {
+                at(&path, check_param(p), &mut errors);
+                declared.push(p);
+            }
+        }
+    }
+
+    if errors.is_empty() {
+        Ok(())
+    } else {
+        Err(errors)
+    }
+}
+
+fn walk(node: &Node, path: &mut Vec<String>, errors: &mut Vec<ValidationError>) {
+    path.push(node_label(node).to_string());
+    let problems = check_node(node);
+    if !problems.is_empty() {
+        let here = path.join(" > ");
+        errors.extend(problems.into_iter().map(|p| ValidationError { path: here.clone(), message: p.message }));
+    }
+    let n_ary = matches!(node, Node::Union(_) | Node::Intersect(_) | Node::SmoothUnion(..) | Node::SmoothIntersect(..))
+        || matches!(node, Node::Subtract(..) | Node::SmoothSubtract(..));
+    for (i, child) in node.children().into_iter().enumerate() {
+        if n_ary {
+            path.push(format!("child {}", i + 1));
+        }
+        walk(child, path, errors);
+        if n_ary {
+            path.pop();
+        }
+    }
+    path.pop();
+}
+
+/// The name a node has in scene source (the function or method that makes it).
+pub fn node_label(node: &Node) -> &'static str {
+    match node {
+        Node::Prim(p) => prim_name(p),
+        Node::Fractal(f) => f.kind.name(),
+        Node::Union(_) => "union",
+        Node::Intersect(_) => "intersect",
+        Node::Subtract(..) => "subtract",
+        Node::SmoothUnion(..) => "smooth_union",
+        Node::SmoothIntersect(..) => "smooth_intersect",
+        Node::SmoothSubtract(..) => "smooth_subtract",
+        Node::Translate(..) => "translate",
+        Node::Rotate(_, Axis::X, _) => "rotate_x",
+        Node::Rotate(_, Axis::Y, _) => "rotate_y",
+        Node::Rotate(_, Axis::Z, _) => "rotate_z",
+        Node::Rotate(_, Axis::Any(_), _) => "rotate",
+        Node::Scale(..) => "scale",
+        Node::Repeat(..) => "repeat",
+        Node::RepeatLimited(..) => "repeat_limited",
+        Node::Twist(..) => "twist",
+        Node::Bend(..) => "bend",
+        Node::Round(..) => "round",
+        Node::Onion(..) => "onion",
+        Node::Elongate(..) => "elongate",
+        Node::Material(..) => "material",
+    }
+}
+
+/// The function that makes a primitive in scene source.
+pub fn prim_name(p: &Prim) -> &'static str {
+    match p {
+        Prim::Sphere { .. } => "sphere",
+        Prim::Box { .. } => "box3",
+        Prim::RoundBox { .. } => "round_box",
+        Prim::Torus { .. } => "torus",
+        Prim::Capsule { .. } => "capsule",
+        Prim::Cylinder { .. } => "cylinder",
+        Prim::Cone { .. } => "cone",
+        Prim::Plane { .. } => "plane",
+        Prim::Octahedron { .. } => "octahedron",
+        Prim::Ellipsoid { .. } => "ellipsoid",
+    }
+}
+
+// ---- sizes ----------------------------------------------------------------------------------------------------------
+
+/// Depth of an expression, counted without recursion.
+pub fn expr_depth(e: &Expr) -> usize {
+    let mut deepest = 0;
+    let mut stack = vec![(e, 1usize)];
+    while let Some((e, d)) = stack.pop() {
+        deepest = deepest.max(d);
+        match e {
+            Expr::Lit(_) | Expr::Time | Expr::Param(_) => {}
+            Expr::Neg(a) => stack.push((a, d + 1)),
+            Expr::Bin(_, a, b) => {
+                stack.push((a, d + 1));
+                stack.push((b, d + 1));
+            }
+            Expr::Call(_, args) => stack.extend(args.iter().map(|a| (a, d + 1))),
+        }
+    }
+    deepest
+}
+
+/// Depth of a distance tree, counted without recursion.
+pub fn node_depth(n: &Node) -> usize {
+    let mut deepest = 0;
+    let mut stack = vec![(n, 1usize)];
+    while let Some((n, d)) = stack.pop() {
+        deepest = deepest.max(d);
+        stack.extend(n.children().into_iter().map(|c| (c, d + 1)));
+    }
+    deepest
+}
+
+/// The expressions a node holds itself (not those of its children).
+pub fn own_exprs(node: &Node) -> Vec<&Expr> {
+    let mut out: Vec<&Expr> = Vec::new();
+    match node {
+        Node::Prim(p) => match p {
+            Prim::Sphere { radius } => out.push(radius),
+            Prim::Box { half } => out.extend(&half.0),
+            Prim::RoundBox { half, radius } => {
+                out.extend(&half.0);
+                out.push(radius)
+            }
+            Prim::Torus { major, minor } => out.extend([major, minor]),
+            Prim::Capsule { a, b, radius } => {
+                out.extend(a.0.iter().chain(&b.0));
+                out.push(radius)
+            }
+            Prim::Cylinder { radius, half_height } => out.extend([radius, half_height]),
+            Prim::Cone { half_height, bottom, top } => out.extend([half_height, bottom, top]),
+            Prim::Plane { normal, offset } => {
+                out.extend(&normal.0);
+                out.push(offset)
+            }
+            Prim::Octahedron { size } => out.push(size),
+            Prim::Ellipsoid { radii } => out.extend(&radii.0),
+        },
+        Node::Fractal(f) => {
+            match &f.kind {
+                FractalKind::Mandelbulb { power } => out.push(power),
+                FractalKind::Julia { c } => out.extend(&c.0),
+                FractalKind::Mandelbox { scale } => out.push(scale),
+                FractalKind::Menger | FractalKind::Sierpinski => {}
+            }
+            out.extend([&f.bailout, &f.min_radius, &f.fold_limit].into_iter().flatten());
+        }
+        Node::Union(_) | Node::Intersect(_) | Node::Subtract(..) => {}
+        Node::SmoothUnion(_, k) | Node::SmoothIntersect(_, k) | Node::SmoothSubtract(_, _, k) => out.push(k),
+        Node::Translate(_, v) | Node::Repeat(_, v) | Node::RepeatLimited(_, v, _) | Node::Elongate(_, v) => {
+            out.extend(&v.0)
+        }
+        Node::Rotate(_, _, e)
+        | Node::Scale(_, e)
+        | Node::Twist(_, e)
+        | Node::Bend(_, e)
+        | Node::Round(_, e)
+        | Node::Onion(_, e) => out.push(e),
+        Node::Material(_, m) => crate::visit::material_exprs(m, &mut |e| out.push(e)),
+    }
+    out
+}
+
+fn light_exprs(l: &Light) -> Vec<&Expr> {
+    let v = match &l.kind {
+        LightKind::Directional { direction: v } | LightKind::Point { position: v } => v,
+    };
+    v.0.iter().chain(&l.color.0).chain([&l.intensity]).collect()
+}
+
+fn camera_exprs(c: &Camera) -> Vec<&Expr> {
+    match &c.placement {
+        CameraPlacement::LookAt { position, target } => position.0.iter().chain(&target.0).collect(),
+        CameraPlacement::Path { .. } => Vec::new(),
+    }
+}
+
+/// The message for a scene over a size or depth cap, found without recursion.
+fn size_problem(scene: &Scene) -> Option<String> {
+    let mut nodes = 0usize;
+    let mut expr_nodes = 0usize;
+    let mut stack = vec![(&scene.root, 1usize)];
+    let mut exprs: Vec<&Expr> = Vec::new();
+    while let Some((n, d)) = stack.pop() {
+        nodes += 1;
+        if d > MAX_DEPTH {
+            return Some(format!("the shape tree nests more than {MAX_DEPTH} levels deep"));
+        }
+        if nodes > MAX_NODES {
+            return Some(format!("the shape tree has more than {MAX_NODES} nodes"));
+        }
+        exprs.extend(own_exprs(n));
+        stack.extend(n.children().into_iter().map(|c| (c, d + 1)));
+    }
+    for l in &scene.lights {
+        exprs.extend(light_exprs(l));
+    }
+    exprs.extend(camera_exprs(&scene.camera));
+    for e in exprs {
+        if let Some(m) = expr_size_problem(e) {
+            return Some(m);
+        }
+        expr_nodes += e.size();
+        if expr_nodes > MAX_EXPR_NODES {
+            return Some(format!("the scene's expressions have more than {MAX_EXPR_NODES} nodes"));
+        }
+    }
+    None
+}
+
+/// The message for an expression nested deeper than [`MAX_EXPR_DEPTH`].
+pub fn expr_size_problem(e: &Expr) -> Option<String> {
+    (expr_depth(e) > MAX_EXPR_DEPTH).then(|| format!("an expression nests more than {MAX_EXPR_DEPTH} levels deep"))
+}
+
+// ---- number rules -----------------------------------------------------------------------------------------------------
+
+/// Allowed values of one number: optional ends, each open or closed.
+#[derive(Clone, Copy, Debug)]
+struct Limits {
+    lo: Option<(f64, bool)>,
+    hi: Option<(f64, bool)>,
+    /// Describe both ends together ("in (0, 1)") rather than the end that was crossed.
+    as_interval: bool,
+}
+
+const fn gt(x: f64) -> Limits {
+    Limits { lo: Some((x, false)), hi: None, as_interval: false }
+}
+const fn ge(x: f64) -> Limits {
+    Limits { lo: Some((x, true)), hi: None, as_interval: false }
+}
+/// Both ends, reported one at a time (">= 2", "<= 64").
+const fn ge_le(lo: f64, hi: f64) -> Limits {
+    Limits { lo: Some((lo, true)), hi: Some((hi, true)), as_interval: false }
+}
+/// Both ends, reported as an interval with the given closedness.
+const fn within(lo: f64, lo_closed: bool, hi: f64, hi_closed: bool) -> Limits {
+    Limits { lo: Some((lo, lo_closed)), hi: Some((hi, hi_closed)), as_interval: true }
+}
+
+impl Limits {
+    fn lo_ok(&self, v: f64) -> bool {
+        self.lo.is_none_or(|(lo, closed)| if closed { v >= lo } else { v > lo })
+    }
+    fn hi_ok(&self, v: f64) -> bool {
+        self.hi.is_none_or(|(hi, closed)| if closed { v <= hi } else { v < hi })
+    }
+    fn describe_lo(&self) -> String {
+        match self.lo {
+            Some((lo, closed)) => format!("{} {}", if closed { ">=" } else { ">" }, num(lo)),
+            None => String::new(),
+        }
+    }
+    fn describe_hi(&self) -> String {
+        match self.hi {
+            Some((hi, closed)) => format!("{} {}", if closed { "<=" } else { "<" }, num(hi)),
+            None => String::new(),
+        }
+    }
+    fn describe_interval(&self) -> String {
+        match (self.lo, self.hi) {
+            (Some((lo, lc)), Some((hi, hc))) => {
+                format!("in {}{}, {}{}", if lc { "[" } else { "(" }, num(lo), num(hi), if hc { "]" } else { ")" })
+            }
+            _ => format!("{}{}", self.describe_lo(), self.describe_hi()),
+        }
+    }
+    /// The description of the rule a value broke (the crossed end, or the whole interval).
+    fn describe(&self, low_side: bool) -> String {
+        if self.as_interval {
+            self.describe_interval()
+        } else if low_side {
+            self.describe_lo()
+        } else {
+            self.describe_hi()
+        }
+    }
+}
+
+/// A number as messages show it: integers without a fraction, very large or small values in exponent form.
+pub fn num(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() || (1e-4..1e15).contains(&v.abs()) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
+}
+
+/// Whether an expression depends on nothing (no `t`, no `param`).
+pub fn is_constant(e: &Expr) -> bool {
+    let mut stack = vec![e];
+    while let Some(e) = stack.pop() {
+        match e {
+            Expr::Lit(_) => {}
+            Expr::Time | Expr::Param(_) => return false,
+            Expr::Neg(a) => stack.push(a),
+            Expr::Bin(_, a, b) => stack.extend([&**a, &**b]),
+            Expr::Call(_, args) => stack.extend(args),
+        }
+    }
+    true
+}
+
+/// The value of a constant expression.
+pub fn constant_value(e: &Expr) -> Option<f64> {
+    is_constant(e).then(|| e.eval_default(0.0))
+}
+
+/// The message for a literal that is not finite, if the expression holds one.
+pub fn literal_problem(e: &Expr) -> Option<String> {
+    let mut stack = vec![e];
+    while let Some(e) = stack.pop() {
+        match e {
+            Expr::Lit(v) if !v.is_finite() => return Some(format!("numbers must be finite, found {}", num(*v))),
+            Expr::Lit(_) | Expr::Time | Expr::Param(_) => {}
+            Expr::Neg(a) => stack.push(a),
+            Expr::Bin(_, a, b) => stack.extend([&**a, &**b]),
+            Expr::Call(_, args) => stack.extend(args),
+        }
+    }
+    None
+}
+
+/// The values an expression can take: one point for a constant, the interval analysis' range otherwise.
+fn value_range(e: &Expr) -> (Interval, bool) {
+    match constant_value(e) {
+        Some(v) => (Interval { lo: v, hi: v }, true),
+        None => {
+            let r = range(e);
+            // A NaN end means the analysis knows nothing: treat it as unbounded.
+            let lo = if r.lo.is_nan() { f64::NEG_INFINITY } else { r.lo };
+            let hi = if r.hi.is_nan() { f64::INFINITY } else { r.hi };
+            (Interval { lo, hi }, false)
+        }
+    }
+}
+
+/// Checks one number against its limits; `what` names it in the message ("sphere radius").
+fn number(out: &mut Vec<Problem>, arg: &'static str, what: &str, e: &Expr, lim: Limits) {
+    if let Some(m) = literal_problem(e) {
+        out.push(Problem::new(arg, format!("{what}: {m}")));
+        return;
+    }
+    let (r, constant) = value_range(e);
+    if constant {
+        let v = r.lo;
+        if !v.is_finite() {
+            out.push(Problem::new(arg, format!("{what} must be finite, found {}", num(v))));
+        } else if !lim.lo_ok(v) {
+            out.push(Problem::new(arg, format!("{what} must be {}, found {}", lim.describe(true), num(v))));
+        } else if !lim.hi_ok(v) {
+            out.push(Problem::new(arg, format!("{what} must be {}, found {}", lim.describe(false), num(v))));
+        }
+        return;
+    }
+    let unbounded = |end: f64| !end.is_finite();
+    let span = format!("{}..{}", num(r.lo), num(r.hi));
+    let low_bad = lim.lo.is_some() && !lim.lo_ok(r.lo);
+    let high_bad = lim.hi.is_some() && !lim.hi_ok(r.hi);
+    let message = if low_bad {
+        let rule = lim.describe(true);
+        if unbounded(r.lo) {
+            format!("{what} must be {rule}, but no lower bound is known for its value, so it may leave that range")
+        } else {
+            format!("{what} must be {rule}, but it can go down to {} (its range is {span})", num(r.lo))
+        }
+    } else if high_bad {
+        let rule = lim.describe(false);
+        if unbounded(r.hi) {
+            format!("{what} must be {rule}, but no upper bound is known for its value, so it may leave that range")
+        } else {
+            format!("{what} must be {rule}, but it can go up to {} (its range is {span})", num(r.hi))
+        }
+    } else {
+        return;
+    };
+    out.push(Problem::new(arg, message));
+}
+
+const AXES: [&str; 3] = ["x", "y", "z"];
+
+/// Checks each component of a vector against the same limits ("box3 half extent y must be > 0").
+fn vector(out: &mut Vec<Problem>, arg: &'static str, what: &str, v: &Vec3Expr, lim: Limits) {
+    for (e, axis) in v.0.iter().zip(AXES) {
+        number(out, arg, &format!("{what} {axis}"), e, lim);
+    }
+}
+
+/// Checks that the literals of each expression are finite.
+fn finite(out: &mut Vec<Problem>, arg: &'static str, what: &str, exprs: &[&Expr]) {
+    if let Some(m) = exprs.iter().find_map(|e| literal_problem(e)) {
+        out.push(Problem::new(arg, format!("{what}: {m}")));
+    }
+}
+
+fn integer(out: &mut Vec<Problem>, arg: &'static str, what: &str, v: u32, lo: u32, hi: u32) {
+    if !(lo..=hi).contains(&v) {
+        out.push(Problem::new(arg, format!("{what} must be in {lo}..={hi}, found {v}")));
+    }
+}
+
+fn constant(out: &mut Vec<Problem>, arg: &'static str, what: &str, v: f64, lim: Limits) {
+    number(out, arg, what, &Expr::Lit(v), lim)
+}
+
+// ---- per-value checks ---------------------------------------------------------------------------------------------
+
+/// Rules of a primitive's dimensions.
+pub fn check_prim(p: &Prim) -> Vec<Problem> {
+    let mut out = Vec::new();
+    let o = &mut out;
+    match p {
+        Prim::Sphere { radius } => number(o, "radius", "sphere radius", radius, gt(0.0)),
+        Prim::Box { half } => vector(o, "half", "box3 half extent", half, gt(0.0)),
+        Prim::RoundBox { half, radius } => {
+            vector(o, "half", "round_box half extent", half, gt(0.0));
+            if o.is_empty() {
+                // The rounding cannot exceed the smallest half extent (the box inside would turn inside out).
+                let smallest = half.0.iter().map(|h| value_range(h).0.lo).fold(f64::INFINITY, f64::min);
+                let lim = within(0.0, true, smallest, true);
+                number(o, "radius", "round_box radius", radius, lim);
+                if let Some(p) = o.last_mut() {
+                    p.message.push_str(" (the rounding cannot exceed the smallest half extent)");
+                }
+            }
+        }
+        Prim::Torus { major, minor } => {
+            number(o, "major", "torus major radius", major, ge(0.0));
+            number(o, "minor", "torus minor radius", minor, gt(0.0));
+        }
+        Prim::Capsule { a, b, radius } => {
+            finite(o, "a", "capsule end a", &a.0.iter().collect::<Vec<_>>());
+            finite(o, "b", "capsule end b", &b.0.iter().collect::<Vec<_>>());
+            number(o, "radius", "capsule radius", radius, gt(0.0));
+        }
+        Prim::Cylinder { radius, half_height } => {
+            number(o, "radius", "cylinder radius", radius, gt(0.0));
+            number(o, "half_height", "cylinder half_height", half_height, gt(0.0));
+        }
+        Prim::Cone { half_height, bottom, top } => {
+            number(o, "half_height", "cone half_height", half_height, gt(0.0));
+            number(o, "bottom", "cone bottom radius", bottom, ge(0.0));
+            number(o, "top", "cone top radius", top, ge(0.0));
+            if o.is_empty() && constant_value(bottom) == Some(0.0) && constant_value(top) == Some(0.0) {
+                o.push(Problem::new("", "cone radii bottom and top cannot both be 0".into()));
+            }
+        }
+        Prim::Plane { normal, offset } => {
+            finite(o, "normal", "plane normal", &normal.0.iter().collect::<Vec<_>>());
+            finite(o, "offset", "plane offset", &[offset]);
+            if o.is_empty() && normal.lits() == Some([0.0; 3]) {
+                o.push(Problem::new("normal", "plane normal must be non-zero, found vec3(0, 0, 0)".into()));
+            }
+        }
+        Prim::Octahedron { size } => number(o, "size", "octahedron size", size, gt(0.0)),
+        Prim::Ellipsoid { radii } => vector(o, "radii", "ellipsoid radius", radii, gt(0.0)),
+    }
+    out
+}
+
+/// Rules of a fractal's settings, including which settings its family has at all.
+pub fn check_fractal(f: &Fractal) -> Vec<Problem> {
+    let mut out = Vec::new();
+    let o = &mut out;
+    let name = f.kind.name();
+    match &f.kind {
+        FractalKind::Mandelbulb { power } => {
+            let (lo, hi) = MANDELBULB_POWER;
+            number(o, "power", "mandelbulb power", power, ge_le(lo, hi));
+        }
+        FractalKind::Julia { c } => finite(o, "c", "julia constant c", &c.0.iter().collect::<Vec<_>>()),
+        FractalKind::Mandelbox { scale } => mandelbox_scale(o, scale),
+        FractalKind::Menger | FractalKind::Sierpinski => {}
+    }
+    if let Some(n) = f.iterations {
+        match f.kind {
+            FractalKind::Menger => integer(o, "levels", "menger levels", n, MENGER_LEVELS.0, MENGER_LEVELS.1),
+            FractalKind::Sierpinski => {
+                let (lo, hi) = SIERPINSKI_LEVELS;
+                integer(o, "levels", "sierpinski_tetrahedron levels", n, lo, hi)
+            }
+            _ => integer(o, "iterations", &format!("{name} iterations"), n, 1, MAX_ITERATIONS),
+        }
+    }
+    let escape_time = matches!(f.kind, FractalKind::Mandelbulb { .. } | FractalKind::Julia { .. });
+    let mandelbox = matches!(f.kind, FractalKind::Mandelbox { .. });
+    if let Some(b) = &f.bailout {
+        if escape_time {
+            number(o, "bailout", &format!("{name} bailout"), b, gt(0.0));
+        } else {
+            o.push(Problem::new("", format!("`bailout` applies only to mandelbulb and julia, not {name}")));
+        }
+    }
+    for (setting, value, lim) in
+        [("min_radius", &f.min_radius, within(0.0, false, 1.0, false)), ("fold_limit", &f.fold_limit, gt(0.0))]
+    {
+        if let Some(v) = value {
+            if mandelbox {
+                number(o, setting, &format!("mandelbox {setting}"), v, lim);
+            } else {
+                o.push(Problem::new("", format!("`{setting}` applies only to mandelbox, not {name}")));
+            }
+        }
+    }
+    out
+}
+
+fn mandelbox_scale(o: &mut Vec<Problem>, scale: &Expr) {
+    let (lo, hi) = MANDELBOX_SCALE;
+    if let Some(m) = literal_problem(scale) {
+        o.push(Problem::new("scale", format!("mandelbox scale: {m}")));
+        return;
+    }
+    let (r, constant) = value_range(scale);
+    let rule = format!("|scale| must be in [{}, {}]", num(lo), num(hi));
+    let fits = |a: f64, b: f64| (a >= lo && b <= hi) || (a >= -hi && b <= -lo);
+    if fits(r.lo, r.hi) {
+        return;
+    }
+    let message = if constant {
+        format!("mandelbox {rule}, found {}", num(r.lo))
+    } else if !r.lo.is_finite() || !r.hi.is_finite() {
+        format!("mandelbox {rule}, but no bound is known for its value, so it may leave that range")
+    } else {
+        format!("mandelbox {rule}, but its range is {}..{}", num(r.lo), num(r.hi))
+    };
+    o.push(Problem::new("scale", message));
+}
+
+/// Rules of one node's own values (not its children's): the primitive or fractal for a leaf; blend radii, scale
+/// factors, periods, thicknesses and materials for inner nodes.
+pub fn check_node(node: &Node) -> Vec<Problem> {
+    let mut out = Vec::new();
+    let o = &mut out;
+    let name = node_label(node);
+    match node {
+        Node::Prim(p) => return check_prim(p),
+        Node::Fractal(f) => return check_fractal(f),
+        Node::Union(c) | Node::Intersect(c) | Node::SmoothUnion(c, _) | Node::SmoothIntersect(c, _) if c.is_empty() => {
+            o.push(Problem::new("shapes", format!("{name} needs at least 1 shape")))
+        }
+        _ => {}
+    }
+    match node {
+        Node::SmoothUnion(_, k) | Node::SmoothIntersect(_, k) | Node::SmoothSubtract(_, _, k) => {
+            number(o, "k", &format!("{name} blend radius k"), k, ge(0.0))
+        }
+        Node::Translate(_, v) => finite(o, "offset", "translate offset", &v.0.iter().collect::<Vec<_>>()),
+        Node::Rotate(_, axis, angle) => {
+            if let Axis::Any(a) = axis {
+                let axis_expr = Vec3Expr::from(*a);
+                finite(o, "axis", "rotate axis", &axis_expr.0.iter().collect::<Vec<_>>());
+                if o.is_empty() && *a == [0.0; 3] {
+                    o.push(Problem::new("axis", "rotate axis must be non-zero, found vec3(0, 0, 0)".into()));
+                }
+            }
+            finite(o, "angle", &format!("{name} angle"), &[angle]);
+        }
+        Node::Scale(_, s) => number(o, "factor", "scale factor", s, gt(0.0)),
+        Node::Repeat(_, period) => repeat_period(o, name, period),
+        Node::RepeatLimited(_, period, count) => {
+            repeat_period(o, name, period);
+            for (n, axis) in count.iter().zip(AXES) {
+                if *n > MAX_REPEAT_COUNT {
+                    o.push(Problem::new(
+                        "count",
+                        format!("repeat_limited count {axis} must be <= {MAX_REPEAT_COUNT}, found {n}"),
+                    ));
+                }
+            }
+        }
+        Node::Twist(_, rate) | Node::Bend(_, rate) => finite(o, "rate", &format!("{name} rate"), &[rate]),
+        Node::Round(_, r) => number(o, "radius", "round radius", r, ge(0.0)),
+        Node::Onion(_, t) => number(o, "thickness", "onion thickness", t, gt(0.0)),
+        Node::Elongate(_, h) => vector(o, "h", "elongate length", h, ge(0.0)),
+        Node::Material(_, m) => o.extend(check_material(m)),
+        _ => {}
+    }
+    out
+}
+
+fn repeat_period(o: &mut Vec<Problem>, name: &str, period: &Vec3Expr) {
+    let before = o.len();
+    vector(o, "period", &format!("{name} period"), period, ge(0.0));
+    if o.len() == before && period.lits() == Some([0.0; 3]) {
+        o.push(Problem::new(
+            "period",
+            format!("{name} period must be non-zero on at least one axis (0 leaves an axis unrepeated)"),
+        ));
+    }
+}
+
+/// Rules of a material's terms.
+pub fn check_material(m: &Material) -> Vec<Problem> {
+    let mut out = Vec::new();
+    let o = &mut out;
+    match &m.albedo {
+        Albedo::Rgb(c) => finite(o, "color", "material color", &c.0.iter().collect::<Vec<_>>()),
+        Albedo::OrbitTrap(a, b) => {
+            finite(o, "a", "orbit_trap color a", &a.0.iter().collect::<Vec<_>>());
+            finite(o, "b", "orbit_trap color b", &b.0.iter().collect::<Vec<_>>());
+        }
+    }
+    number(o, "ambient", "material ambient", &m.ambient, ge(0.0));
+    number(o, "diffuse", "material diffuse", &m.diffuse, ge(0.0));
+    number(o, "specular", "material specular", &m.specular, ge(0.0));
+    number(o, "shininess", "material shininess", &m.shininess, ge(0.0));
+    out
+}
+
+/// Rules of a light.
+pub fn check_light(l: &Light) -> Vec<Problem> {
+    let mut out = Vec::new();
+    let o = &mut out;
+    match &l.kind {
+        LightKind::Directional { direction } => {
+            finite(o, "direction", "light direction", &direction.0.iter().collect::<Vec<_>>());
+            if o.is_empty() && direction.lits() == Some([0.0; 3]) {
+                o.push(Problem::new("direction", "light direction must be non-zero, found vec3(0, 0, 0)".into()));
+            }
+        }
+        LightKind::Point { position } => {
+            finite(o, "position", "light position", &position.0.iter().collect::<Vec<_>>())
+        }
+    }
+    finite(o, "color", "light color", &l.color.0.iter().collect::<Vec<_>>());
+    number(o, "intensity", "light intensity", &l.intensity, ge(0.0));
+    out
+}
+
+/// Rules of a camera: field of view, look-at placement, path keys.
+pub fn check_camera(c: &Camera) -> Vec<Problem> {
+    let mut out = Vec::new();
+    let o = &mut out;
+    constant(o, "degrees", "camera fov", c.fov_degrees, within(0.0, false, 180.0, false));
+    match &c.placement {
+        CameraPlacement::LookAt { position, target } => {
+            finite(o, "position", "camera position", &position.0.iter().collect::<Vec<_>>());
+            finite(o, "target", "camera target", &target.0.iter().collect::<Vec<_>>());
+            if o.is_empty() && position.lits().is_some() && position.lits() == target.lits() {
+                o.push(Problem::new("target", "camera target must differ from the camera position".into()));
+            }
+        }
+        CameraPlacement::Path { keys, .. } => {
+            if keys.len() < 2 {
+                o.push(Problem::new("keys", format!("camera_path needs at least 2 keys, found {}", keys.len())));
+            }
+            for (i, k) in keys.iter().enumerate() {
+                let problem = |message: String| Problem { arg: "keys", index: Some(i), message };
+                let values = [k.time].into_iter().chain(k.position).chain(k.target);
+                if let Some(v) = values.into_iter().find(|v| !v.is_finite()) {
+                    o.push(problem(format!("camera key {}: numbers must be finite, found {}", i + 1, num(v))));
+                } else if k.position == k.target {
+                    o.push(problem(format!("camera key {}: target must differ from the position", i + 1)));
+                } else if i > 0 && k.time <= keys[i - 1].time {
+                    o.push(problem(format!(
+                        "camera key times must increase strictly: key {} at {} follows {}",
+                        i + 1,
+                        num(k.time),
+                        num(keys[i - 1].time)
+                    )));
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Rules of the scene as a whole: how many lights, and the render settings.
+pub fn check_scene(s: &Scene) -> Vec<Problem> {
+    let mut out = Vec::new();
+    if s.lights.len() > MAX_LIGHTS {
+        out.push(Problem::new(
+            "light",
+            format!("a scene may have at most {MAX_LIGHTS} lights, found {}", s.lights.len()),
+        ));
+    }
+    out.extend(check_settings(&s.settings));
+    out
+}
+
+/// Rules of the render settings.
+pub fn check_settings(s: &RenderSettings) -> Vec<Problem> {
+    let mut out = Vec::new();
+    let o = &mut out;
+    integer(o, "steps", "max_steps", s.max_steps, 1, MAX_MARCH_STEPS);
+    constant(o, "distance", "max_distance", s.max_distance, gt(0.0));
+    match s.epsilon {
+        HitEpsilon::Fixed(e) => constant(o, "epsilon", "epsilon", e, gt(0.0)),
+        HitEpsilon::Pixel(k) => constant(o, "pixels", "pixel_epsilon", k, gt(0.0)),
+    }
+    if let Shadows::Soft(k) = s.shadows {
+        constant(o, "k", "soft_shadows k", k, gt(0.0));
+    }
+    if let Some(a) = s.ambient_occlusion {
+        constant(o, "strength", "ambient_occlusion strength", a, within(0.0, false, 10.0, true));
+    }
+    let color = |o: &mut Vec<Problem>, what: &str, c: [f64; 3]| {
+        if let Some(v) = c.into_iter().find(|v| !v.is_finite()) {
+            o.push(Problem::new("color", format!("{what} color must be finite, found {}", num(v))));
+        }
+    };
+    if let Some(g) = s.glow {
+        color(o, "glow", g);
+    }
+    if let Some(f) = &s.fog {
+        color(o, "fog", f.color);
+        constant(o, "density", "fog density", f.density, gt(0.0));
+    }
+    color(o, "background", s.background);
+    constant(o, "gamma", "gamma", s.gamma, gt(0.0));
+    out
+}
+
+/// Rules of a parameter declaration: an identifier name, finite numbers, min < max, the default within.
+pub fn check_param(p: &ParamDecl) -> Vec<Problem> {
+    let mut out = Vec::new();
+    let name = &p.name;
+    let identifier = p.name.chars().next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+        && p.name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+        && p.name.len() <= 64;
+    if !identifier {
+        out.push(Problem::new(
+            "name",
+            format!("param name must be an identifier of at most 64 letters, digits and `_`, found {name:?}"),
+        ));
+    }
+    if let Some(v) = [p.default, p.min, p.max].into_iter().find(|v| !v.is_finite()) {
+        out.push(Problem::new("", format!("param {name:?}: numbers must be finite, found {}", num(v))));
+    } else if p.min >= p.max {
+        out.push(Problem::new(
+            "range",
+            format!("param {name:?} range must have min < max, found {}..{}", num(p.min), num(p.max)),
+        ));
+    } else if !(p.min..=p.max).contains(&p.default) {
+        out.push(Problem::new(
+            "default",
+            format!("param {name:?} default must be within {}..{}, found {}", num(p.min), num(p.max), num(p.default)),
+        ));
+    }
+    out
+}
+
+/// The message when a parameter is declared again with a different default or range (a uniform has one of each).
+/// The two declarations are listed in a fixed order, so the message does not depend on which one is met first.
+pub fn check_param_again(first: &ParamDecl, again: &ParamDecl) -> Option<String> {
+    if first == again {
+        return None;
+    }
+    let key = |p: &ParamDecl| [p.default, p.min, p.max];
+    let (a, b) = if key(first).partial_cmp(&key(again)) == Some(std::cmp::Ordering::Greater) {
+        (again, first)
+    } else {
+        (first, again)
+    };
+    let describe = |p: &ParamDecl| format!("default {} in {}..{}", num(p.default), num(p.min), num(p.max));
+    Some(format!("param {:?} is declared twice with different values: {} and {}", first.name, describe(a), describe(b)))
+}

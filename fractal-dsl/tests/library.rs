@@ -107,7 +107,10 @@ fn every_helper_is_defined_in_both_languages_and_calls_only_its_dependencies() {
             [("OpenCL C", opencl::library::helper_source(helper)), ("WGSL", wgsl::library::helper_source(helper))]
         {
             let name = helper.name();
-            assert!(defines(text, name, language == "OpenCL C"), "{language} text of {name} does not define it:\n{text}");
+            assert!(
+                defines(text, name, language == "OpenCL C"),
+                "{language} text of {name} does not define it:\n{text}"
+            );
             assert!(text.ends_with("}\n"), "{language} text of {name} must be one function ending in a newline");
             assert_eq!(text.matches("\n}\n").count(), 1, "{language} text of {name} must hold one function");
             let mut called = helpers_called(text, helper);

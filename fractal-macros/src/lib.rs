@@ -34,7 +34,12 @@ pub fn scene_file(input: TokenStream) -> TokenStream {
                 .into()
         }
     };
-    match fractal_dsl::parse::parse_str(&text) {
+    // Lex the file as text, with proc-macro2's own lexer, so errors carry the file's line:column (the compiler's
+    // lexer would place every token at the macro call).
+    proc_macro2::fallback::force();
+    let parsed = fractal_dsl::parse::parse_str(&text);
+    proc_macro2::fallback::unforce();
+    match parsed {
         Ok(scene) => {
             let expanded = expand(&scene, lit.span());
             // Rebuild when the file changes.

@@ -89,9 +89,8 @@ fn check_fov(fov: f64) -> Result<(), CameraError> {
 
 /// The rotation of a camera at `position` looking at `target` with a level horizon.
 pub fn look_rotation(position: DVec3, target: DVec3) -> Result<DQuat, CameraError> {
-    let forward = (target - position)
-        .try_normalize()
-        .ok_or(CameraError::NoViewDirection { position: position.to_array() })?;
+    let forward =
+        (target - position).try_normalize().ok_or(CameraError::NoViewDirection { position: position.to_array() })?;
     Ok(Pose { position, forward, up: WORLD_UP, fov_degrees: 60.0 }.rotation())
 }
 

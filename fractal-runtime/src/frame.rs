@@ -44,11 +44,8 @@ impl ParamValues {
 
     /// Sets one parameter by name; refuses unknown names and values outside the declared range.
     pub fn set(&mut self, name: &str, value: f64) -> Result<(), FrameError> {
-        let index = self
-            .decls
-            .iter()
-            .position(|p| p.name == name)
-            .ok_or_else(|| FrameError::UnknownParam(name.to_string()))?;
+        let index =
+            self.decls.iter().position(|p| p.name == name).ok_or_else(|| FrameError::UnknownParam(name.to_string()))?;
         let decl = &self.decls[index];
         if !(value.is_finite() && value >= decl.min && value <= decl.max) {
             return Err(FrameError::ParamOutOfRange { name: name.to_string(), value, min: decl.min, max: decl.max });
@@ -172,7 +169,8 @@ impl Frame {
                     if !finite3(d) {
                         return Err(FrameError::NonFiniteLight { index, what: "direction", time });
                     }
-                    let unit = DVec3::from_array(d).try_normalize().ok_or(FrameError::ZeroLightDirection { index, time })?;
+                    let unit =
+                        DVec3::from_array(d).try_normalize().ok_or(FrameError::ZeroLightDirection { index, time })?;
                     (unit, 0.0)
                 }
                 LightKind::Point { position } => {
@@ -204,12 +202,7 @@ impl Frame {
     }
 
     /// A frame from slots packed elsewhere (hand-written kernels, replays); the slot count must match `layout`.
-    pub fn from_slots(
-        layout: FrameLayout,
-        width: u32,
-        height: u32,
-        slots: Vec<[f32; 4]>,
-    ) -> Result<Frame, FrameError> {
+    pub fn from_slots(layout: FrameLayout, width: u32, height: u32, slots: Vec<[f32; 4]>) -> Result<Frame, FrameError> {
         check_image_size(width, height)?;
         if slots.len() != layout.slots() {
             return Err(FrameError::SlotCount { expected: layout.slots(), got: slots.len() });

@@ -81,7 +81,7 @@ impl fmt::Debug for CpuKernel<'_> {
 
 /// The forms of one scene a job carries; a renderer uses the one for its backend.
 #[derive(Clone, Copy, Debug, Default)]
-pub struct Kernels<'a> {
+pub struct KernelSources<'a> {
     /// WGSL module with entry `render` (see [`fractal_dsl::back::Entry::Render`]).
     pub wgsl: Option<&'a str>,
     /// OpenCL C program with kernel `render`.
@@ -89,7 +89,11 @@ pub struct Kernels<'a> {
     pub cpu: Option<CpuKernel<'a>>,
 }
 
-impl<'a> Kernels<'a> {
+impl<'a> KernelSources<'a> {
+    /// The WGSL and OpenCL C render kernels the scene compiler wrote ([`fractal_dsl::compile`]).
+    pub fn compiled(kernels: &'a fractal_dsl::Kernels) -> Self {
+        KernelSources { wgsl: Some(&kernels.wgsl), opencl: Some(&kernels.opencl), cpu: None }
+    }
     pub fn with_wgsl(mut self, source: &'a str) -> Self {
         self.wgsl = Some(source);
         self
@@ -107,12 +111,12 @@ impl<'a> Kernels<'a> {
 /// One image to render. Its size is the frame's: the kernels read it from the uniforms.
 #[derive(Clone, Copy, Debug)]
 pub struct RenderJob<'a> {
-    pub kernels: Kernels<'a>,
+    pub kernels: KernelSources<'a>,
     pub frame: &'a Frame,
 }
 
 impl<'a> RenderJob<'a> {
-    pub fn new(kernels: Kernels<'a>, frame: &'a Frame) -> Self {
+    pub fn new(kernels: KernelSources<'a>, frame: &'a Frame) -> Self {
         RenderJob { kernels, frame }
     }
     pub fn width(&self) -> u32 {

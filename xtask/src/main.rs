@@ -1,1 +1,107 @@
-fn main() {}
+//! Project automation. `cargo xtask test` is the one test command: it installs the system packages the tests need
+//! (when it can), then runs every test of the workspace with the `opencl` feature, and the format and lint checks.
+
+use std::process::{exit, Command};
+
+/// Debian packages the tests use: OpenCL on pocl, Vulkan on lavapipe (for wgpu), an X server for the viewer tests,
+/// the SPIR-V and GLSL validators for the export tests.
+const PACKAGES: &[&str] = &[
+    "pocl-opencl-icd",
+    "ocl-icd-libopencl1",
+    "ocl-icd-opencl-dev",
+    "mesa-vulkan-drivers",
+    "libvulkan1",
+    "xvfb",
+    "xauth",
+    "x11-apps",
+    "spirv-tools",
+    "glslang-tools",
+];
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    match args.first().map(String::as_str) {
+        Some("test") => test(&args[1..]),
+        Some("install") => install(),
+        _ => {
+            eprintln!("usage: cargo xtask test [extra cargo test args]   (installs system packages, runs all tests)");
+            eprintln!("       cargo xtask install                       (only installs system packages)");
+            exit(2);
+        }
+    }
+}
+
+fn missing_packages() -> Vec<&'static str> {
+    PACKAGES
+        .iter()
+        .copied()
+        .filter(|p| {
+            !Command::new("dpkg-query")
+                .args(["-W", "-f=${Status}", p])
+                .output()
+                .map(|o| String::from_utf8_lossy(&o.stdout).contains("install ok installed"))
+                .unwrap_or(false)
+        })
+        .collect()
+}
+
+fn is_root() -> bool {
+    Command::new("id").arg("-u").output().map(|o| String::from_utf8_lossy(&o.stdout).trim() == "0").unwrap_or(false)
+}
+
+fn install() {
+    if Command::new("dpkg-query").arg("--version").output().is_err() {
+        println!("xtask: not a Debian system; install pocl, lavapipe (mesa Vulkan), Xvfb, spirv-tools and glslang yourself");
+        return;
+    }
+    let missing = missing_packages();
+    if missing.is_empty() {
+        println!("xtask: system packages present");
+        return;
+    }
+    if !is_root() {
+        eprintln!("xtask: missing packages {missing:?} and not root; install them with apt-get, then rerun");
+        exit(1);
+    }
+    println!("xtask: installing {missing:?}");
+    run(Command::new("apt-get").args(["update", "-qq"]));
+    run(Command::new("apt-get")
+        .args(["install", "-y", "-qq", "--no-install-recommends"])
+        .args(&missing)
+        .env("DEBIAN_FRONTEND", "noninteractive"));
+}
+
+fn test(extra: &[String]) {
+    install();
+    run(Command::new("cargo").args(["fmt", "--all", "--check"]));
+    run(Command::new("cargo").args([
+        "clippy",
+        "--workspace",
+        "--all-targets",
+        "--features",
+        "opencl",
+        "--",
+        "-D",
+        "warnings",
+    ]));
+    // The GPU-language tests fail rather than skip when their runtime is missing: this command asked for them.
+    run(Command::new("cargo")
+        .args(["test", "--workspace", "--features", "opencl"])
+        .args(extra)
+        .env("FRACTAL_REQUIRE_GPU_BACKENDS", "1"));
+}
+
+fn run(cmd: &mut Command) {
+    println!("xtask: running {cmd:?}");
+    match cmd.status() {
+        Ok(s) if s.success() => {}
+        Ok(s) => {
+            eprintln!("xtask: command failed with {s}");
+            exit(s.code().unwrap_or(1));
+        }
+        Err(e) => {
+            eprintln!("xtask: cannot run {cmd:?}: {e}");
+            exit(1);
+        }
+    }
+}

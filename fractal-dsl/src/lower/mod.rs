@@ -293,8 +293,8 @@ impl Lower<'_> {
                 let raw = self.b.comp(pair, 0);
                 let factor = self.b.lit(fr.kind.step_factor());
                 let distance = self.b.mul(raw, factor);
-                let trap = self.b.comp(pair, 1);
-                Surf { distance, fields: self.leaf_fields(m, Some(trap)) }
+                let trap = if self.material { Some(self.b.comp(pair, 1)) } else { None };
+                Surf { distance, fields: self.leaf_fields(m, trap) }
             }
             Node::Union(children) => self.union(children, p, m),
             Node::Intersect(children) => {

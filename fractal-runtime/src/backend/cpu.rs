@@ -4,10 +4,8 @@
 //! It reads the camera, lights, time and parameters from the same [`Frame`] uniforms the kernels read, so the three
 //! renderers draw the same pose from the same numbers.
 
-use fractal_dsl::analyse::{bound, fold::fold_node};
-use fractal_dsl::back::render::{
-    AO_SAMPLES, AO_SPAN, AO_START, GLOW_FALLOFF, GLOW_NORM, MIN_DIRECTION, T_SPACING,
-};
+use fractal_dsl::analyse::{bound, fold::fold_node, Aabb};
+use fractal_dsl::back::render::{AO_SAMPLES, AO_SPAN, AO_START, GLOW_FALLOFF, GLOW_NORM, MIN_DIRECTION, T_SPACING};
 use fractal_dsl::back::FrameLayout;
 use fractal_dsl::eval::{Env, Evaluator};
 use fractal_dsl::math::{dot, length, normalize, v3, Real, V3};
@@ -68,7 +66,17 @@ pub fn render_scene<F: Real, E: Evaluator<F> + ?Sized>(
     scene: &Scene,
     frame: &Frame,
 ) -> Result<Image, RenderError> {
-    let view = View::<F>::new(scene, frame)?;
+    render_with_bound(evaluator, scene, frame, bound(&fold_node(&scene.root)))
+}
+
+/// [`render_scene`] with the scene bound given rather than computed (the kernels embed it as constants).
+fn render_with_bound<F: Real, E: Evaluator<F> + ?Sized>(
+    evaluator: &E,
+    scene: &Scene,
+    frame: &Frame,
+    scene_bound: Option<Aabb>,
+) -> Result<Image, RenderError> {
+    let view = View::<F>::new(scene, frame, scene_bound)?;
     let width = frame.width() as usize;
     let mut pixels = vec![0u32; width * frame.height() as usize];
     pixels.par_chunks_mut(width).enumerate().for_each(|(y, row)| {
@@ -128,7 +136,7 @@ fn c<F: Real>(v: f64) -> F {
 }
 
 impl<F: Real> View<F> {
-    fn new(scene: &Scene, frame: &Frame) -> Result<View<F>, RenderError> {
+    fn new(scene: &Scene, frame: &Frame, scene_bound: Option<Aabb>) -> Result<View<F>, RenderError> {
         let expected = FrameLayout { lights: scene.effective_lights().len(), params: scene.params().len() };
         if frame.layout() != expected {
             return Err(FrameError::SlotCount { expected: expected.slots(), got: frame.layout().slots() }.into());
@@ -152,10 +160,11 @@ impl<F: Real> View<F> {
                 LightSlot::Directional { direction, radiance } => {
                     Light::Directional { direction: f3(direction), radiance: f3(radiance) }
                 }
-                LightSlot::Point { position, radiance } => Light::Point { position: f3(position), radiance: f3(radiance) },
+                LightSlot::Point { position, radiance } => {
+                    Light::Point { position: f3(position), radiance: f3(radiance) }
+                }
             })
             .collect();
-        let bound = bound(&fold_node(&scene.root)).map(|b| (d3(b.min), d3(b.max)));
         Ok(View {
             origin: f3(origin),
             right: f3(right),
@@ -167,13 +176,14 @@ impl<F: Real> View<F> {
             time: c(frame.time() as f64),
             params: frame.params().into_iter().map(|p| c(p as f64)).collect(),
             lights,
-            bound,
+            bound: scene_bound.map(|b| (d3(b.min), d3(b.max))),
             specular: has_specular(&scene.root),
             max_steps,
             max_distance: c(max_distance),
             epsilon,
             shadows,
-            ambient_occlusion: ambient_occlusion.map(c),
+            // The kernels fold the factor 3 of the occlusion formula into the strength.
+            ambient_occlusion: ambient_occlusion.map(|s| c(3.0 * s)),
             glow: glow.map(d3),
             fog: fog.as_ref().map(|f| (d3(f.color), c(f.density))),
             background: d3(background),
@@ -198,7 +208,10 @@ impl<F: Real> View<F> {
         let mut glow = F::zero();
         let mut eps = F::zero();
         let mut hit = false;
-        for _ in 0..self.max_steps {
+        let mut step = 0;
+        // The kernels' loop condition, so a NaN t stops the march as it does there.
+        while step < self.max_steps && t <= t_far {
+            step += 1;
             let d = eval.distance(ro + rd * t, env);
             eps = self.hit_epsilon(t);
             if d < eps {
@@ -209,9 +222,6 @@ impl<F: Real> View<F> {
                 glow = glow + F::one() / (F::one() + c::<F>(GLOW_FALLOFF) * d * d);
             }
             t = t + d;
-            if t > t_far {
-                break;
-            }
         }
 
         let mut colour = if hit { self.shade_hit(eval, env, ro + rd * t, rd, t, eps) } else { self.background };
@@ -235,18 +245,16 @@ impl<F: Real> View<F> {
             return Some((F::zero(), self.max_distance));
         };
         let min_dir = c::<F>(MIN_DIRECTION);
-        let safe = |d: F| {
-            if d.abs() >= min_dir {
-                d
-            } else if d < F::zero() {
-                -min_dir
+        let safe = rd.map(|d| {
+            let m = d.abs().max(min_dir);
+            if d >= F::zero() {
+                m
             } else {
-                min_dir
+                -m
             }
-        };
-        let inv = rd.map(|d| F::one() / safe(d));
-        let t0 = (lo - ro).zip(inv, |a, b| a * b);
-        let t1 = (hi - ro).zip(inv, |a, b| a * b);
+        });
+        let t0 = (lo - ro) / safe;
+        let t1 = (hi - ro) / safe;
         let entry = t0.zip(t1, F::min).max_element();
         let exit = t0.zip(t1, F::max).min_element();
         let t_near = entry.max(F::zero());
@@ -262,7 +270,9 @@ impl<F: Real> View<F> {
         for k in taps {
             gradient = gradient + k * de(p + k * eps);
         }
-        let n = normalize(gradient);
+        let len = length(gradient);
+        // A flat gradient (all four taps equal) has no direction; the kernels then take +y.
+        let n = if len > F::zero() { gradient / len } else { v3(F::zero(), one, F::zero()) };
         let m = eval.sample(p, env);
 
         let ao = match self.ambient_occlusion {
@@ -275,7 +285,7 @@ impl<F: Real> View<F> {
                     occ = occ + (h - de(p + n * h)) * weight;
                     weight = weight * c::<F>(0.95);
                 }
-                (one - c::<F>(3.0) * strength * occ).max(F::zero()).min(one)
+                (one - strength * occ).max(F::zero()).min(one)
             }
         };
 
@@ -290,8 +300,9 @@ impl<F: Real> View<F> {
                 }
             };
             let ndl = dot(n, l).max(F::zero());
-            let shadow = if ndl > F::zero() { self.shadow(&de, p + n * (c::<F>(2.0) * eps), l, limit, eps) } else { one };
-            colour = colour + m.albedo * radiance * (m.diffuse * ndl * shadow);
+            let shadow =
+                if ndl > F::zero() { self.shadow(&de, p + n * (c::<F>(2.0) * eps), l, limit, eps) } else { one };
+            colour = colour + m.albedo * (m.diffuse * ndl) * radiance * shadow;
             if self.specular {
                 let h = normalize(l - rd);
                 let highlight = dot(n, h).max(F::zero()).powf(m.shininess);
@@ -313,11 +324,11 @@ impl<F: Real> View<F> {
             Shadows::Soft(k) => Some(c::<F>(k)),
         };
         let mut res = F::one();
-        let mut t = c::<F>(2.0) * eps;
-        for _ in 0..self.max_steps {
-            if t >= limit {
-                break;
-            }
+        // Soft shadows divide by t, so they start one step out; the origin is already off the surface.
+        let mut t = if soft_k.is_some() { c::<F>(2.0) * eps } else { F::zero() };
+        let mut step = 0;
+        while step < self.max_steps && t < limit {
+            step += 1;
             let d = de(origin + l * t);
             if d < eps {
                 res = F::zero();
@@ -362,6 +373,49 @@ mod tests {
         assert_eq!(pack(v3(1.0f32, 0.0, 0.25), 2.0), 0xff80_00ff);
         assert_eq!(pack(v3(0.5f32, 2.0, -1.0), 1.0), 0xff00_ff80);
         assert_eq!(pack(v3(f32::NAN, 0.0, 0.0), 2.0), 0xff00_0000);
+    }
+
+    struct UnitSphere;
+    impl Evaluator<f32> for UnitSphere {
+        fn distance(&self, p: V3<f32>, _: &Env<f32>) -> f32 {
+            length(p) - 1.0
+        }
+        fn sample(&self, p: V3<f32>, env: &Env<f32>) -> fractal_dsl::eval::Sample<f32> {
+            let distance = self.distance(p, env);
+            let albedo = v3(1.0, 1.0, 1.0);
+            fractal_dsl::eval::Sample { distance, albedo, ambient: 0.2, diffuse: 0.8, specular: 0.0, shininess: 1.0 }
+        }
+    }
+
+    #[test]
+    fn the_bound_clips_rays_without_changing_what_is_inside() {
+        let s = scene(sphere(1.0));
+        let pose = crate::Pose::from_camera(&s.camera, 0.0, &|p| p.default).unwrap();
+        let frame = Frame::new(&s, &pose, 0.0, 48, 48, &crate::ParamValues::defaults(&s)).unwrap();
+        let render = |b: Option<Aabb>| render_with_bound::<f32, _>(&UnitSphere, &s, &frame, b).unwrap();
+        // Marches that start at the bound's entry end within the hit epsilon of the same surface point.
+        let unlike = |a: &Image, b: &Image| {
+            let far = |p: &u32, q: &u32| unpack(*p).iter().zip(unpack(*q)).any(|(x, y)| x.abs_diff(y) > 1);
+            a.pixels.iter().zip(&b.pixels).filter(|(p, q)| far(p, q)).count()
+        };
+        let unbounded = render(None);
+        let tight = render(Some(Aabb { min: [-1.0; 3], max: [1.0; 3] }));
+        assert_eq!(unlike(&tight, &unbounded), 0);
+        let loose = render(Some(Aabb { min: [-1.5, -1.0, -1.2], max: [1.0, 2.0, 1.1] }));
+        assert_eq!(unlike(&loose, &unbounded), 0);
+        // A bound that holds only the top half of the sphere cuts the march short for rays towards the bottom half.
+        let half = render(Some(Aabb { min: [-1.0, 0.0, -1.0], max: [1.0, 1.0, 1.0] }));
+        let background = pack(v3(0.08f32, 0.09, 0.12), 2.0);
+        let hits = unbounded.count_unlike(unpack(background), 0);
+        let half_hits = half.count_unlike(unpack(background), 0);
+        assert!(half_hits < hits * 9 / 10 && half_hits > hits / 4, "{half_hits} of {hits} hits left: no clipping");
+        // A bound behind the camera: every ray misses.
+        let behind = render(Some(Aabb { min: [-1.0, -1.0, -10.0], max: [1.0, 1.0, -9.0] }));
+        assert!(behind.pixels.iter().all(|&p| p == background));
+    }
+
+    fn unpack(p: u32) -> [u8; 4] {
+        p.to_le_bytes()
     }
 
     #[test]

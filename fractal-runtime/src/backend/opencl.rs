@@ -4,6 +4,8 @@
 //! Programs are built with `-cl-fast-relaxed-math` unless the renderer is precise; a build failure returns the
 //! driver's build log. Programs are cached per source text and precision.
 
+use std::sync::Mutex;
+
 use fractal_dsl::back::Entry;
 use ocl::enums::{DeviceInfo as ClDeviceInfo, DeviceInfoResult};
 use ocl::{flags, Buffer, Context, Device, Kernel, Platform, Program, Queue};
@@ -31,12 +33,26 @@ fn no_device(reason: impl ToString) -> RenderError {
     RenderError::NoDevice { backend: Backend::OpenCl, reason: reason.to_string() }
 }
 
-fn device_error(message: impl ToString) -> RenderError {
-    RenderError::Device { backend: Backend::OpenCl, message: message.to_string() }
+fn device_error(e: ocl::Error) -> RenderError {
+    RenderError::Device { backend: Backend::OpenCl, message: brief(&e) }
 }
 
-fn rejected(log: impl ToString) -> RenderError {
-    RenderError::KernelRejected { backend: Backend::OpenCl, log: log.to_string() }
+fn rejected(e: ocl::Error) -> RenderError {
+    RenderError::KernelRejected { backend: Backend::OpenCl, log: brief(&e) }
+}
+
+/// An ocl error without its banners: an API failure in one line ("clGetDeviceIDs: CL_DEVICE_NOT_FOUND (-1)"), a
+/// build failure as the build log.
+fn brief(e: &ocl::Error) -> String {
+    let text = e.to_string();
+    let field = |label: &str| text.lines().find_map(|l| l.trim().strip_prefix(label)).map(|v| v.trim().to_string());
+    match (field("Error executing function:"), field("Status error code:")) {
+        (Some(function), Some(status)) => format!("{function}: {status}"),
+        _ => {
+            let lines: Vec<&str> = text.lines().filter(|l| !l.trim_start().starts_with("####")).collect();
+            lines.join("\n").trim().to_string()
+        }
+    }
 }
 
 fn entry_name(entry: Entry) -> &'static str {
@@ -49,10 +65,18 @@ fn entry_name(entry: Entry) -> &'static str {
 impl OpenClRenderer {
     /// Opens the first device of the first platform; `precise` leaves out `-cl-fast-relaxed-math`.
     pub fn new(precise: bool) -> Result<OpenClRenderer, RenderError> {
-        let platform = Platform::first().map_err(no_device)?;
-        let device = Device::first(platform).map_err(no_device)?;
-        let context = Context::builder().platform(platform).devices(device).build().map_err(no_device)?;
-        let queue = Queue::new(&context, device, Some(flags::QUEUE_PROFILING_ENABLE)).map_err(no_device)?;
+        // Some platforms (pocl) report no devices to a thread that asks while another thread initialises them.
+        static OPENING: Mutex<()> = Mutex::new(());
+        let _opening = OPENING.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+        let platform = Platform::first().map_err(|e| no_device(format!("listing platforms: {}", brief(&e))))?;
+        let device = Device::first(platform).map_err(|e| no_device(format!("listing devices: {}", brief(&e))))?;
+        let context = Context::builder()
+            .platform(platform)
+            .devices(device)
+            .build()
+            .map_err(|e| no_device(format!("creating a context: {}", brief(&e))))?;
+        let queue = Queue::new(&context, device, Some(flags::QUEUE_PROFILING_ENABLE))
+            .map_err(|e| no_device(format!("creating a queue: {}", brief(&e))))?;
         let text = |r: ocl::Result<String>| r.unwrap_or_else(|e| format!("unknown ({e})"));
         let info_text = |kind| match device.info(kind) {
             Ok(DeviceInfoResult::Type(t)) => format!("{t:?}"),
@@ -180,7 +204,7 @@ impl Renderer for OpenClRenderer {
             .map_err(|e| RenderError::TooLarge {
                 backend: Backend::OpenCl,
                 what: format!("a {width}x{height} image"),
-                detail: e.to_string(),
+                detail: brief(&e),
             })?;
         let frame_buffer = self.frame_buffer(job.frame)?;
         let kernel = Kernel::builder()

@@ -255,10 +255,11 @@ impl WgpuRenderer {
         readback: &wgpu::Buffer,
         bytes: u64,
     ) {
-        let mut encoder = self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("fractal") });
+        let mut encoder =
+            self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("fractal") });
         {
-            let mut pass =
-                encoder.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("fractal"), timestamp_writes: None });
+            let mut pass = encoder
+                .begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("fractal"), timestamp_writes: None });
             pass.set_pipeline(pipeline);
             pass.set_bind_group(0, bind_group, &[]);
             pass.dispatch_workgroups(groups.0, groups.1, 1);
@@ -337,7 +338,8 @@ fn pipeline_layout(device: &wgpu::Device, entry: Entry) -> (wgpu::BindGroupLayou
 
 impl Renderer for WgpuRenderer {
     fn render(&mut self, job: &RenderJob) -> Result<Image, RenderError> {
-        let source = job.kernels.wgsl.ok_or(RenderError::MissingKernel { backend: Backend::Wgpu, what: "WGSL kernel" })?;
+        let source =
+            job.kernels.wgsl.ok_or(RenderError::MissingKernel { backend: Backend::Wgpu, what: "WGSL kernel" })?;
         let (width, height) = (job.width(), job.height());
         let bytes = width as u64 * height as u64 * 4;
         let limits = self.device.limits();

@@ -286,7 +286,7 @@ float2 de_julia(float3 p, float4 c, int iterations, float bailout) {
         m = dot(z, z);
         trap = fmin(trap, m);
     }
-    return (float2)(0.25f * log(fmax(m, 1e-30f)) * sqrt(m / dot(dz, dz)), fmin(trap, 1.0f));
+    return (float2)(0.25f * log(fmax(m, 1e-30f)) * sqrt(m / fmax(dot(dz, dz), 1e-30f)), fmin(trap, 1.0f));
 }
 ";
 

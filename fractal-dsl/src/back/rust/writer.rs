@@ -38,7 +38,7 @@ impl Syntax for RustSyntax {
         format!("env.params[{slot}]")
     }
     fn make_v3(&self, x: &str, y: &str, z: &str) -> String {
-        format!("v3({x}, {y}, {z})")
+        format!("V3 {{ x: {x}, y: {y}, z: {z} }}")
     }
     fn comp(&self, v: &str, ty: Ty, i: u8) -> String {
         match ty {

@@ -5,6 +5,10 @@
 //! Each text is one function ending in a newline; a kernel holds the helpers it uses and their dependencies
 //! ([`crate::back::with_dependencies`]) in [`Helper`] order. WGSL's `%` truncates, so the floored modulo of
 //! [`crate::math::fmod_floor`] is spelled out.
+//!
+//! One deliberate respelling: `de_mandelbulb` takes acos(c) as atan2(√(1 − c²), c), the same function of c. Vulkan
+//! only promises acos the accuracy of that very expression, and lavapipe's acos misses it by far (absolute error
+//! 1.6e-4 against 3e-6 for its atan2), which moved Mandelbulb distances by 1.3e-4 instead of 2e-6.
 
 use crate::back::{with_dependencies, Helper};
 
@@ -165,7 +169,8 @@ fn de_mandelbulb(p: vec3<f32>, power: f32, iterations: i32, bailout: f32) -> vec
         if r > escape || dr > 1e30 {
             break;
         }
-        let theta = acos(clamp(z.z / max(r, 1e-30), -1.0, 1.0)) * power;
+        let cos_theta = clamp(z.z / max(r, 1e-30), -1.0, 1.0);
+        let theta = atan2(sqrt(1.0 - cos_theta * cos_theta), cos_theta) * power;
         let phi = atan2(z.y, z.x) * power;
         dr = power * pow(r, power - 1.0) * dr + 1.0;
         let zr = pow(r, power);
@@ -289,7 +294,7 @@ fn de_julia(p: vec3<f32>, c: vec4<f32>, iterations: i32, bailout: f32) -> vec2<f
         m = dot(z, z);
         trap = min(trap, m);
     }
-    return vec2<f32>(0.25 * log(max(m, 1e-30)) * sqrt(m / dot(dz, dz)), min(trap, 1.0));
+    return vec2<f32>(0.25 * log(max(m, 1e-30)) * sqrt(m / max(dot(dz, dz), 1e-30)), min(trap, 1.0));
 }
 ";
 

@@ -1,0 +1,531 @@
+//! The vocabulary of the scene language as data: every function and method with its argument names and types, and
+//! the builder call that gives it meaning. Arity and type errors are produced from this table, so they read the same
+//! for every word; nothing here decides what a word means beyond naming the builder function.
+
+use std::collections::VecDeque;
+
+use crate::builder::{self as b, Color, ShapeExt};
+use crate::ir::*;
+
+/// The type of a value or of an argument slot.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Ty {
+    Number,
+    /// A number without `t` or `param` (scene settings, camera keys, rotation axes).
+    Const,
+    /// A non-negative integer literal (iterations, levels, counts, steps).
+    Int,
+    Vec3,
+    ConstVec3,
+    /// `vec3(..)` of integer literals (repeat counts).
+    IntVec3,
+    Vec4,
+    Color,
+    ConstColor,
+    Material,
+    Shape,
+    Fractal,
+    Light,
+    Camera,
+    Key,
+    Scene,
+    /// A string literal (the name of a param).
+    Str,
+    /// `min..max` (the range of a param).
+    Range,
+}
+
+impl Ty {
+    /// The short name in signatures: `sphere(radius: number)`.
+    pub(crate) fn name(self) -> &'static str {
+        match self {
+            Ty::Number => "number",
+            Ty::Const => "constant",
+            Ty::Int => "integer",
+            Ty::Vec3 => "vec3",
+            Ty::ConstVec3 => "constant vec3",
+            Ty::IntVec3 => "vec3 of integers",
+            Ty::Vec4 => "vec4",
+            Ty::Color => "color",
+            Ty::ConstColor => "constant color",
+            Ty::Material => "material",
+            Ty::Shape => "shape",
+            Ty::Fractal => "fractal",
+            Ty::Light => "light",
+            Ty::Camera => "camera",
+            Ty::Key => "camera key",
+            Ty::Scene => "scene",
+            Ty::Str => "string",
+            Ty::Range => "range",
+        }
+    }
+    /// The name with its article, as messages use it: "must be a number".
+    pub(crate) fn a(self) -> &'static str {
+        match self {
+            Ty::Number => "a number",
+            Ty::Const => "a constant number",
+            Ty::Int => "a non-negative integer literal",
+            Ty::Vec3 => "a vec3",
+            Ty::ConstVec3 => "a constant vec3",
+            Ty::IntVec3 => "vec3(..) of non-negative integer literals",
+            Ty::Vec4 => "a vec4",
+            Ty::Color => "a color",
+            Ty::ConstColor => "a constant color",
+            Ty::Material => "a material",
+            Ty::Shape => "a shape",
+            Ty::Fractal => "a fractal",
+            Ty::Light => "a light",
+            Ty::Camera => "a camera",
+            Ty::Key => "a camera key",
+            Ty::Scene => "a scene",
+            Ty::Str => "a string literal",
+            Ty::Range => "a range min..max",
+        }
+    }
+}
+
+/// A value while a scene is being built: what an expression evaluates to, or an argument after coercion to its slot.
+#[derive(Clone, Debug)]
+pub(crate) enum Value {
+    Number(Expr),
+    Const(f64),
+    Int(u32),
+    Vec3(Vec3Expr),
+    ConstVec3([f64; 3]),
+    IntVec3([u32; 3]),
+    Vec4(Vec4Expr),
+    Color(Color),
+    Material(Material),
+    Shape(Node),
+    Fractal(Fractal),
+    Light(Light),
+    Camera(Camera),
+    Key(CameraKey),
+    Scene(Box<Scene>),
+    Str(String),
+    Range(f64, f64),
+}
+
+impl Value {
+    pub(crate) fn ty(&self) -> Ty {
+        match self {
+            Value::Number(_) => Ty::Number,
+            Value::Const(_) => Ty::Const,
+            Value::Int(_) => Ty::Int,
+            Value::Vec3(_) => Ty::Vec3,
+            Value::ConstVec3(_) => Ty::ConstVec3,
+            Value::IntVec3(_) => Ty::IntVec3,
+            Value::Vec4(_) => Ty::Vec4,
+            Value::Color(_) => Ty::Color,
+            Value::Material(_) => Ty::Material,
+            Value::Shape(_) => Ty::Shape,
+            Value::Fractal(_) => Ty::Fractal,
+            Value::Light(_) => Ty::Light,
+            Value::Camera(_) => Ty::Camera,
+            Value::Key(_) => Ty::Key,
+            Value::Scene(_) => Ty::Scene,
+            Value::Str(_) => Ty::Str,
+            Value::Range(..) => Ty::Range,
+        }
+    }
+}
+
+/// One argument slot of a signature. A `many` slot takes one or more values.
+pub(crate) struct Param {
+    pub name: &'static str,
+    pub ty: Ty,
+    pub many: bool,
+}
+
+const fn p(name: &'static str, ty: Ty) -> Param {
+    Param { name, ty, many: false }
+}
+const fn many(name: &'static str, ty: Ty) -> Param {
+    Param { name, ty, many: true }
+}
+
+/// Builds the value of a call from its coerced arguments (the receiver first, for methods).
+pub(crate) type Build = fn(&mut Args) -> Result<Value, String>;
+
+/// A function (`receiver: None`) or a method of the language.
+pub(crate) struct Entry {
+    pub name: &'static str,
+    pub receiver: Option<Ty>,
+    pub params: &'static [Param],
+    pub result: Ty,
+    pub build: Build,
+}
+
+const fn fun(name: &'static str, params: &'static [Param], result: Ty, build: Build) -> Entry {
+    Entry { name, receiver: None, params, result, build }
+}
+const fn method(receiver: Ty, name: &'static str, params: &'static [Param], result: Ty, build: Build) -> Entry {
+    Entry { name, receiver: Some(receiver), params, result, build }
+}
+
+impl Entry {
+    /// `(radius: number)`, `(shapes: shape..., k: number)`.
+    pub(crate) fn param_list(&self) -> String {
+        let list: Vec<String> = self
+            .params
+            .iter()
+            .map(|p| format!("{}: {}{}", p.name, p.ty.name(), if p.many { "..." } else { "" }))
+            .collect();
+        format!("({})", list.join(", "))
+    }
+    /// The signature as documentation shows it: `shape.translate(offset: vec3) -> shape`.
+    pub(crate) fn signature(&self) -> String {
+        let receiver = self.receiver.map(|r| format!("{}.", r.name())).unwrap_or_default();
+        format!("{receiver}{}{} -> {}", self.name, self.param_list(), self.result.name())
+    }
+    pub(crate) fn many_index(&self) -> Option<usize> {
+        self.params.iter().position(|p| p.many)
+    }
+}
+
+/// The coerced arguments of a call, taken in order by the build function.
+pub(crate) struct Args(pub VecDeque<Value>);
+
+fn mismatch() -> String {
+    "internal error: an argument does not match its signature".to_string()
+}
+
+macro_rules! takers {
+    ($($name:ident $variant:ident $t:ty),* $(,)?) => {
+        impl Args {$(
+            pub(crate) fn $name(&mut self) -> Result<$t, String> {
+                match self.0.pop_front() {
+                    Some(Value::$variant(v)) => Ok(v),
+                    _ => Err(mismatch()),
+                }
+            }
+        )*}
+    };
+}
+takers!(
+    num Number Expr,
+    konst Const f64,
+    int Int u32,
+    vec3 Vec3 Vec3Expr,
+    const_vec3 ConstVec3 [f64; 3],
+    int_vec3 IntVec3 [u32; 3],
+    vec4 Vec4 Vec4Expr,
+    color Color Color,
+    material Material Material,
+    shape Shape Node,
+    fractal Fractal Fractal,
+    light Light Light,
+    camera Camera Camera,
+    string Str String,
+);
+
+impl Args {
+    fn scene(&mut self) -> Result<Scene, String> {
+        match self.0.pop_front() {
+            Some(Value::Scene(s)) => Ok(*s),
+            _ => Err(mismatch()),
+        }
+    }
+    fn range(&mut self) -> Result<core::ops::Range<f64>, String> {
+        match self.0.pop_front() {
+            Some(Value::Range(lo, hi)) => Ok(lo..hi),
+            _ => Err(mismatch()),
+        }
+    }
+    /// The values of a `many` shape slot.
+    fn shapes(&mut self) -> Vec<Node> {
+        let mut out = Vec::new();
+        while let Some(Value::Shape(_)) = self.0.front() {
+            if let Some(Value::Shape(n)) = self.0.pop_front() {
+                out.push(n);
+            }
+        }
+        out
+    }
+    /// The values of a `many` key slot.
+    fn keys(&mut self) -> Vec<CameraKey> {
+        let mut out = Vec::new();
+        while let Some(Value::Key(_)) = self.0.front() {
+            if let Some(Value::Key(k)) = self.0.pop_front() {
+                out.push(k);
+            }
+        }
+        out
+    }
+}
+
+fn shape(n: Node) -> Result<Value, String> {
+    Ok(Value::Shape(n))
+}
+fn number(e: Expr) -> Result<Value, String> {
+    Ok(Value::Number(e))
+}
+fn fractal(f: Fractal) -> Result<Value, String> {
+    Ok(Value::Fractal(f))
+}
+fn material(m: Material) -> Result<Value, String> {
+    Ok(Value::Material(m))
+}
+fn scene(s: Scene) -> Result<Value, String> {
+    Ok(Value::Scene(Box::new(s)))
+}
+fn camera(c: Camera) -> Result<Value, String> {
+    Ok(Value::Camera(c))
+}
+fn path_only(c: &Camera, method: &str) -> Result<(), String> {
+    match c.placement {
+        CameraPlacement::Path { .. } => Ok(()),
+        CameraPlacement::LookAt { .. } => Err(format!("`{method}` applies only to cameras made with camera_path(..)")),
+    }
+}
+fn dvec3(v: [f64; 3]) -> glam::DVec3 {
+    glam::DVec3::from_array(v)
+}
+
+use Ty as T;
+
+/// The free functions of the language.
+pub(crate) static FUNCTIONS: &[Entry] = &[
+    // ---- numbers and vectors
+    fun("param", &[p("name", T::Str), p("default", T::Const), p("range", T::Range)], T::Number, |a| {
+        number(b::param(&a.string()?, a.konst()?, a.range()?))
+    }),
+    fun("sin", &[p("x", T::Number)], T::Number, |a| number(b::sin(a.num()?))),
+    fun("cos", &[p("x", T::Number)], T::Number, |a| number(b::cos(a.num()?))),
+    fun("abs", &[p("x", T::Number)], T::Number, |a| number(b::abs(a.num()?))),
+    fun("sqrt", &[p("x", T::Number)], T::Number, |a| number(b::sqrt(a.num()?))),
+    fun("min", &[p("a", T::Number), p("b", T::Number)], T::Number, |a| number(b::min(a.num()?, a.num()?))),
+    fun("max", &[p("a", T::Number), p("b", T::Number)], T::Number, |a| number(b::max(a.num()?, a.num()?))),
+    fun("pow", &[p("x", T::Number), p("y", T::Number)], T::Number, |a| number(b::pow(a.num()?, a.num()?))),
+    fun("clamp", &[p("x", T::Number), p("lo", T::Number), p("hi", T::Number)], T::Number, |a| {
+        number(b::clamp(a.num()?, a.num()?, a.num()?))
+    }),
+    fun("mix", &[p("a", T::Number), p("b", T::Number), p("s", T::Number)], T::Number, |a| {
+        number(b::mix(a.num()?, a.num()?, a.num()?))
+    }),
+    fun("vec3", &[p("x", T::Number), p("y", T::Number), p("z", T::Number)], T::Vec3, |a| {
+        Ok(Value::Vec3(b::vec3(a.num()?, a.num()?, a.num()?)))
+    }),
+    fun("vec4", &[p("x", T::Number), p("y", T::Number), p("z", T::Number), p("w", T::Number)], T::Vec4, |a| {
+        Ok(Value::Vec4(b::vec4(a.num()?, a.num()?, a.num()?, a.num()?)))
+    }),
+    fun("rgb", &[p("r", T::Number), p("g", T::Number), p("b", T::Number)], T::Color, |a| {
+        Ok(Value::Color(b::rgb(a.num()?, a.num()?, a.num()?)))
+    }),
+    // ---- primitives
+    fun("sphere", &[p("radius", T::Number)], T::Shape, |a| shape(b::sphere(a.num()?))),
+    fun("box3", &[p("half", T::Vec3)], T::Shape, |a| shape(b::box3(a.vec3()?))),
+    fun("round_box", &[p("half", T::Vec3), p("radius", T::Number)], T::Shape, |a| {
+        shape(b::round_box(a.vec3()?, a.num()?))
+    }),
+    fun("torus", &[p("major", T::Number), p("minor", T::Number)], T::Shape, |a| shape(b::torus(a.num()?, a.num()?))),
+    fun("capsule", &[p("a", T::Vec3), p("b", T::Vec3), p("radius", T::Number)], T::Shape, |a| {
+        shape(b::capsule(a.vec3()?, a.vec3()?, a.num()?))
+    }),
+    fun("cylinder", &[p("radius", T::Number), p("half_height", T::Number)], T::Shape, |a| {
+        shape(b::cylinder(a.num()?, a.num()?))
+    }),
+    fun("cone", &[p("half_height", T::Number), p("bottom", T::Number), p("top", T::Number)], T::Shape, |a| {
+        shape(b::cone(a.num()?, a.num()?, a.num()?))
+    }),
+    fun("plane", &[p("normal", T::Vec3), p("offset", T::Number)], T::Shape, |a| shape(b::plane(a.vec3()?, a.num()?))),
+    fun("octahedron", &[p("size", T::Number)], T::Shape, |a| shape(b::octahedron(a.num()?))),
+    fun("ellipsoid", &[p("radii", T::Vec3)], T::Shape, |a| shape(b::ellipsoid(a.vec3()?))),
+    // ---- fractals
+    fun("mandelbulb", &[p("power", T::Number)], T::Fractal, |a| fractal(b::mandelbulb(a.num()?))),
+    fun("menger", &[p("levels", T::Int)], T::Fractal, |a| fractal(b::menger(a.int()?))),
+    fun("sierpinski_tetrahedron", &[p("levels", T::Int)], T::Fractal, |a| fractal(b::sierpinski_tetrahedron(a.int()?))),
+    fun("julia", &[p("c", T::Vec4)], T::Fractal, |a| fractal(b::julia(a.vec4()?))),
+    fun("mandelbox", &[p("scale", T::Number)], T::Fractal, |a| fractal(b::mandelbox(a.num()?))),
+    // ---- CSG: n-ary unions take one or more shapes; smooth variants take the blend radius k last
+    fun("union", &[many("shapes", T::Shape)], T::Shape, |a| shape(b::union_all(a.shapes()))),
+    fun("intersect", &[many("shapes", T::Shape)], T::Shape, |a| shape(b::intersect_all(a.shapes()))),
+    fun("subtract", &[p("a", T::Shape), p("b", T::Shape)], T::Shape, |a| shape(b::subtract(a.shape()?, a.shape()?))),
+    fun("smooth_union", &[many("shapes", T::Shape), p("k", T::Number)], T::Shape, |a| {
+        shape(b::smooth_union_all(a.shapes(), a.num()?))
+    }),
+    fun("smooth_intersect", &[many("shapes", T::Shape), p("k", T::Number)], T::Shape, |a| {
+        let shapes = a.shapes();
+        let k = a.num()?;
+        match <[Node; 2]>::try_from(shapes) {
+            Ok([x, y]) => shape(b::smooth_intersect(x, y, k)),
+            // The builder has no n-ary smooth intersection; the IR node is n-ary, folded left like smooth_union.
+            Err(shapes) => shape(Node::SmoothIntersect(shapes, k)),
+        }
+    }),
+    fun("smooth_subtract", &[p("a", T::Shape), p("b", T::Shape), p("k", T::Number)], T::Shape, |a| {
+        shape(b::smooth_subtract(a.shape()?, a.shape()?, a.num()?))
+    }),
+    // ---- materials
+    fun(
+        "phong",
+        &[
+            p("color", T::Color),
+            p("ambient", T::Number),
+            p("diffuse", T::Number),
+            p("specular", T::Number),
+            p("shininess", T::Number),
+        ],
+        T::Material,
+        |a| material(b::phong(a.color()?, a.num()?, a.num()?, a.num()?, a.num()?)),
+    ),
+    fun("orbit_trap", &[p("a", T::Color), p("b", T::Color)], T::Material, |a| {
+        material(b::orbit_trap(a.color()?, a.color()?))
+    }),
+    // ---- lights and camera
+    fun("directional", &[p("direction", T::Vec3), p("color", T::Color)], T::Light, |a| {
+        Ok(Value::Light(b::directional(a.vec3()?, a.color()?)))
+    }),
+    fun("point_light", &[p("position", T::Vec3), p("color", T::Color)], T::Light, |a| {
+        Ok(Value::Light(b::point_light(a.vec3()?, a.color()?)))
+    }),
+    fun("camera", &[p("position", T::Vec3), p("target", T::Vec3)], T::Camera, |a| {
+        camera(b::camera(a.vec3()?, a.vec3()?))
+    }),
+    fun("camera_path", &[many("keys", T::Key)], T::Camera, |a| camera(b::camera_path(a.keys()))),
+    fun("key", &[p("time", T::Const), p("position", T::ConstVec3), p("target", T::ConstVec3)], T::Key, |a| {
+        Ok(Value::Key(b::key(a.konst()?, dvec3(a.const_vec3()?), dvec3(a.const_vec3()?))))
+    }),
+    // ---- scene
+    fun("scene", &[p("shape", T::Shape)], T::Scene, |a| scene(b::scene(a.shape()?))),
+];
+
+/// The methods of the language; a method name belongs to exactly one receiver type.
+pub(crate) static METHODS: &[Entry] = &[
+    // ---- fractal settings
+    method(T::Fractal, "iterations", &[p("iterations", T::Int)], T::Fractal, |a| {
+        fractal(a.fractal()?.iterations(a.int()?))
+    }),
+    method(T::Fractal, "bailout", &[p("bailout", T::Number)], T::Fractal, |a| fractal(a.fractal()?.bailout(a.num()?))),
+    method(T::Fractal, "min_radius", &[p("min_radius", T::Number)], T::Fractal, |a| {
+        fractal(a.fractal()?.min_radius(a.num()?))
+    }),
+    method(T::Fractal, "fold_limit", &[p("fold_limit", T::Number)], T::Fractal, |a| {
+        fractal(a.fractal()?.fold_limit(a.num()?))
+    }),
+    // ---- transforms, domain operations, materials
+    method(T::Shape, "translate", &[p("offset", T::Vec3)], T::Shape, |a| shape(a.shape()?.translate(a.vec3()?))),
+    method(T::Shape, "rotate_x", &[p("angle", T::Number)], T::Shape, |a| shape(a.shape()?.rotate_x(a.num()?))),
+    method(T::Shape, "rotate_y", &[p("angle", T::Number)], T::Shape, |a| shape(a.shape()?.rotate_y(a.num()?))),
+    method(T::Shape, "rotate_z", &[p("angle", T::Number)], T::Shape, |a| shape(a.shape()?.rotate_z(a.num()?))),
+    method(T::Shape, "rotate", &[p("axis", T::ConstVec3), p("angle", T::Number)], T::Shape, |a| {
+        shape(a.shape()?.rotate(dvec3(a.const_vec3()?), a.num()?))
+    }),
+    method(T::Shape, "scale", &[p("factor", T::Number)], T::Shape, |a| shape(a.shape()?.scale(a.num()?))),
+    method(T::Shape, "repeat", &[p("period", T::Vec3)], T::Shape, |a| shape(a.shape()?.repeat(a.vec3()?))),
+    method(T::Shape, "repeat_limited", &[p("period", T::Vec3), p("count", T::IntVec3)], T::Shape, |a| {
+        shape(a.shape()?.repeat_limited(a.vec3()?, a.int_vec3()?))
+    }),
+    method(T::Shape, "twist", &[p("rate", T::Number)], T::Shape, |a| shape(a.shape()?.twist(a.num()?))),
+    method(T::Shape, "bend", &[p("rate", T::Number)], T::Shape, |a| shape(a.shape()?.bend(a.num()?))),
+    method(T::Shape, "round", &[p("radius", T::Number)], T::Shape, |a| shape(a.shape()?.round(a.num()?))),
+    method(T::Shape, "onion", &[p("thickness", T::Number)], T::Shape, |a| shape(a.shape()?.onion(a.num()?))),
+    method(T::Shape, "elongate", &[p("h", T::Vec3)], T::Shape, |a| shape(a.shape()?.elongate(a.vec3()?))),
+    method(T::Shape, "material", &[p("material", T::Material)], T::Shape, |a| {
+        shape(a.shape()?.material(a.material()?))
+    }),
+    // ---- material terms (a color becomes a material with default terms first)
+    method(T::Material, "ambient", &[p("ambient", T::Number)], T::Material, |a| {
+        material(a.material()?.ambient(a.num()?))
+    }),
+    method(T::Material, "diffuse", &[p("diffuse", T::Number)], T::Material, |a| {
+        material(a.material()?.diffuse(a.num()?))
+    }),
+    method(T::Material, "specular", &[p("specular", T::Number)], T::Material, |a| {
+        material(a.material()?.specular(a.num()?))
+    }),
+    method(T::Material, "shininess", &[p("shininess", T::Number)], T::Material, |a| {
+        material(a.material()?.shininess(a.num()?))
+    }),
+    // ---- lights and cameras
+    method(T::Light, "intensity", &[p("intensity", T::Number)], T::Light, |a| {
+        Ok(Value::Light(a.light()?.intensity(a.num()?)))
+    }),
+    method(T::Camera, "fov", &[p("degrees", T::Const)], T::Camera, |a| camera(a.camera()?.fov(a.konst()?))),
+    method(T::Camera, "linear", &[], T::Camera, |a| {
+        let c = a.camera()?;
+        path_only(&c, "linear")?;
+        camera(c.linear())
+    }),
+    method(T::Camera, "looped", &[], T::Camera, |a| {
+        let c = a.camera()?;
+        path_only(&c, "looped")?;
+        camera(c.looped())
+    }),
+    // ---- scene: lights, camera, render settings (settings are constants: they are compiled into the kernel)
+    method(T::Scene, "light", &[p("light", T::Light)], T::Scene, |a| scene(a.scene()?.light(a.light()?))),
+    method(T::Scene, "camera", &[p("camera", T::Camera)], T::Scene, |a| scene(a.scene()?.camera(a.camera()?))),
+    method(T::Scene, "max_steps", &[p("steps", T::Int)], T::Scene, |a| scene(a.scene()?.max_steps(a.int()?))),
+    method(T::Scene, "max_distance", &[p("distance", T::Const)], T::Scene, |a| {
+        scene(a.scene()?.max_distance(a.konst()?))
+    }),
+    method(T::Scene, "epsilon", &[p("epsilon", T::Const)], T::Scene, |a| scene(a.scene()?.epsilon(a.konst()?))),
+    method(T::Scene, "pixel_epsilon", &[p("pixels", T::Const)], T::Scene, |a| {
+        scene(a.scene()?.pixel_epsilon(a.konst()?))
+    }),
+    method(T::Scene, "no_shadows", &[], T::Scene, |a| scene(a.scene()?.no_shadows())),
+    method(T::Scene, "hard_shadows", &[], T::Scene, |a| scene(a.scene()?.hard_shadows())),
+    method(T::Scene, "soft_shadows", &[p("k", T::Const)], T::Scene, |a| scene(a.scene()?.soft_shadows(a.konst()?))),
+    method(T::Scene, "ambient_occlusion", &[p("strength", T::Const)], T::Scene, |a| {
+        scene(a.scene()?.ambient_occlusion(a.konst()?))
+    }),
+    method(T::Scene, "glow", &[p("color", T::ConstColor)], T::Scene, |a| scene(a.scene()?.glow(a.color()?))),
+    method(T::Scene, "fog", &[p("color", T::ConstColor), p("density", T::Const)], T::Scene, |a| {
+        scene(a.scene()?.fog(a.color()?, a.konst()?))
+    }),
+    method(T::Scene, "background", &[p("color", T::ConstColor)], T::Scene, |a| {
+        scene(a.scene()?.background(a.color()?))
+    }),
+    method(T::Scene, "gamma", &[p("gamma", T::Const)], T::Scene, |a| scene(a.scene()?.gamma(a.konst()?))),
+];
+
+/// Names that stand alone (not called).
+pub(crate) const NAMES: &[&str] = &["t", "PI"];
+
+pub(crate) fn function(name: &str) -> Option<&'static Entry> {
+    FUNCTIONS.iter().find(|e| e.name == name)
+}
+
+pub(crate) fn method(name: &str) -> Option<&'static Entry> {
+    METHODS.iter().find(|e| e.name == name)
+}
+
+/// Edit distance (insertions, deletions, substitutions, adjacent swaps) between two short words.
+fn distance(a: &str, b: &str) -> usize {
+    let a: Vec<char> = a.chars().collect();
+    let b: Vec<char> = b.chars().collect();
+    let mut d = vec![vec![0usize; b.len() + 1]; a.len() + 1];
+    for (i, row) in d.iter_mut().enumerate() {
+        row[0] = i;
+    }
+    for j in 0..=b.len() {
+        d[0][j] = j;
+    }
+    for i in 1..=a.len() {
+        for j in 1..=b.len() {
+            let cost = usize::from(a[i - 1] != b[j - 1]);
+            let mut best = (d[i - 1][j] + 1).min(d[i][j - 1] + 1).min(d[i - 1][j - 1] + cost);
+            if i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] {
+                best = best.min(d[i - 2][j - 2] + 1);
+            }
+            d[i][j] = best;
+        }
+    }
+    d[a.len()][b.len()]
+}
+
+/// The closest known word to a misspelt one, if it is close enough to be what was meant.
+pub(crate) fn suggest<'a>(word: &str, candidates: impl IntoIterator<Item = &'a str>) -> Option<&'a str> {
+    let len = word.chars().count();
+    if len > 64 {
+        return None;
+    }
+    // One edit in three letters: `spher` finds `sphere`, while a one-letter name suggests nothing.
+    let limit = ((len + 1) / 3).min(3);
+    candidates
+        .into_iter()
+        .map(|c| (distance(word, c), c))
+        .filter(|&(d, _)| d <= limit)
+        .min_by_key(|&(d, _)| d)
+        .map(|(_, c)| c)
+}

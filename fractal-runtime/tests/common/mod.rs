@@ -1,0 +1,103 @@
+//! Shared helpers of the runtime's integration tests: fixture kernels, frames for them, and the rule for backends
+//! that are missing (skip with a note, or fail when FRACTAL_REQUIRE_GPU_BACKENDS=1).
+
+// Each test binary uses its own subset of these helpers.
+#![allow(dead_code)]
+
+use std::path::Path;
+
+use fractal_dsl::builder::{mandelbulb, param, scene, sphere};
+use fractal_dsl::Scene;
+use fractal_runtime::{Frame, ParamValues, Pose, RenderError};
+
+/// Whether the environment demands the wgpu and OpenCL backends (CI sets FRACTAL_REQUIRE_GPU_BACKENDS=1).
+pub fn backends_required() -> bool {
+    std::env::var("FRACTAL_REQUIRE_GPU_BACKENDS").is_ok_and(|v| v == "1")
+}
+
+/// The opened backend, or `None` with a printed note when it is missing and not required.
+pub fn available<T>(backend: &str, opened: Result<T, RenderError>) -> Option<T> {
+    match opened {
+        Ok(renderer) => Some(renderer),
+        Err(e) if backends_required() => {
+            panic!("{backend} is required (FRACTAL_REQUIRE_GPU_BACKENDS=1) but could not be opened: {e}")
+        }
+        Err(e) => {
+            eprintln!("note: skipping {backend} test, backend unavailable: {e}");
+            None
+        }
+    }
+}
+
+/// A hand-written test kernel from `tests/kernels`.
+pub fn fixture(name: &str) -> String {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/kernels").join(name);
+    std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("reading {}: {e}", path.display()))
+}
+
+/// The scene the Mandelbulb fixture kernels draw (their frame layout: 1 light, 0 params), with the default camera.
+pub fn mandelbulb_scene() -> Scene {
+    scene(mandelbulb(8))
+}
+
+pub fn frame_for(s: &Scene, width: u32, height: u32, params: &ParamValues) -> Frame {
+    let pose = Pose::from_camera(&s.camera, 0.0, &|p| params.lookup(p)).expect("camera");
+    Frame::new(s, &pose, 0.0, width, height, params).expect("frame")
+}
+
+pub fn mandelbulb_frame(width: u32, height: u32) -> Frame {
+    let s = mandelbulb_scene();
+    frame_for(&s, width, height, &ParamValues::defaults(&s))
+}
+
+/// The scene the sphere probe fixtures evaluate: a sphere whose radius is param 0.
+pub fn sphere_probe_scene() -> Scene {
+    scene(sphere(param("radius", 1.0, 0.1..2.0)))
+}
+
+/// A frame for the sphere probe with the given radius.
+pub fn sphere_probe_frame(radius: f64) -> Frame {
+    let s = sphere_probe_scene();
+    let params = ParamValues::from_values(&s, &[radius]).expect("radius in range");
+    frame_for(&s, 8, 8, &params)
+}
+
+/// Points spread over and around a sphere of radius ~1, more than two workgroups of 64 so partial groups run too.
+pub fn probe_points() -> Vec<[f32; 4]> {
+    (0..150)
+        .map(|i| {
+            let i = i as f32;
+            let r = 0.1 + 0.023 * i;
+            let (theta, phi) = (0.37 * i, 0.91 * i);
+            [r * theta.sin() * phi.cos(), r * theta.sin() * phi.sin(), r * theta.cos(), 0.0]
+        })
+        .collect()
+}
+
+/// The analytic sphere distance in f64.
+pub fn sphere_distance(p: [f32; 4], radius: f64) -> f64 {
+    let [x, y, z, _] = p.map(f64::from);
+    (x * x + y * y + z * z).sqrt() - radius
+}
+
+/// Checks probe output of the sphere fixture: distances within f32 rounding, the default surface material.
+pub fn check_sphere_probe(samples: &[[f32; 8]], points: &[[f32; 4]], radius: f64) {
+    assert_eq!(samples.len(), points.len());
+    for (s, p) in samples.iter().zip(points) {
+        let want = sphere_distance(*p, radius);
+        assert!((s[0] as f64 - want).abs() < 1e-5, "distance at {p:?}: got {}, want {want}", s[0]);
+        assert_eq!(&s[1..], &[0.15, 0.85, 0.0, 0.95, 0.75, 0.55, 32.0], "material at {p:?}");
+    }
+}
+
+/// Fraction of pixels whose channels differ by more than `tolerance` levels.
+pub fn fraction_different(a: &fractal_runtime::Image, b: &fractal_runtime::Image, tolerance: u8) -> f64 {
+    assert_eq!((a.width, a.height), (b.width, b.height));
+    let differing = a
+        .pixels
+        .iter()
+        .zip(&b.pixels)
+        .filter(|(x, y)| x.to_le_bytes().iter().zip(y.to_le_bytes()).any(|(p, q)| p.abs_diff(q) > tolerance))
+        .count();
+    differing as f64 / a.pixels.len() as f64
+}

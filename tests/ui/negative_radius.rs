@@ -1,0 +1,5 @@
+use fractal::prelude::*;
+
+fn main() {
+    let _s = scene! { sphere(-1.0) };
+}
