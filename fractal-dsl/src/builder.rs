@@ -88,7 +88,8 @@ pub fn plane(normal: impl Into<Vec3Expr>, offset: impl Into<Expr>) -> Node {
     let mut normal = normal.into();
     if let Some(n) = normal.lits() {
         let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-        if len > 0.0 {
+        // A vector already of unit length is kept as written, so a printed scene reads back bit for bit.
+        if len > 0.0 && (len - 1.0).abs() > 4.0 * f64::EPSILON {
             normal = n.map(|c| c / len).into();
         }
     }
@@ -150,12 +151,13 @@ impl From<Fractal> for Node {
 
 // ---- CSG -------------------------------------------------------------------------------------------------------
 
-fn flatten(nodes: impl IntoIterator<Item = Node>, same: fn(Node) -> Result<Vec<Node>, Node>) -> Vec<Node> {
+/// Children of an n-ary node, with nested nodes of the same kind spliced in (`unwrap` returns their children).
+fn flatten(nodes: impl IntoIterator<Item = Node>, unwrap: fn(&mut Node) -> Option<Vec<Node>>) -> Vec<Node> {
     let mut out = Vec::new();
-    for n in nodes {
-        match same(n) {
-            Ok(children) => out.extend(children),
-            Err(n) => out.push(n),
+    for mut n in nodes {
+        match unwrap(&mut n) {
+            Some(children) => out.extend(children),
+            None => out.push(n),
         }
     }
     out
@@ -167,17 +169,18 @@ pub fn union(a: impl Into<Node>, b: impl Into<Node>) -> Node {
 /// n-ary union; nested unions flatten into one.
 pub fn union_all(nodes: impl IntoIterator<Item = Node>) -> Node {
     Node::Union(flatten(nodes, |n| match n {
-        Node::Union(c) => Ok(c),
-        n => Err(n),
+        Node::Union(c) => Some(std::mem::take(c)),
+        _ => None,
     }))
 }
 pub fn intersect(a: impl Into<Node>, b: impl Into<Node>) -> Node {
     intersect_all([a.into(), b.into()])
 }
+/// n-ary intersection; nested intersections flatten into one.
 pub fn intersect_all(nodes: impl IntoIterator<Item = Node>) -> Node {
     Node::Intersect(flatten(nodes, |n| match n {
-        Node::Intersect(c) => Ok(c),
-        n => Err(n),
+        Node::Intersect(c) => Some(std::mem::take(c)),
+        _ => None,
     }))
 }
 /// `a` with `b` cut away.
@@ -192,6 +195,10 @@ pub fn smooth_union_all(nodes: impl IntoIterator<Item = Node>, k: impl Into<Expr
 }
 pub fn smooth_intersect(a: impl Into<Node>, b: impl Into<Node>, k: impl Into<Expr>) -> Node {
     Node::SmoothIntersect(vec![a.into(), b.into()], k.into())
+}
+/// n-ary smooth intersection, folded left with blend radius `k`.
+pub fn smooth_intersect_all(nodes: impl IntoIterator<Item = Node>, k: impl Into<Expr>) -> Node {
+    Node::SmoothIntersect(nodes.into_iter().collect(), k.into())
 }
 pub fn smooth_subtract(a: impl Into<Node>, b: impl Into<Node>, k: impl Into<Expr>) -> Node {
     Node::SmoothSubtract(Box::new(a.into()), Box::new(b.into()), k.into())
@@ -216,7 +223,7 @@ pub trait ShapeExt: Into<Node> + Sized {
     /// Rotation about an arbitrary axis (normalised here; a zero axis is left for validation to report).
     fn rotate(self, axis: impl Into<glam::DVec3>, angle: impl Into<Expr>) -> Node {
         let a: glam::DVec3 = axis.into();
-        let unit = a.try_normalize().unwrap_or(a);
+        let unit = if (a.length() - 1.0).abs() <= 4.0 * f64::EPSILON { a } else { a.try_normalize().unwrap_or(a) };
         Node::Rotate(Box::new(self.into()), Axis::Any(unit.to_array()), angle.into())
     }
     /// Uniform scale; distances are scaled back so they stay distances.

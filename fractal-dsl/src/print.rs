@@ -1,7 +1,7 @@
 //! Writes a scene back as canonical scene source: `parse_str(&to_source(s))` rebuilds `s` exactly.
 //!
 //! Canonical form: `scene(<shape>)` followed by the lights, the camera if it is not the default one, and the render
-//! settings that differ from their defaults, one per line. CSG calls put each child on its own line. Numbers are
+//! settings that differ from their defaults, one per indented line. CSG calls put each child on its own line. Numbers are
 //! written with `{:?}`, the shortest text that reads back as the same `f64`; a negative literal is written `-1.0`
 //! (which reads back as one literal) and a negation of a literal `-(1.0)` (which reads back as a negation).
 //! Settings left at `None` (fractal iterations, bailout, ...) are not written, so they read back as `None`.
@@ -26,10 +26,10 @@ pub fn to_source(scene: &Scene) -> String {
         let _ = write!(out, "scene({root})");
     }
     for l in &scene.lights {
-        let _ = write!(out, "\n.light({})", light(l));
+        let _ = write!(out, "\n{INDENT}.light({})", light(l));
     }
     if scene.camera != Camera::default() {
-        let _ = write!(out, "\n.camera({})", camera(&scene.camera));
+        let _ = write!(out, "\n{INDENT}.camera({})", camera(&scene.camera));
     }
     settings(&mut out, &scene.settings);
     out.push('\n');
@@ -314,7 +314,9 @@ fn camera(c: &Camera) -> String {
 fn settings(out: &mut String, s: &RenderSettings) {
     let d = RenderSettings::default();
     let mut line = |text: String| {
-        out.push_str("\n.");
+        out.push('\n');
+        out.push_str(INDENT);
+        out.push('.');
         out.push_str(&text);
     };
     if s.max_steps != d.max_steps {

@@ -315,7 +315,7 @@ pub fn expr_size_problem(e: &Expr) -> Option<String> {
     (expr_depth(e) > MAX_EXPR_DEPTH).then(|| format!("an expression nests more than {MAX_EXPR_DEPTH} levels deep"))
 }
 
-// ---- number rules -----------------------------------------------------------------------------------------------------
+// ---- number rules ---------------------------------------------------------------------------------------------------
 
 /// Allowed values of one number: optional ends, each open or closed.
 #[derive(Clone, Copy, Debug)]

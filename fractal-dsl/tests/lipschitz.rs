@@ -169,11 +169,12 @@ fn julia_escapes(p: [f64; 3], c: [f64; 4], iterations: u32, bailout: f64) -> boo
     m > bailout * bailout
 }
 
-/// The largest |f(p) − f(q)| / |p − q| of the scaled estimator over `pairs` pairs of exterior points near the surface,
-/// |p − q| = 1% of `half` (the bound's half extent). At smaller separations the estimators' fine detail makes the
+/// The largest |f(p) − f(q)| / |p − q| of the scaled estimator over `pairs` pairs of exterior points near the surface
+/// (raw estimate below 10% of `half`, the bound's half extent), |p − q| = 1% of `half`. At smaller separations the estimators' fine detail makes the
 /// largest ratio grow without limit as the sample count grows (measured: 49 at 1e-4 for the default Mandelbulb);
 /// at the step scale it settles.
 fn measured_ratio(fractal: Fractal, half: f64, exterior: &dyn Fn([f64; 3]) -> bool, pairs: usize, seed: u64) -> f64 {
+    let step = fractal.kind.step_factor();
     let interp = Interpreter::new(&scene(fractal));
     let mut rng = Rng(seed);
     let h = 0.01 * half;
@@ -184,7 +185,7 @@ fn measured_ratio(fractal: Fractal, half: f64, exterior: &dyn Fn([f64; 3]) -> bo
         tries += 1;
         let p = rng.in_cube(half);
         let fp = f64_at(&interp, p);
-        if !(fp > 0.0 && fp < 0.1 * half) || !exterior(p) {
+        if !(fp > 0.0 && fp < 0.1 * half * step) || !exterior(p) {
             continue;
         }
         let d = rng.direction();
@@ -193,7 +194,11 @@ fn measured_ratio(fractal: Fractal, half: f64, exterior: &dyn Fn([f64; 3]) -> bo
             continue;
         }
         found += 1;
-        worst = worst.max((fp - f64_at(&interp, q)).abs() / h);
+        let r = (fp - f64_at(&interp, q)).abs() / h;
+        if r > worst && std::env::var("SHOW_WORST").is_ok() {
+            eprintln!("  worst so far {r} p {p:?} q {q:?} fp {fp} fq {}", f64_at(&interp, q));
+        }
+        worst = worst.max(r);
     }
     assert!(found == pairs, "only {found} of {pairs} near-surface pairs found");
     worst
@@ -233,10 +238,10 @@ fn mandelbulb_step_factor_keeps_the_estimate_within_the_lipschitz_bound() {
 
     // Other powers share the family's factor; their ratios are printed for the record (low powers need a smaller one).
     for power in [3.0, 4.0, 5.5, 16.0] {
-        let ratio = measured_ratio(mandelbulb(power), 1.35 * 2f64.powf(1.0 / (power - 1.0)), &|p| {
+        let ratio = measured_ratio(mandelbulb(power), 2f64.powf(1.0 / (power - 1.0)) + 0.05, &|p| {
             mandelbulb_escapes(p, power, 8, 2.0)
         }, 50_000, 7);
-        eprintln!("mandelbulb power {power}: raw ratio {:.3} (not asserted)", ratio / 0.9);
+        eprintln!("mandelbulb power {power}: raw ratio {:.3} (not asserted)", ratio / mandelbulb(8).kind.step_factor());
     }
 }
 

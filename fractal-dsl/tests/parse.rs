@@ -34,14 +34,30 @@ fn cases() -> Vec<(&'static str, Scene)> {
         // numbers
         ("sphere(2)", s(sphere(2.0))),
         ("sphere(1.5f32)", s(sphere(1.5f32))),
-        ("sphere(0.5).translate(vec3(t, -t, -(1.0)))", s(sphere(0.5).translate(vec3(time(), -time(), -Expr::Lit(1.0))))),
+        (
+            "sphere(0.5).translate(vec3(t, -t, -(1.0)))",
+            s(sphere(0.5).translate(vec3(time(), -time(), -Expr::Lit(1.0)))),
+        ),
         ("sphere(1.0).translate(vec3(-1.0, -(-1.0), -0.0))", s(ball().translate(vec3(-1.0, -Expr::Lit(-1.0), -0.0)))),
-        ("sphere(1.0).translate(vec3(sin(t), cos(t), abs(-2.0)))", s(ball().translate(vec3(sin(time()), cos(time()), abs(-2.0))))),
-        ("sphere(1.0).translate(vec3(sqrt(2.0), min(t, 1.0), max(t, 1.0)))", s(ball().translate(vec3(sqrt(2.0), min(time(), 1.0), max(time(), 1.0))))),
-        ("sphere(1.0).translate(vec3(pow(t, 2.0), clamp(t, 0.0, 1.0), mix(0.0, 2.0, t)))", s(ball().translate(vec3(pow(time(), 2.0), clamp(time(), 0.0, 1.0), mix(0.0, 2.0, time()))))),
+        (
+            "sphere(1.0).translate(vec3(sin(t), cos(t), abs(-2.0)))",
+            s(ball().translate(vec3(sin(time()), cos(time()), abs(-2.0)))),
+        ),
+        (
+            "sphere(1.0).translate(vec3(sqrt(2.0), min(t, 1.0), max(t, 1.0)))",
+            s(ball().translate(vec3(sqrt(2.0), min(time(), 1.0), max(time(), 1.0)))),
+        ),
+        (
+            "sphere(1.0).translate(vec3(pow(t, 2.0), clamp(t, 0.0, 1.0), mix(0.0, 2.0, t)))",
+            s(ball().translate(vec3(pow(time(), 2.0), clamp(time(), 0.0, 1.0), mix(0.0, 2.0, time())))),
+        ),
         (
             "sphere(1.0).translate(vec3(1.0 + 2.0 * t, (1.0 + 2.0) * t, t / 2.0 - 1.0))",
-            s(ball().translate(vec3(Expr::Lit(1.0) + Expr::Lit(2.0) * time(), (Expr::Lit(1.0) + 2.0) * time(), time() / 2.0 - 1.0))),
+            s(ball().translate(vec3(
+                Expr::Lit(1.0) + Expr::Lit(2.0) * time(),
+                (Expr::Lit(1.0) + 2.0) * time(),
+                time() / 2.0 - 1.0,
+            ))),
         ),
         ("sphere(1.0).rotate_x(PI / 2.0)", s(ball().rotate_x(Expr::Lit(PI) / 2.0))),
         (
@@ -52,7 +68,10 @@ fn cases() -> Vec<(&'static str, Scene)> {
         ("box3(vec3(1, 2, 3))", s(box3(vec3(1.0, 2.0, 3.0)))),
         ("round_box(vec3(1.0, 1.0, 1.0), 0.25)", s(round_box(vec3(1.0, 1.0, 1.0), 0.25))),
         ("torus(1.0, 0.25)", s(torus(1.0, 0.25))),
-        ("capsule(vec3(0.0, -1.0, 0.0), vec3(0.0, 1.0, 0.0), 0.5)", s(capsule(vec3(0.0, -1.0, 0.0), vec3(0.0, 1.0, 0.0), 0.5))),
+        (
+            "capsule(vec3(0.0, -1.0, 0.0), vec3(0.0, 1.0, 0.0), 0.5)",
+            s(capsule(vec3(0.0, -1.0, 0.0), vec3(0.0, 1.0, 0.0), 0.5)),
+        ),
         ("cylinder(0.5, 1.0)", s(cylinder(0.5, 1.0))),
         ("cone(1.0, 0.5, 0.0)", s(cone(1.0, 0.5, 0.0))),
         ("plane(vec3(0.0, 2.0, 0.0), 1.0)", s(plane(vec3(0.0, 2.0, 0.0), 1.0))),
@@ -63,13 +82,19 @@ fn cases() -> Vec<(&'static str, Scene)> {
         ("mandelbulb(8.0).iterations(12).bailout(4.0)", scene(mandelbulb(8.0).iterations(12).bailout(4.0))),
         ("menger(3)", scene(menger(3))),
         ("sierpinski_tetrahedron(10)", scene(sierpinski_tetrahedron(10))),
-        ("julia(vec4(-0.2, 0.6, 0.2, 0.0)).iterations(10).bailout(4.0)", scene(julia(vec4(-0.2, 0.6, 0.2, 0.0)).iterations(10).bailout(4.0))),
+        (
+            "julia(vec4(-0.2, 0.6, 0.2, 0.0)).iterations(10).bailout(4.0)",
+            scene(julia(vec4(-0.2, 0.6, 0.2, 0.0)).iterations(10).bailout(4.0)),
+        ),
         (
             "mandelbox(-1.5).min_radius(0.25).fold_limit(1.2).iterations(15)",
             scene(mandelbox(-1.5).min_radius(0.25).fold_limit(1.2).iterations(15)),
         ),
         // CSG
-        ("union(sphere(1.0), box3(vec3(1.0, 1.0, 1.0)), torus(1.0, 0.2))", s(union_all([ball(), unit_box(), torus(1.0, 0.2)]))),
+        (
+            "union(sphere(1.0), box3(vec3(1.0, 1.0, 1.0)), torus(1.0, 0.2))",
+            s(union_all([ball(), unit_box(), torus(1.0, 0.2)])),
+        ),
         ("union(union(sphere(1.0), sphere(2.0)), sphere(3.0))", s(union(union(ball(), sphere(2.0)), sphere(3.0)))),
         ("union(sphere(1.0))", s(union_all([ball()]))),
         ("union(mandelbulb(8), sphere(0.5))", s(union(mandelbulb(8), sphere(0.5)))),
@@ -85,14 +110,20 @@ fn cases() -> Vec<(&'static str, Scene)> {
             "smooth_intersect(sphere(1.0), sphere(2.0), sphere(3.0), 0.1)",
             s(Node::SmoothIntersect(vec![ball(), sphere(2.0), sphere(3.0)], Expr::Lit(0.1))),
         ),
-        ("smooth_subtract(box3(vec3(1.0, 1.0, 1.0)), sphere(1.2), 0.1)", s(smooth_subtract(unit_box(), sphere(1.2), 0.1))),
+        (
+            "smooth_subtract(box3(vec3(1.0, 1.0, 1.0)), sphere(1.2), 0.1)",
+            s(smooth_subtract(unit_box(), sphere(1.2), 0.1)),
+        ),
         // transforms and domain operations
         ("mandelbulb(8).translate(vec3(1, 0, 0))", s(mandelbulb(8).translate(vec3(1.0, 0.0, 0.0)))),
         ("sphere(1.0).rotate_y(t * 0.5).rotate_z(0.25)", s(ball().rotate_y(time() * 0.5).rotate_z(0.25))),
         ("sphere(1.0).rotate(vec3(1.0, 1.0, 0.0), 0.5)", s(ball().rotate(DVec3::new(1.0, 1.0, 0.0), 0.5))),
         ("sphere(1.0).scale(2.0)", s(ball().scale(2.0))),
         ("sphere(1.0).repeat(vec3(4.0, 0.0, 4.0))", s(ball().repeat(vec3(4.0, 0.0, 4.0)))),
-        ("sphere(1.0).repeat_limited(vec3(3, 3, 3), vec3(2, 1, 0))", s(ball().repeat_limited(vec3(3.0, 3.0, 3.0), [2, 1, 0]))),
+        (
+            "sphere(1.0).repeat_limited(vec3(3, 3, 3), vec3(2, 1, 0))",
+            s(ball().repeat_limited(vec3(3.0, 3.0, 3.0), [2, 1, 0])),
+        ),
         ("sphere(1.0).twist(0.5).bend(0.3)", s(ball().twist(0.5).bend(0.3))),
         ("sphere(1.0).round(0.1).onion(0.05)", s(ball().round(0.1).onion(0.05))),
         ("sphere(1.0).elongate(vec3(0.5, 0.0, 0.0))", s(ball().elongate(vec3(0.5, 0.0, 0.0)))),
@@ -103,17 +134,28 @@ fn cases() -> Vec<(&'static str, Scene)> {
             s(ball().material(phong(rgb(1.0, 0.5, 0.25), 0.1, 0.8, 0.5, 16.0))),
         ),
         (
-            "mandelbulb(8).material(orbit_trap(rgb(1, 0, 0), rgb(0, 0, 1)).ambient(0.2).diffuse(0.7).specular(0.3).shininess(8.0))",
-            s(mandelbulb(8).material(orbit_trap(rgb(1.0, 0.0, 0.0), rgb(0.0, 0.0, 1.0)).ambient(0.2).diffuse(0.7).specular(0.3).shininess(8.0))),
+            "mandelbulb(8).material(orbit_trap(rgb(1, 0, 0), rgb(0, 0, \
+                1)).ambient(0.2).diffuse(0.7).specular(0.3).shininess(8.0))",
+            s(mandelbulb(8).material(
+                orbit_trap(rgb(1.0, 0.0, 0.0), rgb(0.0, 0.0, 1.0))
+                    .ambient(0.2)
+                    .diffuse(0.7)
+                    .specular(0.3)
+                    .shininess(8.0),
+            )),
         ),
-        ("sphere(1.0).material(rgb(0.9, 0.9, 0.9).specular(0.5))", s(ball().material(rgb(0.9, 0.9, 0.9).specular(0.5)))),
+        (
+            "sphere(1.0).material(rgb(0.9, 0.9, 0.9).specular(0.5))",
+            s(ball().material(rgb(0.9, 0.9, 0.9).specular(0.5))),
+        ),
         // lights
         (
             "scene(sphere(1.0)).light(directional(vec3(1.0, 1.0, -1.0), rgb(1.0, 1.0, 1.0)))",
             s(ball()).light(directional(vec3(1.0, 1.0, -1.0), rgb(1.0, 1.0, 1.0))),
         ),
         (
-            "sphere(1.0).light(point_light(vec3(0.0, 3.0, 0.0), rgb(1.0, 0.8, 0.6)).intensity(2.0)).light(directional(vec3(0.0, 1.0, 0.0), rgb(0.2, 0.2, 0.3)))",
+            "sphere(1.0).light(point_light(vec3(0.0, 3.0, 0.0), rgb(1.0, 0.8, \
+                0.6)).intensity(2.0)).light(directional(vec3(0.0, 1.0, 0.0), rgb(0.2, 0.2, 0.3)))",
             s(ball())
                 .light(point_light(vec3(0.0, 3.0, 0.0), rgb(1.0, 0.8, 0.6)).intensity(2.0))
                 .light(directional(vec3(0.0, 1.0, 0.0), rgb(0.2, 0.2, 0.3))),
@@ -124,15 +166,20 @@ fn cases() -> Vec<(&'static str, Scene)> {
             s(ball()).camera(camera(vec3(0.0, 1.0, -4.0), vec3(0.0, 0.0, 0.0)).fov(60.0)),
         ),
         (
-            "scene(sphere(1.0)).camera(camera_path(key(0.0, vec3(0, 0, -4), vec3(0, 0, 0)), key(5.0, vec3(4, 0, 0), vec3(0, 0, 0))).linear().looped())",
+            "scene(sphere(1.0)).camera(camera_path(key(0.0, vec3(0, 0, -4), vec3(0, 0, 0)), key(5.0, vec3(4, 0, 0), \
+                vec3(0, 0, 0))).linear().looped())",
             s(ball()).camera(
-                camera_path([key(0.0, DVec3::new(0.0, 0.0, -4.0), DVec3::ZERO), key(5.0, DVec3::new(4.0, 0.0, 0.0), DVec3::ZERO)])
+                camera_path([
+                    key(0.0, DVec3::new(0.0, 0.0, -4.0), DVec3::ZERO),
+                    key(5.0, DVec3::new(4.0, 0.0, 0.0), DVec3::ZERO),
+                ])
                     .linear()
                     .looped(),
             ),
         ),
         (
-            "scene(sphere(1.0)).camera(camera_path(key(0.0, vec3(0, 0, -4), vec3(0, 0, 0)), key(2.5, vec3(4, 0, 0), vec3(0, 1, 0))))",
+            "scene(sphere(1.0)).camera(camera_path(key(0.0, vec3(0, 0, -4), vec3(0, 0, 0)), key(2.5, vec3(4, 0, 0), \
+                vec3(0, 1, 0))))",
             s(ball()).camera(camera_path([
                 key(0.0, DVec3::new(0.0, 0.0, -4.0), DVec3::ZERO),
                 key(2.5, DVec3::new(4.0, 0.0, 0.0), DVec3::Y),
@@ -144,7 +191,8 @@ fn cases() -> Vec<(&'static str, Scene)> {
             s(ball()).max_steps(200).max_distance(50.0).epsilon(0.001).hard_shadows().ambient_occlusion(1.0),
         ),
         (
-            "scene(sphere(1.0)).pixel_epsilon(1.5).soft_shadows(16.0).glow(rgb(0.1, 0.2, 0.3)).fog(rgb(0.5, 0.5, 0.5), 0.05)",
+            "scene(sphere(1.0)).pixel_epsilon(1.5).soft_shadows(16.0).glow(rgb(0.1, 0.2, 0.3)).fog(rgb(0.5, 0.5, 0.5), \
+                0.05)",
             s(ball()).pixel_epsilon(1.5).soft_shadows(16.0).glow(rgb(0.1, 0.2, 0.3)).fog(rgb(0.5, 0.5, 0.5), 0.05),
         ),
         (
@@ -224,16 +272,23 @@ fn macro_tokens_and_file_text_build_the_same_scene() {
     assert_eq!(from_tokens, expected);
 }
 
-// ---- errors ----------------------------------------------------------------------------------------------------------
+// ---- errors ---------------------------------------------------------------------------------------------------------
 
 #[test]
 fn errors_name_the_problem_at_line_and_column() {
     let cases: &[(&str, &str)] = &[
         // vocabulary
         ("spher(1.0)", "1:1: unknown function `spher`; did you mean `sphere`?"),
-        ("sphere(1.0).tranlate(vec3(0, 0, 0))", "1:13: unknown method `tranlate` on a shape; did you mean `translate`?"),
+        (
+            "sphere(1.0).tranlate(vec3(0, 0, 0))",
+            "1:13: unknown method `tranlate` on a shape; did you mean `translate`?",
+        ),
         ("sphere(1.0).frobnicate()", "1:13: unknown method `frobnicate` on a shape"),
-        ("box(vec3(1.0, 1.0, 1.0))", "1:1: `box` is a Rust keyword: the box primitive is `box3(half_extents)`, e.g. box3(vec3(1.0, 1.0, 1.0))"),
+        (
+            "box(vec3(1.0, 1.0, 1.0))",
+            "1:1: `box` is a Rust keyword: the box primitive is `box3(half_extents)`, e.g. \
+            box3(vec3(1.0, 1.0, 1.0))",
+        ),
         ("translate(vec3(1, 0, 0))", "1:1: `translate` is a method, not a function: write shape.translate(..)"),
         ("sphere(1.0).vec3(1, 2, 3)", "1:13: `vec3` is a function, not a method: call it as vec3(..)"),
         ("sphere", "1:1: `sphere` is a function: call it, e.g. sphere(..)"),
@@ -243,12 +298,20 @@ fn errors_name_the_problem_at_line_and_column() {
         ("sphere(1.0, 2.0)", "1:13: `sphere` takes 1 argument (radius: number), found 2"),
         ("torus(1.0)", "1:1: `torus` takes 2 arguments (major: number, minor: number), found 1"),
         ("union()", "1:1: `union` takes at least 1 argument (shapes: shape...), found 0"),
-        ("smooth_union(sphere(1.0))", "1:1: `smooth_union` takes at least 2 arguments (shapes: shape..., k: number), found 1"),
+        (
+            "smooth_union(sphere(1.0))",
+            "1:1: `smooth_union` takes at least 2 arguments (shapes: shape..., k: number), \
+            found 1",
+        ),
         ("scene(sphere(1.0)).hard_shadows(2.0)", "1:33: `hard_shadows` takes no arguments, found 1"),
         // types
         ("sphere(vec3(1, 1, 1))", "1:8: `sphere` argument `radius` must be a number, found a vec3"),
         ("union(sphere(1.0), 2.0)", "1:20: `union` argument `shapes` must be a shape, found a number"),
-        ("smooth_union(sphere(1.0), sphere(2.0), sphere(3.0))", "1:40: `smooth_union` argument `k` must be a number, found a shape"),
+        (
+            "smooth_union(sphere(1.0), sphere(2.0), sphere(3.0))",
+            "1:40: `smooth_union` argument `k` must be a number, \
+            found a shape",
+        ),
         ("sphere(1.0).material(sphere(1.0))", "1:22: `material` argument `material` must be a material, found a shape"),
         ("sphere(1.0).iterations(3)", "1:13: `iterations` is a method of a fractal, found a shape"),
         ("sphere(1.0) + 1.0", "1:1: `+` applies to numbers, found a shape"),
@@ -258,11 +321,16 @@ fn errors_name_the_problem_at_line_and_column() {
         ("menger(99999999999)", "1:8: the integer `99999999999` is too large"),
         (
             "sphere(1.0).repeat_limited(vec3(1, 1, 1), vec3(1, 2.0, 3))",
-            "1:51: `repeat_limited` argument `count` must be vec3(..) of non-negative integer literals, e.g. vec3(2, 2, 0), found `2.0`",
+            "1:51: `repeat_limited` argument `count` must be vec3(..) of non-negative integer literals, e.g. vec3(2, \
+                2, 0), found `2.0`",
         ),
         ("vec3(1, 2, 3)", "1:1: a scene must be a shape or scene(..), found a vec3"),
         ("sphere(\"one\")", "1:8: a string appears only as the name in param(\"name\", default, min..max)"),
-        ("sphere(0.0..1.0)", "1:8: a range `min..max` appears only as the last argument of param(\"name\", default, min..max)"),
+        (
+            "sphere(0.0..1.0)",
+            "1:8: a range `min..max` appears only as the last argument of param(\"name\", default, \
+            min..max)",
+        ),
         ("sphere(1.0e400)", "1:8: the number `1.0e400` is out of range (numbers must be finite)"),
         ("sphere(1.0u8x)", "1:8: unknown number suffix `u8x`"),
         ("sphere(1.0).linear()", "1:13: `linear` is a method of a camera, found a shape"),
@@ -271,19 +339,39 @@ fn errors_name_the_problem_at_line_and_column() {
             "1:65: `looped` applies only to cameras made with camera_path(..)",
         ),
         // constants
-        ("scene(sphere(1.0)).max_distance(t)", "1:33: `max_distance` argument `distance` must be a constant: `t` and `param(..)` cannot be used here"),
+        (
+            "scene(sphere(1.0)).max_distance(t)",
+            "1:33: `max_distance` argument `distance` must be a constant: `t` and \
+            `param(..)` cannot be used here",
+        ),
         (
             "scene(sphere(1.0)).gamma(param(\"g\", 2.0, 1.0..3.0))",
             "1:26: `gamma` argument `gamma` must be a constant: `t` and `param(..)` cannot be used here",
         ),
-        ("scene(sphere(1.0)).max_distance(1.0 / 0.0)", "1:33: `max_distance` argument `distance` must be finite, found inf"),
-        ("sphere(1.0).rotate(vec3(t, 0, 1), 0.5)", "1:20: `rotate` argument `axis` must be a constant: `t` and `param(..)` cannot be used here"),
+        (
+            "scene(sphere(1.0)).max_distance(1.0 / 0.0)",
+            "1:33: `max_distance` argument `distance` must be finite, found \
+            inf",
+        ),
+        (
+            "sphere(1.0).rotate(vec3(t, 0, 1), 0.5)",
+            "1:20: `rotate` argument `axis` must be a constant: `t` and \
+            `param(..)` cannot be used here",
+        ),
         // syntax outside the language
         ("let x = 1; x", "1:1: `let` is a Rust keyword and not part of the scene language"),
         ("sphere([1.0])", "1:8: `[` is not part of the scene language: write vectors as vec3(x, y, z)"),
         ("sphere(1.0); sphere(2.0)", "1:12: a scene is a single expression: remove the `;`"),
-        ("sphere(1.0) /// doc", "1:13: attributes and doc comments (`///`, `//!`, `/** */`) are not part of the scene language; use `//` comments"),
-        ("sphere(2.0 % 1.0)", "1:12: `%` is not part of the scene language (its operators are + - * / and `..` in param ranges)"),
+        (
+            "sphere(1.0) /// doc",
+            "1:13: attributes and doc comments (`///`, `//!`, `/** */`) are not part of the scene \
+            language; use `//` comments",
+        ),
+        (
+            "sphere(2.0 % 1.0)",
+            "1:12: `%` is not part of the scene language (its operators are + - * / and `..` in \
+            param ranges)",
+        ),
         ("sphere(1.0 - - -1.0)", "1:16: too many operators in a row: use parentheses, e.g. `a * -b` or `-(-a)`"),
         ("sphere(1.0).translate(vec3(1, 0, 0).x)", "1:23: fields (`v.x`) are not part of the scene language"),
         // lexing and syn
@@ -325,37 +413,68 @@ fn validation_errors_point_at_the_argument() {
         ("box3(vec3(1, -1, 1))", "1:6: box3 half extent y must be > 0, found -1"),
         (
             "round_box(vec3(1.0, 0.5, 1.0), 0.75)",
-            "1:32: round_box radius must be in [0, 0.5], found 0.75 (the rounding cannot exceed the smallest half extent)",
+            "1:32: round_box radius must be in [0, 0.5], found 0.75 (the rounding cannot exceed the smallest half \
+                extent)",
         ),
         ("cone(1.0, 0.0, 0.0)", "1:1: cone radii bottom and top cannot both be 0"),
         ("cylinder(0.5, -1.0)", "1:15: cylinder half_height must be > 0, found -1"),
         ("plane(vec3(0, 0, 0), 1.0)", "1:7: plane normal must be non-zero, found vec3(0, 0, 0)"),
         ("smooth_union(sphere(1.0), sphere(2.0), -0.5)", "1:40: smooth_union blend radius k must be >= 0, found -0.5"),
         ("sphere(1.0).scale(0.0)", "1:19: scale factor must be > 0, found 0"),
-        ("sphere(1.0).repeat(vec3(0, 0, 0))", "1:20: repeat period must be non-zero on at least one axis (0 leaves an axis unrepeated)"),
+        (
+            "sphere(1.0).repeat(vec3(0, 0, 0))",
+            "1:20: repeat period must be non-zero on at least one axis (0 leaves an \
+            axis unrepeated)",
+        ),
         ("sphere(1.0).repeat(vec3(1, -2, 0))", "1:20: repeat period y must be >= 0, found -2"),
-        ("sphere(1.0).repeat_limited(vec3(2, 2, 2), vec3(1, 2000, 1))", "1:43: repeat_limited count y must be <= 1000, found 2000"),
+        (
+            "sphere(1.0).repeat_limited(vec3(2, 2, 2), vec3(1, 2000, 1))",
+            "1:43: repeat_limited count y must be <= 1000, found 2000",
+        ),
         ("sphere(1.0).onion(0)", "1:19: onion thickness must be > 0, found 0"),
         ("sphere(1.0).round(-0.1)", "1:19: round radius must be >= 0, found -0.1"),
         ("sphere(1.0).rotate(vec3(0, 0, 0), 1.0)", "1:20: rotate axis must be non-zero, found vec3(0, 0, 0)"),
-        ("sphere(1.0).material(phong(rgb(1, 1, 1), -0.1, 0.8, 0.2, 8.0))", "1:42: material ambient must be >= 0, found -0.1"),
+        (
+            "sphere(1.0).material(phong(rgb(1, 1, 1), -0.1, 0.8, 0.2, 8.0))",
+            "1:42: material ambient must be >= 0, found -0.1",
+        ),
         ("scene(sphere(1.0)).max_steps(0)", "1:30: max_steps must be in 1..=10000, found 0"),
         ("scene(sphere(1.0)).fog(rgb(1, 1, 1), 0.0)", "1:38: fog density must be > 0, found 0"),
         ("scene(sphere(1.0)).ambient_occlusion(11.0)", "1:38: ambient_occlusion strength must be in (0, 10], found 11"),
-        ("scene(sphere(1.0)).camera(camera(vec3(0, 0, -3), vec3(0, 0, 0)).fov(180))", "1:69: camera fov must be in (0, 180), found 180"),
-        ("scene(sphere(1.0)).camera(camera(vec3(1, 2, 3), vec3(1, 2, 3)))", "1:49: camera target must differ from the camera position"),
+        (
+            "scene(sphere(1.0)).camera(camera(vec3(0, 0, -3), vec3(0, 0, 0)).fov(180))",
+            "1:69: camera fov must be in (0, 180), found 180",
+        ),
+        (
+            "scene(sphere(1.0)).camera(camera(vec3(1, 2, 3), vec3(1, 2, 3)))",
+            "1:49: camera target must differ from the camera position",
+        ),
         (
             "scene(sphere(1.0)).camera(camera_path(key(0.0, vec3(0, 0, -3), vec3(0, 0, 0))))",
             "1:27: camera_path needs at least 2 keys, found 1",
         ),
         (
-            "scene(sphere(1.0)).camera(camera_path(key(1.0, vec3(0, 0, -3), vec3(0, 0, 0)), key(1.0, vec3(0, 0, 3), vec3(0, 0, 0))))",
+            "scene(sphere(1.0)).camera(camera_path(key(1.0, vec3(0, 0, -3), vec3(0, 0, 0)), key(1.0, vec3(0, 0, 3), \
+                vec3(0, 0, 0))))",
             "1:80: camera key times must increase strictly: key 2 at 1 follows 1",
         ),
-        ("scene(sphere(1.0)).light(directional(vec3(0, 0, 0), rgb(1, 1, 1)))", "1:38: light direction must be non-zero, found vec3(0, 0, 0)"),
-        ("sphere(1.0).translate(vec3(param(\"x\", 2.0, -1.0..1.0), 0, 0))", "1:39: param \"x\" default must be within -1..1, found 2"),
-        ("sphere(1.0).translate(vec3(param(\"x\", 0.0, 1.0..-1.0), 0, 0))", "1:44: param \"x\" range must have min < max, found 1..-1"),
-        ("sphere(1.0).translate(vec3(param(\"x y\", 0.0, -1.0..1.0), 0, 0))", "1:34: param name must be an identifier of at most 64 letters, digits and `_`, found \"x y\""),
+        (
+            "scene(sphere(1.0)).light(directional(vec3(0, 0, 0), rgb(1, 1, 1)))",
+            "1:38: light direction must be non-zero, found vec3(0, 0, 0)",
+        ),
+        (
+            "sphere(1.0).translate(vec3(param(\"x\", 2.0, -1.0..1.0), 0, 0))",
+            "1:39: param \"x\" default must be within -1..1, found 2",
+        ),
+        (
+            "sphere(1.0).translate(vec3(param(\"x\", 0.0, 1.0..-1.0), 0, 0))",
+            "1:44: param \"x\" range must have min < max, found 1..-1",
+        ),
+        (
+            "sphere(1.0).translate(vec3(param(\"x y\", 0.0, -1.0..1.0), 0, 0))",
+            "1:34: param name must be an identifier \
+            of at most 64 letters, digits and `_`, found \"x y\"",
+        ),
         (
             "sphere(1.0).translate(vec3(param(\"x\", 0.0, -1.0..1.0), param(\"x\", 0.5, -1.0..1.0), 0))",
             "1:56: param \"x\" is declared twice with different values: default 0 in -1..1 and default 0.5 in -1..1",
@@ -420,7 +539,7 @@ fn token_errors_carry_the_span_of_the_offending_argument() {
     assert_eq!(at("box(vec3(1.0, 1.0, 1.0))").0, 1);
 }
 
-// ---- caps ------------------------------------------------------------------------------------------------------------
+// ---- caps -----------------------------------------------------------------------------------------------------------
 
 fn nested_parens(levels: usize) -> String {
     format!("sphere({}1.0{})", "(".repeat(levels), ")".repeat(levels))
@@ -467,7 +586,7 @@ fn size_and_depth_caps_have_clear_errors() {
     assert!(error(&lights).ends_with("a scene may have at most 16 lights, found 17"));
 }
 
-// ---- no input panics ----------------------------------------------------------------------------------------------------
+// ---- no input panics ------------------------------------------------------------------------------------------------
 
 const WORDS: &[&str] = &[
     "sphere",
@@ -542,12 +661,18 @@ proptest! {
     }
 
     #[test]
-    fn damaged_scenes_never_panic(case in 0..cases().len(), at in 0usize..400, cut in 0usize..6, insert in prop::sample::select(WORDS)) {
+    fn damaged_scenes_never_panic(
+        case in 0..cases().len(),
+        at in 0usize..400,
+        cut in 0usize..6,
+        insert in prop::sample::select(WORDS),
+    ) {
         let src = cases()[case].0;
         let chars: Vec<char> = src.chars().collect();
         let at = at.min(chars.len());
         let end = (at + cut).min(chars.len());
-        let damaged: String = chars[..at].iter().chain(insert.chars().collect::<Vec<_>>().iter()).chain(&chars[end..]).collect();
+        let (head, tail) = (&chars[..at], &chars[end..]);
+        let damaged: String = head.iter().copied().chain(insert.chars()).chain(tail.iter().copied()).collect();
         no_internal_error(&damaged)?;
     }
 }

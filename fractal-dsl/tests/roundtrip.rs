@@ -31,9 +31,9 @@ scene(
         sphere(1.0).translate(vec3(1.5, 0.0, -0.5)).material(rgb(0.9, 0.2, 0.1).specular(0.5)),
     ),
 )
-.light(directional(vec3(1.0, 1.0, -1.0), rgb(1.0, 1.0, 1.0)).intensity(2.0))
-.max_steps(200)
-.soft_shadows(16.0)
+    .light(directional(vec3(1.0, 1.0, -1.0), rgb(1.0, 1.0, 1.0)).intensity(2.0))
+    .max_steps(200)
+    .soft_shadows(16.0)
 ";
     assert_eq!(to_source(&s), expected);
     assert_eq!(round_trip(&s), s);
@@ -52,7 +52,7 @@ fn numbers_keep_their_exact_value_and_form() {
         f64::MIN_POSITIVE,
         1.5f32 as f64,
         0.1f32 as f64,
-        123456789.123456789,
+        1.0 / 3.0,
         1e21,
     ];
     for v in values {
@@ -103,7 +103,7 @@ fn invalid_values_still_print_as_text_that_parses_to_an_error() {
     }
 }
 
-// ---- random scenes ------------------------------------------------------------------------------------------------------
+// ---- random scenes --------------------------------------------------------------------------------------------------
 
 fn finite() -> impl Strategy<Value = f64> {
     prop_oneof![
@@ -224,7 +224,12 @@ fn primitive() -> impl Strategy<Value = Node> {
 }
 
 fn fractal() -> impl Strategy<Value = Fractal> {
-    let power = prop_oneof![4 => (2.0..64.0f64).prop_map(Expr::Lit), 2 => Just(Expr::Lit(8.0)), 1 => Just(param("power", 8.0, 2.0..16.0)), 1 => Just(Expr::Lit(1.5))];
+    let power = prop_oneof![
+        4 => (2.0..64.0f64).prop_map(Expr::Lit),
+        2 => Just(Expr::Lit(8.0)),
+        1 => Just(param("power", 8.0, 2.0..16.0)),
+        1 => Just(Expr::Lit(1.5)),
+    ];
     let iterations = prop::option::of(prop_oneof![9 => 1..=64u32, 1 => Just(0u32)]);
     let scale = prop_oneof![(1.05..8.0f64), (-8.0..-1.05f64), Just(1.0)];
     prop_oneof![
@@ -418,7 +423,8 @@ proptest! {
             Err(errors) => {
                 prop_assert!(parsed.is_err(), "{}\nvalidation: {:?}\nbut the parser accepted it", src, errors);
                 let message = parsed.unwrap_err().message;
-                prop_assert!(errors.iter().any(|e| e.message == message), "{}\nparser: {}\nvalidation: {:?}", src, message, errors);
+                let known = errors.iter().any(|e| e.message == message);
+                prop_assert!(known, "{}\nparser: {}\nvalidation: {:?}", src, message, errors);
             }
         }
     }

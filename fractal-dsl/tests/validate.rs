@@ -95,7 +95,8 @@ fn rules_of_every_kind() {
         (scene(box3(vec3(1.0, 1.0, -0.5))), "box3: box3 half extent z must be > 0, found -0.5"),
         (
             scene(round_box(vec3(1.0, 0.5, 1.0), 0.6)),
-            "round_box: round_box radius must be in [0, 0.5], found 0.6 (the rounding cannot exceed the smallest half extent)",
+            "round_box: round_box radius must be in [0, 0.5], found 0.6 (the rounding cannot exceed the smallest half \
+                extent)",
         ),
         (scene(torus(-1.0, 0.5)), "torus: torus major radius must be >= 0, found -1"),
         (scene(capsule(vec3(0.0, 0.0, 0.0), vec3(0.0, 1.0, 0.0), 0.0)), "capsule: capsule radius must be > 0, found 0"),
@@ -110,33 +111,80 @@ fn rules_of_every_kind() {
         (scene(mandelbulb(8).bailout(0.0)), "mandelbulb: mandelbulb bailout must be > 0, found 0"),
         (scene(menger(0)), "menger: menger levels must be in 1..=8, found 0"),
         (scene(menger(9)), "menger: menger levels must be in 1..=8, found 9"),
-        (scene(sierpinski_tetrahedron(25)), "sierpinski_tetrahedron: sierpinski_tetrahedron levels must be in 1..=24, found 25"),
+        (
+            scene(sierpinski_tetrahedron(25)),
+            "sierpinski_tetrahedron: sierpinski_tetrahedron levels must be in 1..=24, \
+            found 25",
+        ),
         (scene(julia(vec4(0.0, 0.0, 0.0, 0.0)).iterations(65)), "julia: julia iterations must be in 1..=64, found 65"),
         (scene(julia(vec4(0.0, 0.0, 0.0, 0.0)).bailout(-4.0)), "julia: julia bailout must be > 0, found -4"),
         (scene(mandelbox(1.0)), "mandelbox: mandelbox |scale| must be in [1.05, 8], found 1"),
         (scene(mandelbox(-9.0)), "mandelbox: mandelbox |scale| must be in [1.05, 8], found -9"),
         (scene(mandelbox(2.0).min_radius(0.0)), "mandelbox: mandelbox min_radius must be in (0, 1), found 0"),
         (scene(mandelbox(2.0).fold_limit(-1.0)), "mandelbox: mandelbox fold_limit must be > 0, found -1"),
-        (scene(mandelbox(2.0).bailout(4.0)), "mandelbox: `bailout` applies only to mandelbulb and julia, not mandelbox"),
+        (
+            scene(mandelbox(2.0).bailout(4.0)),
+            "mandelbox: `bailout` applies only to mandelbulb and julia, not mandelbox",
+        ),
         (scene(mandelbulb(8).min_radius(0.5)), "mandelbulb: `min_radius` applies only to mandelbox, not mandelbulb"),
-        (scene(sierpinski_tetrahedron(8).fold_limit(1.0)), "sierpinski_tetrahedron: `fold_limit` applies only to mandelbox, not sierpinski_tetrahedron"),
+        (
+            scene(sierpinski_tetrahedron(8).fold_limit(1.0)),
+            "sierpinski_tetrahedron: `fold_limit` applies only to \
+            mandelbox, not sierpinski_tetrahedron",
+        ),
         (scene(union_all([])), "union: union needs at least 1 shape"),
-        (scene(smooth_union(sphere(1.0), sphere(2.0), -0.1)), "smooth_union: smooth_union blend radius k must be >= 0, found -0.1"),
-        (scene(smooth_intersect(sphere(1.0), sphere(2.0), -0.1)), "smooth_intersect: smooth_intersect blend radius k must be >= 0, found -0.1"),
-        (scene(smooth_subtract(sphere(1.0), sphere(2.0), -0.1)), "smooth_subtract: smooth_subtract blend radius k must be >= 0, found -0.1"),
+        (
+            scene(smooth_union(sphere(1.0), sphere(2.0), -0.1)),
+            "smooth_union: smooth_union blend radius k must be >= 0, \
+            found -0.1",
+        ),
+        (
+            scene(smooth_intersect(sphere(1.0), sphere(2.0), -0.1)),
+            "smooth_intersect: smooth_intersect blend radius k \
+            must be >= 0, found -0.1",
+        ),
+        (
+            scene(smooth_subtract(sphere(1.0), sphere(2.0), -0.1)),
+            "smooth_subtract: smooth_subtract blend radius k must \
+            be >= 0, found -0.1",
+        ),
         (scene(sphere(1.0).rotate(DVec3::ZERO, 1.0)), "rotate: rotate axis must be non-zero, found vec3(0, 0, 0)"),
-        (scene(sphere(1.0).repeat(vec3(0.0, 0.0, 0.0))), "repeat: repeat period must be non-zero on at least one axis (0 leaves an axis unrepeated)"),
+        (
+            scene(sphere(1.0).repeat(vec3(0.0, 0.0, 0.0))),
+            "repeat: repeat period must be non-zero on at least one axis \
+            (0 leaves an axis unrepeated)",
+        ),
         (scene(sphere(1.0).repeat(vec3(-1.0, 1.0, 0.0))), "repeat: repeat period x must be >= 0, found -1"),
-        (scene(sphere(1.0).repeat_limited(vec3(2.0, 2.0, 2.0), [1, 1, 1001])), "repeat_limited: repeat_limited count z must be <= 1000, found 1001"),
+        (
+            scene(sphere(1.0).repeat_limited(vec3(2.0, 2.0, 2.0), [1, 1, 1001])),
+            "repeat_limited: repeat_limited count z \
+            must be <= 1000, found 1001",
+        ),
         (scene(sphere(1.0).onion(0.0)), "onion: onion thickness must be > 0, found 0"),
         (scene(sphere(1.0).round(-1.0)), "round: round radius must be >= 0, found -1"),
         (scene(sphere(1.0).elongate(vec3(0.0, -1.0, 0.0))), "elongate: elongate length y must be >= 0, found -1"),
-        (scene(sphere(1.0).material(rgb(1.0, 1.0, 1.0).shininess(-2.0))), "material: material shininess must be >= 0, found -2"),
-        (scene(sphere(1.0).material(phong(rgb(1.0, 1.0, 1.0), 0.1, -0.8, 0.0, 8.0))), "material: material diffuse must be >= 0, found -0.8"),
-        (scene(sphere(1.0).translate(vec3(f64::NAN, 0.0, 0.0))), "translate: translate offset: numbers must be finite, found NaN"),
+        (
+            scene(sphere(1.0).material(rgb(1.0, 1.0, 1.0).shininess(-2.0))),
+            "material: material shininess must be >= 0, \
+            found -2",
+        ),
+        (
+            scene(sphere(1.0).material(phong(rgb(1.0, 1.0, 1.0), 0.1, -0.8, 0.0, 8.0))),
+            "material: material diffuse must \
+            be >= 0, found -0.8",
+        ),
+        (
+            scene(sphere(1.0).translate(vec3(f64::NAN, 0.0, 0.0))),
+            "translate: translate offset: numbers must be finite, \
+            found NaN",
+        ),
         (scene(sphere(f64::INFINITY)), "sphere: sphere radius: numbers must be finite, found inf"),
         (scene(sphere(1.0).twist(f64::NEG_INFINITY)), "twist: twist rate: numbers must be finite, found -inf"),
-        (scene(sphere(1.0)).camera(camera(vec3(1.0, 1.0, 1.0), vec3(1.0, 1.0, 1.0))), "camera: camera target must differ from the camera position"),
+        (
+            scene(sphere(1.0)).camera(camera(vec3(1.0, 1.0, 1.0), vec3(1.0, 1.0, 1.0))),
+            "camera: camera target must \
+            differ from the camera position",
+        ),
         (scene(sphere(1.0)).camera(camera_path([])), "camera: camera_path needs at least 2 keys, found 0"),
         (
             scene(sphere(1.0)).camera(camera_path([key(1.0, DVec3::X, DVec3::ZERO), key(0.5, DVec3::Y, DVec3::ZERO)])),
@@ -146,7 +194,11 @@ fn rules_of_every_kind() {
             scene(sphere(1.0)).camera(camera_path([key(0.0, DVec3::X, DVec3::X), key(1.0, DVec3::Y, DVec3::ZERO)])),
             "camera: camera key 1: target must differ from the position",
         ),
-        (scene(sphere(1.0)).camera(camera(vec3(0.0, 0.0, -3.0), vec3(0.0, 0.0, 0.0)).fov(180.0)), "camera: camera fov must be in (0, 180), found 180"),
+        (
+            scene(sphere(1.0)).camera(camera(vec3(0.0, 0.0, -3.0), vec3(0.0, 0.0, 0.0)).fov(180.0)),
+            "camera: camera fov \
+            must be in (0, 180), found 180",
+        ),
         (scene(sphere(1.0)).max_steps(10_001), "scene: max_steps must be in 1..=10000, found 10001"),
         (scene(sphere(1.0)).max_distance(-1.0), "scene: max_distance must be > 0, found -1"),
         (scene(sphere(1.0)).pixel_epsilon(0.0), "scene: pixel_epsilon must be > 0, found 0"),
@@ -176,7 +228,8 @@ fn params_are_declared_consistently() {
     assert_eq!(
         errors(&s),
         [
-            "param \"a\": param \"a\" is declared twice with different values: default 0 in -1..1 and default 1 in -1..1",
+            "param \"a\": param \"a\" is declared twice with different values: default 0 in -1..1 and default 1 in \
+                -1..1",
             "param \"b\": param \"b\" default must be within 0..1, found 5",
         ]
     );
@@ -213,7 +266,8 @@ fn animated_values_are_checked_over_their_range() {
     let s = scene(mandelbulb(Expr::Lit(2.0) + time()));
     assert_eq!(
         errors(&s),
-        ["mandelbulb: mandelbulb power must be <= 64, but no upper bound is known for its value, so it may leave that range"]
+        ["mandelbulb: mandelbulb power must be <= 64, but no upper bound is known for its value, so it may leave that \
+            range"]
     );
 }
 

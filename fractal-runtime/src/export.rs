@@ -1,14 +1,16 @@
 //! Export of a scene's render kernel for other engines: OpenCL C and WGSL as the scene compiler wrote them, and
 //! GLSL, HLSL, MSL and SPIR-V translated by naga from the WGSL module.
 //!
-//! Every export holds one compute entry point, `render` ([`ENTRY_POINT`]; GLSL names it `main`), with two resources
-//! in group/set 0: binding 0 is the output pixels (one packed RGBA8 `u32` per pixel, read-write storage buffer) and
-//! binding 1 is the frame uniforms (`fractal_dsl::back::FrameLayout`). Workgroups are 8×8; dispatch
-//! `ceil(width / 8) × ceil(height / 8) × 1`.
+//! Every export holds one compute entry point, `render` ([`ENTRY_POINT`]; GLSL names it `main`), with two resources:
+//! the output pixels (a read-write buffer of one `u32` per pixel, row-major, red in the low byte and alpha 255 in the
+//! high byte) and the frame uniforms ([`fractal_dsl::back::FrameLayout`] gives their layout, [`crate::Frame`] packs
+//! them). In the translated targets and WGSL they are group/set 0, bindings 0 and 1 (the OpenCL kernel takes them as
+//! arguments 0 and 1). Workgroups are 8×8×1: dispatch `ceil(width / 8) × ceil(height / 8) × 1`; invocations outside
+//! the image return at once.
 //!
 //! What each translated target is written for, and where the resources go:
 //! - GLSL: `#version 450 core` compute shader (OpenGL 4.5 / Vulkan GLSL); `layout(binding = N)` keeps the WGSL
-//!   binding numbers (buffer and uniform blocks have separate binding spaces in OpenGL).
+//!   binding numbers: 0 for the pixel buffer block, 1 for the uniform block.
 //! - HLSL: shader model 6.0 (`cs_6_0`, DXC / Direct3D 12): the oldest model DXC accepts, and register spaces need
 //!   at least 5.1. Group `g`, binding `b` become `register(<class>b, space<g>)` (naga leaves out `space0`): `u0` for
 //!   the pixels, `b1` for the uniforms.
@@ -17,8 +19,7 @@
 //!   buffers, which Metal cannot query (the pixel buffer is one).
 //! - SPIR-V: version 1.0 (Vulkan 1.0 and later), descriptor set = group, binding = binding, with debug names.
 //!
-//! Buffer accesses are written unchecked, as the WGSL kernel relies on: the kernel guards its own indices (it returns
-//! for invocations outside the image).
+//! Buffer accesses are written without bounds checks (naga's default policy): the kernel guards its only index itself.
 
 use std::fmt;
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -250,10 +251,10 @@ fn bindings(module: &Module) -> Vec<(ResourceBinding, naga::Handle<naga::GlobalV
 
 fn write_glsl(module: &Module, info: &ModuleInfo) -> Result<String, String> {
     let mut binding_map = glsl::BindingMap::default();
+    // OpenGL has no groups: binding points are numbered in (group, binding) order, which keeps the WGSL numbers of
+    // a kernel whose bindings are group 0, numbered from 0 without gaps (as the WGSL writer's are).
     for (index, (binding, _)) in bindings(module).into_iter().enumerate() {
-        // Group 0 keeps its numbers; other groups follow on (OpenGL has no groups).
-        let point = if binding.group == 0 { binding.binding } else { index as u32 };
-        let point = u8::try_from(point).map_err(|_| format!("binding {point} is beyond GLSL's 255"))?;
+        let point = u8::try_from(index).map_err(|_| format!("{} bindings are more than GLSL's 256", index + 1))?;
         binding_map.insert(binding, point);
     }
     let options = glsl::Options {

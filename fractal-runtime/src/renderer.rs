@@ -127,8 +127,8 @@ impl<'a> RenderJob<'a> {
     }
 }
 
-/// A renderer: draws jobs on one device.
-pub trait Renderer {
+/// A renderer: draws jobs on one device. `Send`, so a viewer can keep it on a render thread.
+pub trait Renderer: Send {
     /// Renders the job's scene into an image of the frame's size.
     fn render(&mut self, job: &RenderJob) -> Result<Image, RenderError>;
     /// The device this renderer draws on.

@@ -11,8 +11,10 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use fractal_dsl::builder::{scene, sphere};
-use fractal_dsl::{compile, Kernels, Scene};
-use fractal_runtime::export::{export, export_scene, ExportError, Exported, Target, ENTRY_POINT};
+use fractal_dsl::eval::{Env, Sample};
+use fractal_dsl::math::{v3, Real, V3};
+use fractal_dsl::{compile, CompiledScene, Kernels, NativeFns, Scene};
+use fractal_runtime::export::{export, export_compiled, export_scene, ExportError, Exported, Target, ENTRY_POINT};
 
 /// Every built-in scene's file name (without extension) and compiled kernels.
 fn builtin_scenes() -> Vec<(String, Scene, Kernels)> {
@@ -42,13 +44,14 @@ fn validators_required() -> bool {
 
 /// Whether the external validator `tool` can be run; a missing one fails the test only when it is required.
 fn tool_available(tool: &str) -> bool {
+    let package = if tool == "spirv-val" { "spirv-tools" } else { "glslang-tools" };
     match Command::new(tool).arg("--version").output() {
         Ok(_) => true,
         Err(e) if validators_required() => {
-            panic!("{tool} is required (FRACTAL_REQUIRE_GPU_BACKENDS=1) but cannot be run: {e}")
+            panic!("{tool} is required (FRACTAL_REQUIRE_GPU_BACKENDS=1) but cannot be run ({e}): install {package}")
         }
         Err(e) => {
-            eprintln!("note: skipping the {tool} check, {tool} cannot be run ({e}); install Debian's spirv-tools / glslang-tools");
+            eprintln!("note: skipping the {tool} check, {tool} cannot be run ({e}): install {package}");
             false
         }
     }
@@ -82,6 +85,10 @@ fn remove(files: &[&Path]) {
     for file in files {
         // At worst a leftover in the build's temporary directory.
         let _ = std::fs::remove_file(file);
+        // The process's directory goes with its last file (removing a directory still in use fails, harmlessly).
+        if let Some(dir) = file.parent() {
+            let _ = std::fs::remove_dir(dir);
+        }
     }
 }
 
@@ -210,6 +217,32 @@ fn export_scene_compiles_and_exports() {
     for target in Target::ALL {
         let direct = export_scene(&scene, target).unwrap_or_else(|e| panic!("{target}: {e}"));
         assert_eq!(direct, exported("first scene", &kernels, target), "{target}: export_scene differs from export");
+    }
+}
+
+/// Stand-ins for the native evaluator a `scene!` expansion carries: export never calls it.
+fn unused_distance<F: Real>(_: V3<F>, _: &Env<F>) -> F {
+    F::c(f64::NAN)
+}
+fn unused_sample<F: Real>(p: V3<F>, env: &Env<F>) -> Sample<F> {
+    let nan = unused_distance(p, env);
+    Sample { distance: nan, albedo: v3(nan, nan, nan), ambient: nan, diffuse: nan, specular: nan, shininess: nan }
+}
+
+#[test]
+fn export_compiled_exports_the_build_time_kernels() {
+    let (name, _, kernels) = builtin_scenes().into_iter().next().expect("a built-in scene");
+    let native = NativeFns {
+        distance_f32: unused_distance::<f32>,
+        distance_f64: unused_distance::<f64>,
+        sample_f32: unused_sample::<f32>,
+        sample_f64: unused_sample::<f64>,
+    };
+    let leak = |s: &str| -> &'static str { Box::leak(s.to_owned().into_boxed_str()) };
+    let compiled = CompiledScene::new(leak(&kernels.source), leak(&kernels.opencl), leak(&kernels.wgsl), native);
+    for target in Target::ALL {
+        let out = export_compiled(&compiled, target).unwrap_or_else(|e| panic!("{name} to {target}: {e}"));
+        assert_eq!(out, exported(&name, &kernels, target), "{target}: export_compiled differs from export");
     }
 }
 

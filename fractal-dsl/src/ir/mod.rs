@@ -102,19 +102,19 @@ impl FractalKind {
     /// Factor applied to the estimator so a step never overshoots the surface: the inverse of the largest
     /// |f(p) − f(q)| / |p − q| measured by the Lipschitz tests (`fractal-dsl/tests/lipschitz.rs`), rounded down to 0.05.
     ///
-    /// Pairs are 1% of the bound's size apart and lie outside the set (both orbits escape): at smaller separations the
-    /// escape-time estimators have ever finer detail and the largest ratio keeps growing with the sample count, and
-    /// inside the set their values are not distances. Measured (200 000 pairs each): Mandelbulb power 8 at 4–16
-    /// iterations and bailout 2 or 256, 1.08 → 0.9; quaternion Julia for connected sets (c = (−0.2, 0.6, 0.2, 0),
-    /// (−0.4, 0.6, 0, 0)), 1.12 → 0.85; Mandelbox at scales −2, −1.5, 2, 3, 1.14 → 0.85; Menger and Sierpinski are
-    /// 1-Lipschitz (1.000): 1.
+    /// Pairs lie outside the set (both orbits escape), near the surface (estimate below 10% of the bound's half
+    /// extent) and 1% of the bound's half extent apart: at smaller separations the escape-time estimators have ever
+    /// finer detail and the largest ratio keeps growing with the sample count, and inside the set their values are not
+    /// distances. Largest ratios over 20 million pairs per variant: Mandelbulb power 8 at 4–16 iterations and bailout 2
+    /// or 256, 1.28 → 0.75; quaternion Julia with connected sets (c = (−0.2, 0.6, 0.2, 0), (−0.4, 0.6, 0, 0)), 1.15 →
+    /// 0.85; Mandelbox at scales −2, −1.5, 2, 3, 1.30 → 0.75. Menger and Sierpinski are 1-Lipschitz: 1.
     pub fn step_factor(&self) -> f64 {
         match self {
-            FractalKind::Mandelbulb { .. } => 0.9,
+            FractalKind::Mandelbulb { .. } => 0.75,
             FractalKind::Menger => 1.0,
             FractalKind::Sierpinski => 1.0,
             FractalKind::Julia { .. } => 0.85,
-            FractalKind::Mandelbox { .. } => 0.85,
+            FractalKind::Mandelbox { .. } => 0.75,
         }
     }
     pub fn default_iterations(&self) -> u32 {

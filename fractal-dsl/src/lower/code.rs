@@ -196,16 +196,15 @@ impl Builder {
         }
         let ty = if ta == Ty::V3 || tb == Ty::V3 { Ty::V3 } else { Ty::F };
         match (op, la, lb) {
-            (BinOp::Add, Some(z), _) if z == 0.0 && tb == ty => return b,
-            (BinOp::Add | BinOp::Sub, _, Some(z)) if z == 0.0 => return a,
-            (BinOp::Sub, Some(z), _) if z == 0.0 && tb == ty => return self.neg(b),
-            (BinOp::Mul, Some(o), _) if o == 1.0 && tb == ty => return b,
-            (BinOp::Mul | BinOp::Div, _, Some(o)) if o == 1.0 => return a,
-            (BinOp::Mul, _, Some(m)) if m == -1.0 => return self.neg(a),
-            (BinOp::Mul, Some(z), _) | (BinOp::Mul, _, Some(z)) if z == 0.0 && ty == Ty::F => return self.lit(0.0),
+            (BinOp::Add, Some(0.0), _) if tb == ty => return b,
+            (BinOp::Add | BinOp::Sub, _, Some(0.0)) => return a,
+            (BinOp::Sub, Some(0.0), _) if tb == ty => return self.neg(b),
+            (BinOp::Mul, Some(1.0), _) if tb == ty => return b,
+            (BinOp::Mul | BinOp::Div, _, Some(1.0)) => return a,
+            (BinOp::Mul, _, Some(-1.0)) => return self.neg(a),
+            (BinOp::Mul, Some(0.0), _) | (BinOp::Mul, _, Some(0.0)) if ty == Ty::F => return self.lit(0.0),
             _ => {}
         }
-        // A V3 built from literals times or plus a scalar folds per component when that keeps things literal.
         self.emit(ty, Op::Bin(op, a, b))
     }
     pub fn add(&mut self, a: Val, b: Val) -> Val {

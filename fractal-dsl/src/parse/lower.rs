@@ -1,6 +1,6 @@
-//! Lowering: syn's expression tree to IR values. Calls and methods are looked up in the vocabulary table
-//! ([`super::vocab`]), their arguments evaluated and coerced to the declared types, and the builder function named there
-//! builds the value; then the validation rules check it while the argument spans are still at hand.
+//! Lowering: syn's expression tree to IR values. Calls and methods are looked up in the vocabulary table (`vocab`),
+//! their arguments evaluated and coerced to the declared types, and the builder function named there builds the
+//! value; then the validation rules check it while the argument spans are still at hand.
 //!
 //! Method chains are walked in a loop, not by recursion, so a long chain costs no stack; every other descent counts
 //! against [`MAX_EVAL_DEPTH`].
@@ -193,7 +193,7 @@ impl Lower {
     }
 
     /// Counts a new expression node and checks the expression caps.
-    fn number(&mut self, at: &syn::Expr, e: Expr) -> syn::Result<Value> {
+    fn number(&mut self, at: impl ToTokens, e: Expr) -> syn::Result<Value> {
         self.expr_nodes += 1;
         if self.expr_nodes > v::MAX_EXPR_NODES {
             return Err(error(at, format!("the scene's expressions have more than {} nodes", v::MAX_EXPR_NODES)));
@@ -209,10 +209,9 @@ impl Lower {
             return Err(error(p, "paths are not part of the scene language"));
         };
         let name = ident.to_string();
-        let e = syn::Expr::Path(p.clone());
         match name.as_str() {
-            "t" => return self.number(&e, Expr::Time),
-            "PI" => return self.number(&e, Expr::Lit(std::f64::consts::PI)),
+            "t" => return self.number(p, Expr::Time),
+            "PI" => return self.number(p, Expr::Lit(std::f64::consts::PI)),
             _ => {}
         }
         let message = if vocab::function(&name).is_some() {
@@ -231,17 +230,16 @@ impl Lower {
     }
 
     fn unary(&mut self, u: &syn::ExprUnary, depth: usize) -> syn::Result<Value> {
-        let whole = syn::Expr::Unary(u.clone());
         if !matches!(u.op, syn::UnOp::Neg(_)) {
             return Err(error(u.op, format!("`{}` is not part of the scene language", u.op.to_token_stream())));
         }
         // `-2.0` is one negative literal, as it is for the builder; `-(2.0)` stays a negation.
         if let syn::Expr::Lit(l) = &*u.expr {
             let value = number_literal(&l.lit).map_err(|m| error(&u.expr, m))?;
-            return self.number(&whole, Expr::Lit(-value));
+            return self.number(u, Expr::Lit(-value));
         }
         match self.eval(&u.expr, depth + 1)? {
-            Value::Number(e) => self.number(&whole, Expr::Neg(Box::new(e))),
+            Value::Number(e) => self.number(u, Expr::Neg(Box::new(e))),
             other => Err(error(&u.expr, format!("`-` applies to numbers, found {}", other.ty().a()))),
         }
     }
@@ -266,7 +264,7 @@ impl Lower {
         };
         let left = operand(&bin.left)?;
         let right = operand(&bin.right)?;
-        self.number(&syn::Expr::Binary(bin.clone()), Expr::Bin(op, Box::new(left), Box::new(right)))
+        self.number(bin, Expr::Bin(op, Box::new(left), Box::new(right)))
     }
 
     fn call(&mut self, c: &syn::ExprCall, depth: usize) -> syn::Result<Value> {

@@ -159,7 +159,7 @@ pub(crate) struct Entry {
 const fn fun(name: &'static str, params: &'static [Param], result: Ty, build: Build) -> Entry {
     Entry { name, receiver: None, params, result, build }
 }
-const fn method(receiver: Ty, name: &'static str, params: &'static [Param], result: Ty, build: Build) -> Entry {
+const fn meth(receiver: Ty, name: &'static str, params: &'static [Param], result: Ty, build: Build) -> Entry {
     Entry { name, receiver: Some(receiver), params, result, build }
 }
 
@@ -393,90 +393,86 @@ pub(crate) static FUNCTIONS: &[Entry] = &[
 /// The methods of the language; a method name belongs to exactly one receiver type.
 pub(crate) static METHODS: &[Entry] = &[
     // ---- fractal settings
-    method(T::Fractal, "iterations", &[p("iterations", T::Int)], T::Fractal, |a| {
+    meth(T::Fractal, "iterations", &[p("iterations", T::Int)], T::Fractal, |a| {
         fractal(a.fractal()?.iterations(a.int()?))
     }),
-    method(T::Fractal, "bailout", &[p("bailout", T::Number)], T::Fractal, |a| fractal(a.fractal()?.bailout(a.num()?))),
-    method(T::Fractal, "min_radius", &[p("min_radius", T::Number)], T::Fractal, |a| {
+    meth(T::Fractal, "bailout", &[p("bailout", T::Number)], T::Fractal, |a| fractal(a.fractal()?.bailout(a.num()?))),
+    meth(T::Fractal, "min_radius", &[p("min_radius", T::Number)], T::Fractal, |a| {
         fractal(a.fractal()?.min_radius(a.num()?))
     }),
-    method(T::Fractal, "fold_limit", &[p("fold_limit", T::Number)], T::Fractal, |a| {
+    meth(T::Fractal, "fold_limit", &[p("fold_limit", T::Number)], T::Fractal, |a| {
         fractal(a.fractal()?.fold_limit(a.num()?))
     }),
     // ---- transforms, domain operations, materials
-    method(T::Shape, "translate", &[p("offset", T::Vec3)], T::Shape, |a| shape(a.shape()?.translate(a.vec3()?))),
-    method(T::Shape, "rotate_x", &[p("angle", T::Number)], T::Shape, |a| shape(a.shape()?.rotate_x(a.num()?))),
-    method(T::Shape, "rotate_y", &[p("angle", T::Number)], T::Shape, |a| shape(a.shape()?.rotate_y(a.num()?))),
-    method(T::Shape, "rotate_z", &[p("angle", T::Number)], T::Shape, |a| shape(a.shape()?.rotate_z(a.num()?))),
-    method(T::Shape, "rotate", &[p("axis", T::ConstVec3), p("angle", T::Number)], T::Shape, |a| {
+    meth(T::Shape, "translate", &[p("offset", T::Vec3)], T::Shape, |a| shape(a.shape()?.translate(a.vec3()?))),
+    meth(T::Shape, "rotate_x", &[p("angle", T::Number)], T::Shape, |a| shape(a.shape()?.rotate_x(a.num()?))),
+    meth(T::Shape, "rotate_y", &[p("angle", T::Number)], T::Shape, |a| shape(a.shape()?.rotate_y(a.num()?))),
+    meth(T::Shape, "rotate_z", &[p("angle", T::Number)], T::Shape, |a| shape(a.shape()?.rotate_z(a.num()?))),
+    meth(T::Shape, "rotate", &[p("axis", T::ConstVec3), p("angle", T::Number)], T::Shape, |a| {
         shape(a.shape()?.rotate(dvec3(a.const_vec3()?), a.num()?))
     }),
-    method(T::Shape, "scale", &[p("factor", T::Number)], T::Shape, |a| shape(a.shape()?.scale(a.num()?))),
-    method(T::Shape, "repeat", &[p("period", T::Vec3)], T::Shape, |a| shape(a.shape()?.repeat(a.vec3()?))),
-    method(T::Shape, "repeat_limited", &[p("period", T::Vec3), p("count", T::IntVec3)], T::Shape, |a| {
+    meth(T::Shape, "scale", &[p("factor", T::Number)], T::Shape, |a| shape(a.shape()?.scale(a.num()?))),
+    meth(T::Shape, "repeat", &[p("period", T::Vec3)], T::Shape, |a| shape(a.shape()?.repeat(a.vec3()?))),
+    meth(T::Shape, "repeat_limited", &[p("period", T::Vec3), p("count", T::IntVec3)], T::Shape, |a| {
         shape(a.shape()?.repeat_limited(a.vec3()?, a.int_vec3()?))
     }),
-    method(T::Shape, "twist", &[p("rate", T::Number)], T::Shape, |a| shape(a.shape()?.twist(a.num()?))),
-    method(T::Shape, "bend", &[p("rate", T::Number)], T::Shape, |a| shape(a.shape()?.bend(a.num()?))),
-    method(T::Shape, "round", &[p("radius", T::Number)], T::Shape, |a| shape(a.shape()?.round(a.num()?))),
-    method(T::Shape, "onion", &[p("thickness", T::Number)], T::Shape, |a| shape(a.shape()?.onion(a.num()?))),
-    method(T::Shape, "elongate", &[p("h", T::Vec3)], T::Shape, |a| shape(a.shape()?.elongate(a.vec3()?))),
-    method(T::Shape, "material", &[p("material", T::Material)], T::Shape, |a| {
-        shape(a.shape()?.material(a.material()?))
-    }),
+    meth(T::Shape, "twist", &[p("rate", T::Number)], T::Shape, |a| shape(a.shape()?.twist(a.num()?))),
+    meth(T::Shape, "bend", &[p("rate", T::Number)], T::Shape, |a| shape(a.shape()?.bend(a.num()?))),
+    meth(T::Shape, "round", &[p("radius", T::Number)], T::Shape, |a| shape(a.shape()?.round(a.num()?))),
+    meth(T::Shape, "onion", &[p("thickness", T::Number)], T::Shape, |a| shape(a.shape()?.onion(a.num()?))),
+    meth(T::Shape, "elongate", &[p("h", T::Vec3)], T::Shape, |a| shape(a.shape()?.elongate(a.vec3()?))),
+    meth(T::Shape, "material", &[p("material", T::Material)], T::Shape, |a| shape(a.shape()?.material(a.material()?))),
     // ---- material terms (a color becomes a material with default terms first)
-    method(T::Material, "ambient", &[p("ambient", T::Number)], T::Material, |a| {
+    meth(T::Material, "ambient", &[p("ambient", T::Number)], T::Material, |a| {
         material(a.material()?.ambient(a.num()?))
     }),
-    method(T::Material, "diffuse", &[p("diffuse", T::Number)], T::Material, |a| {
+    meth(T::Material, "diffuse", &[p("diffuse", T::Number)], T::Material, |a| {
         material(a.material()?.diffuse(a.num()?))
     }),
-    method(T::Material, "specular", &[p("specular", T::Number)], T::Material, |a| {
+    meth(T::Material, "specular", &[p("specular", T::Number)], T::Material, |a| {
         material(a.material()?.specular(a.num()?))
     }),
-    method(T::Material, "shininess", &[p("shininess", T::Number)], T::Material, |a| {
+    meth(T::Material, "shininess", &[p("shininess", T::Number)], T::Material, |a| {
         material(a.material()?.shininess(a.num()?))
     }),
     // ---- lights and cameras
-    method(T::Light, "intensity", &[p("intensity", T::Number)], T::Light, |a| {
+    meth(T::Light, "intensity", &[p("intensity", T::Number)], T::Light, |a| {
         Ok(Value::Light(a.light()?.intensity(a.num()?)))
     }),
-    method(T::Camera, "fov", &[p("degrees", T::Const)], T::Camera, |a| camera(a.camera()?.fov(a.konst()?))),
-    method(T::Camera, "linear", &[], T::Camera, |a| {
+    meth(T::Camera, "fov", &[p("degrees", T::Const)], T::Camera, |a| camera(a.camera()?.fov(a.konst()?))),
+    meth(T::Camera, "linear", &[], T::Camera, |a| {
         let c = a.camera()?;
         path_only(&c, "linear")?;
         camera(c.linear())
     }),
-    method(T::Camera, "looped", &[], T::Camera, |a| {
+    meth(T::Camera, "looped", &[], T::Camera, |a| {
         let c = a.camera()?;
         path_only(&c, "looped")?;
         camera(c.looped())
     }),
     // ---- scene: lights, camera, render settings (settings are constants: they are compiled into the kernel)
-    method(T::Scene, "light", &[p("light", T::Light)], T::Scene, |a| scene(a.scene()?.light(a.light()?))),
-    method(T::Scene, "camera", &[p("camera", T::Camera)], T::Scene, |a| scene(a.scene()?.camera(a.camera()?))),
-    method(T::Scene, "max_steps", &[p("steps", T::Int)], T::Scene, |a| scene(a.scene()?.max_steps(a.int()?))),
-    method(T::Scene, "max_distance", &[p("distance", T::Const)], T::Scene, |a| {
+    meth(T::Scene, "light", &[p("light", T::Light)], T::Scene, |a| scene(a.scene()?.light(a.light()?))),
+    meth(T::Scene, "camera", &[p("camera", T::Camera)], T::Scene, |a| scene(a.scene()?.camera(a.camera()?))),
+    meth(T::Scene, "max_steps", &[p("steps", T::Int)], T::Scene, |a| scene(a.scene()?.max_steps(a.int()?))),
+    meth(T::Scene, "max_distance", &[p("distance", T::Const)], T::Scene, |a| {
         scene(a.scene()?.max_distance(a.konst()?))
     }),
-    method(T::Scene, "epsilon", &[p("epsilon", T::Const)], T::Scene, |a| scene(a.scene()?.epsilon(a.konst()?))),
-    method(T::Scene, "pixel_epsilon", &[p("pixels", T::Const)], T::Scene, |a| {
+    meth(T::Scene, "epsilon", &[p("epsilon", T::Const)], T::Scene, |a| scene(a.scene()?.epsilon(a.konst()?))),
+    meth(T::Scene, "pixel_epsilon", &[p("pixels", T::Const)], T::Scene, |a| {
         scene(a.scene()?.pixel_epsilon(a.konst()?))
     }),
-    method(T::Scene, "no_shadows", &[], T::Scene, |a| scene(a.scene()?.no_shadows())),
-    method(T::Scene, "hard_shadows", &[], T::Scene, |a| scene(a.scene()?.hard_shadows())),
-    method(T::Scene, "soft_shadows", &[p("k", T::Const)], T::Scene, |a| scene(a.scene()?.soft_shadows(a.konst()?))),
-    method(T::Scene, "ambient_occlusion", &[p("strength", T::Const)], T::Scene, |a| {
+    meth(T::Scene, "no_shadows", &[], T::Scene, |a| scene(a.scene()?.no_shadows())),
+    meth(T::Scene, "hard_shadows", &[], T::Scene, |a| scene(a.scene()?.hard_shadows())),
+    meth(T::Scene, "soft_shadows", &[p("k", T::Const)], T::Scene, |a| scene(a.scene()?.soft_shadows(a.konst()?))),
+    meth(T::Scene, "ambient_occlusion", &[p("strength", T::Const)], T::Scene, |a| {
         scene(a.scene()?.ambient_occlusion(a.konst()?))
     }),
-    method(T::Scene, "glow", &[p("color", T::ConstColor)], T::Scene, |a| scene(a.scene()?.glow(a.color()?))),
-    method(T::Scene, "fog", &[p("color", T::ConstColor), p("density", T::Const)], T::Scene, |a| {
+    meth(T::Scene, "glow", &[p("color", T::ConstColor)], T::Scene, |a| scene(a.scene()?.glow(a.color()?))),
+    meth(T::Scene, "fog", &[p("color", T::ConstColor), p("density", T::Const)], T::Scene, |a| {
         scene(a.scene()?.fog(a.color()?, a.konst()?))
     }),
-    method(T::Scene, "background", &[p("color", T::ConstColor)], T::Scene, |a| {
-        scene(a.scene()?.background(a.color()?))
-    }),
-    method(T::Scene, "gamma", &[p("gamma", T::Const)], T::Scene, |a| scene(a.scene()?.gamma(a.konst()?))),
+    meth(T::Scene, "background", &[p("color", T::ConstColor)], T::Scene, |a| scene(a.scene()?.background(a.color()?))),
+    meth(T::Scene, "gamma", &[p("gamma", T::Const)], T::Scene, |a| scene(a.scene()?.gamma(a.konst()?))),
 ];
 
 /// Names that stand alone (not called).
@@ -498,8 +494,8 @@ fn distance(a: &str, b: &str) -> usize {
     for (i, row) in d.iter_mut().enumerate() {
         row[0] = i;
     }
-    for j in 0..=b.len() {
-        d[0][j] = j;
+    for (j, cell) in d[0].iter_mut().enumerate() {
+        *cell = j;
     }
     for i in 1..=a.len() {
         for j in 1..=b.len() {

@@ -281,7 +281,7 @@ impl<F: Real> View<F> {
                 let mut occ = F::zero();
                 let mut weight = F::one();
                 for i in 0..AO_SAMPLES {
-                    let h = c::<F>(AO_START) + c::<F>(AO_SPAN) * c::<F>(i as f64) / c::<F>(4.0);
+                    let h = c::<F>(AO_START) + c::<F>(AO_SPAN) * c::<F>(i as f64) / c::<F>((AO_SAMPLES - 1) as f64);
                     occ = occ + (h - de(p + n * h)) * weight;
                     weight = weight * c::<F>(0.95);
                 }
@@ -306,7 +306,7 @@ impl<F: Real> View<F> {
             if self.specular {
                 let h = normalize(l - rd);
                 let highlight = dot(n, h).max(F::zero()).powf(m.shininess);
-                colour = colour + radiance * (m.specular * highlight * shadow);
+                colour = colour + radiance * (m.specular * highlight) * shadow;
             }
         }
         if let Some((fog_colour, density)) = self.fog {
