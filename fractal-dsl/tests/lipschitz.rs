@@ -140,11 +140,7 @@ fn mandelbulb_escapes(p: [f64; 3], power: f64, iterations: u32, bailout: f64) ->
         let phi = z[1].atan2(z[0]) * power;
         dr = power * r.powf(power - 1.0) * dr + 1.0;
         let zr = r.powf(power);
-        z = [
-            theta.sin() * phi.cos() * zr + p[0],
-            theta.sin() * phi.sin() * zr + p[1],
-            theta.cos() * zr + p[2],
-        ];
+        z = [theta.sin() * phi.cos() * zr + p[0], theta.sin() * phi.sin() * zr + p[1], theta.cos() * zr + p[2]];
         r = (z[0] * z[0] + z[1] * z[1] + z[2] * z[2]).sqrt();
     }
     r > escape
@@ -209,11 +205,17 @@ fn check_family(name: &str, variants: Vec<(String, Fractal, f64, Box<dyn Fn([f64
     let mut worst = 0.0f64;
     for (i, (label, fractal, half, exterior)) in variants.into_iter().enumerate() {
         let scaled = measured_ratio(fractal, half, &*exterior, 200_000, 0x5eed + i as u64);
-        eprintln!("{name} {label}: Lipschitz ratio of the raw estimator {:.3}, scaled by {step}: {scaled:.3}", scaled / step);
+        eprintln!(
+            "{name} {label}: Lipschitz ratio of the raw estimator {:.3}, scaled by {step}: {scaled:.3}",
+            scaled / step
+        );
         worst = worst.max(scaled);
     }
     eprintln!("{name}: step factor {step}, largest scaled ratio {worst:.3}");
-    assert!(worst <= 1.0, "{name}: step factor {step} lets the estimate fall faster than the distance ({worst:.3} > 1)");
+    assert!(
+        worst <= 1.0,
+        "{name}: step factor {step} lets the estimate fall faster than the distance ({worst:.3} > 1)"
+    );
 }
 
 #[test]
@@ -238,9 +240,13 @@ fn mandelbulb_step_factor_keeps_the_estimate_within_the_lipschitz_bound() {
 
     // Other powers share the family's factor; their ratios are printed for the record (low powers need a smaller one).
     for power in [3.0, 4.0, 5.5, 16.0] {
-        let ratio = measured_ratio(mandelbulb(power), 2f64.powf(1.0 / (power - 1.0)) + 0.05, &|p| {
-            mandelbulb_escapes(p, power, 8, 2.0)
-        }, 50_000, 7);
+        let ratio = measured_ratio(
+            mandelbulb(power),
+            2f64.powf(1.0 / (power - 1.0)) + 0.05,
+            &|p| mandelbulb_escapes(p, power, 8, 2.0),
+            50_000,
+            7,
+        );
         eprintln!("mandelbulb power {power}: raw ratio {:.3} (not asserted)", ratio / mandelbulb(8).kind.step_factor());
     }
 }
@@ -248,7 +254,8 @@ fn mandelbulb_step_factor_keeps_the_estimate_within_the_lipschitz_bound() {
 #[test]
 fn julia_step_factor_keeps_the_estimate_within_the_lipschitz_bound() {
     let mut variants: Vec<(String, Fractal, f64, Box<dyn Fn([f64; 3]) -> bool>)> = Vec::new();
-    for (c, iterations, bailout) in [([-0.2, 0.6, 0.2, 0.0], 11, 4.0), ([-0.4, 0.6, 0.0, 0.0], 11, 4.0), ([-0.2, 0.6, 0.2, 0.0], 6, 16.0)]
+    for (c, iterations, bailout) in
+        [([-0.2, 0.6, 0.2, 0.0], 11, 4.0), ([-0.4, 0.6, 0.0, 0.0], 11, 4.0), ([-0.2, 0.6, 0.2, 0.0], 6, 16.0)]
     {
         variants.push((
             format!("c = {c:?}, {iterations} iterations, bailout {bailout}"),

@@ -51,7 +51,9 @@ fn is_root() -> bool {
 
 fn install() {
     if Command::new("dpkg-query").arg("--version").output().is_err() {
-        println!("xtask: not a Debian system; install pocl, lavapipe (mesa Vulkan), Xvfb, spirv-tools and glslang yourself");
+        println!(
+            "xtask: not a Debian system; install pocl, lavapipe (mesa Vulkan), Xvfb, spirv-tools and glslang yourself"
+        );
         return;
     }
     let missing = missing_packages();

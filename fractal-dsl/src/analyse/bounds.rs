@@ -84,9 +84,7 @@ impl Aabb {
         Aabb { min: [0, 1, 2].map(|i| a[i].min(b[i])), max: [0, 1, 2].map(|i| a[i].max(b[i])) }
     }
     pub fn corners(&self) -> [[f64; 3]; 8] {
-        std::array::from_fn(|k| {
-            [0, 1, 2].map(|i| if k >> i & 1 == 0 { self.min[i] } else { self.max[i] })
-        })
+        std::array::from_fn(|k| [0, 1, 2].map(|i| if k >> i & 1 == 0 { self.min[i] } else { self.max[i] }))
     }
     /// The box of a set of points (`None` for none).
     pub fn of_points(points: impl IntoIterator<Item = [f64; 3]>) -> Option<Aabb> {

@@ -1,9 +1,10 @@
 //! Interval arithmetic over expressions: the range a value can take for any time t ≥ 0 and any parameter value
 //! within its declared range. Bounds use it so an animated radius is bounded by its largest value.
 //!
-//! Every operation is conservative: the true value of the expression lies in the interval for every time and every
+//! Every operation is conservative: the value of the expression lies in the interval for every time and every
 //! parameter setting. Where an operation can produce NaN or has no useful limit (division by an interval containing
-//! zero, the square root of a possibly negative value), the answer is [`Interval::ENTIRE`].
+//! zero, the square root of a possibly negative value, a fractional power of a possibly negative base), the answer is
+//! [`Interval::ENTIRE`]; NaN itself is no value, so operations after it (`abs`, `max`) may narrow again.
 
 use crate::ir::{BinOp, Expr, Func};
 
@@ -82,7 +83,10 @@ impl Interval {
     }
     pub fn mul(self, o: Interval) -> Interval {
         let ends = [mul_end(self.lo, o.lo), mul_end(self.lo, o.hi), mul_end(self.hi, o.lo), mul_end(self.hi, o.hi)];
-        Interval::new(ends.iter().copied().fold(f64::INFINITY, f64::min), ends.iter().copied().fold(-f64::INFINITY, f64::max))
+        Interval::new(
+            ends.iter().copied().fold(f64::INFINITY, f64::min),
+            ends.iter().copied().fold(-f64::INFINITY, f64::max),
+        )
     }
     pub fn div(self, o: Interval) -> Interval {
         if o.contains(0.0) {
@@ -115,22 +119,26 @@ impl Interval {
         self.add(b.sub(self).mul(t))
     }
     pub fn sin(self) -> Interval {
-        use std::f64::consts::{FRAC_PI_2, TAU};
+        use std::f64::consts::FRAC_PI_2;
+        self.periodic(f64::sin, FRAC_PI_2, -FRAC_PI_2)
+    }
+    pub fn cos(self) -> Interval {
+        use std::f64::consts::PI;
+        self.periodic(f64::cos, 0.0, PI)
+    }
+    /// A 2π-periodic function with its peaks at `peak` + 2kπ and troughs at `trough` + 2kπ, monotone in between.
+    fn periodic(self, f: fn(f64) -> f64, peak: f64, trough: f64) -> Interval {
+        use std::f64::consts::TAU;
         if !self.is_finite() || self.width() >= TAU {
             return Interval::new(-1.0, 1.0);
         }
-        // An extremum is inside when some peak (π/2 + 2kπ) or trough (−π/2 + 2kπ) lies between the ends.
-        let has = |offset: f64| {
-            let k = ((self.lo - offset) / TAU).ceil();
-            offset + k * TAU <= self.hi
-        };
-        let (a, b) = (self.lo.sin(), self.hi.sin());
-        let hi = if has(FRAC_PI_2) { 1.0 } else { a.max(b) };
-        let lo = if has(-FRAC_PI_2) { -1.0 } else { a.min(b) };
-        Interval::new(lo, hi)
-    }
-    pub fn cos(self) -> Interval {
-        self.add(Interval::point(std::f64::consts::FRAC_PI_2)).sin()
+        let has = |at: f64| at + ((self.lo - at) / TAU).ceil() * TAU <= self.hi;
+        let (a, b) = (f(self.lo), f(self.hi));
+        let hi = if has(peak) { 1.0 } else { a.max(b) };
+        let lo = if has(trough) { -1.0 } else { a.min(b) };
+        // The extremum test itself rounds: widen by a few ulps so a value computed at a point near a turn stays inside.
+        Interval::new(lo - 4.0 * f64::EPSILON, hi + 4.0 * f64::EPSILON)
+            .clamp(Interval::point(-1.0), Interval::point(1.0))
     }
     /// `powf(self, e)`. Exact cases: a constant integer exponent (any base), a constant exponent with a non-negative
     /// base, and a varying exponent with a positive base (through exp(e·ln x)); anything that can be NaN is
@@ -169,7 +177,8 @@ impl Interval {
         }
         let log = Interval::new(self.lo.ln(), self.hi.ln());
         let p = e.mul(log);
-        Interval::new(p.lo.exp(), p.hi.exp())
+        // exp(e·ln x) and powf(x, e) round differently: widen by a relative margin far above either's error.
+        Interval::new(p.lo.exp() * (1.0 - 1e-12), p.hi.exp() * (1.0 + 1e-12))
     }
 }
 

@@ -5,8 +5,8 @@
 
 pub mod opencl;
 pub mod render;
-pub mod syntax;
 pub mod rust;
+pub mod syntax;
 pub mod wgsl;
 
 use std::fmt;

@@ -180,12 +180,32 @@ enum Leaf {
 #[derive(Clone, Debug)]
 enum Estimator {
     /// Power 8 by the trig-free polynomial form.
-    Mandelbulb8 { iterations: u32, bailout: Num },
-    Mandelbulb { power: Num, iterations: u32, bailout: Num },
-    Menger { levels: u32 },
-    Sierpinski { levels: u32 },
-    Julia { c: [Num; 4], iterations: u32, bailout: Num },
-    Mandelbox { scale: Num, iterations: u32, min_radius: Num, fold_limit: Num },
+    Mandelbulb8 {
+        iterations: u32,
+        bailout: Num,
+    },
+    Mandelbulb {
+        power: Num,
+        iterations: u32,
+        bailout: Num,
+    },
+    Menger {
+        levels: u32,
+    },
+    Sierpinski {
+        levels: u32,
+    },
+    Julia {
+        c: [Num; 4],
+        iterations: u32,
+        bailout: Num,
+    },
+    Mandelbox {
+        scale: Num,
+        iterations: u32,
+        min_radius: Num,
+        fold_limit: Num,
+    },
 }
 
 /// A union child's guard box (the child is skipped while the box is no nearer than the nearest distance so far).
@@ -198,7 +218,10 @@ struct Guard {
 #[derive(Clone, Debug)]
 enum Op {
     Leaf(Leaf),
-    Fractal { estimator: Estimator, step: f64 },
+    Fractal {
+        estimator: Estimator,
+        step: f64,
+    },
     /// A union or intersection of nothing: no geometry.
     Empty,
     /// Children in evaluation order, each with its guard (never on the first).
@@ -210,9 +233,18 @@ enum Op {
     SmoothSubtract(Box<Op>, Box<Op>, Num),
     Translate(Box<Op>, Num3),
     /// Unit axis, its outer product k·kᵀ and cross-product matrix [k]×, and the angle.
-    Rotate { child: Box<Op>, outer: [[f64; 3]; 3], cross: [[f64; 3]; 3], angle: Num },
+    Rotate {
+        child: Box<Op>,
+        outer: [[f64; 3]; 3],
+        cross: [[f64; 3]; 3],
+        angle: Num,
+    },
     Scale(Box<Op>, Num),
-    Repeat { child: Box<Op>, period: [Option<Num>; 3], count: Option<[u32; 3]> },
+    Repeat {
+        child: Box<Op>,
+        period: [Option<Num>; 3],
+        count: Option<[u32; 3]>,
+    },
     Twist(Box<Op>, Num),
     Bend(Box<Op>, Num),
     Round(Box<Op>, Num),
@@ -246,8 +278,8 @@ impl Compiler<'_> {
                     .into_iter()
                     .enumerate()
                     .map(|(pos, i)| {
-                        let guard = guarded_bound(children, pos)
-                            .map(|b| Guard { center: b.center(), half: b.half_extents() });
+                        let guard =
+                            guarded_bound(children, pos).map(|b| Guard { center: b.center(), half: b.half_extents() });
                         (self.node(&children[i]), guard)
                     })
                     .collect(),
@@ -292,7 +324,9 @@ impl Compiler<'_> {
             Prim::Torus { major, minor } => Leaf::Torus(self.num(major), self.num(minor)),
             Prim::Capsule { a, b, radius } => Leaf::Capsule(self.num3(a), self.num3(b), self.num(radius)),
             Prim::Cylinder { radius, half_height } => Leaf::Cylinder(self.num(radius), self.num(half_height)),
-            Prim::Cone { half_height, bottom, top } => Leaf::Cone(self.num(half_height), self.num(bottom), self.num(top)),
+            Prim::Cone { half_height, bottom, top } => {
+                Leaf::Cone(self.num(half_height), self.num(bottom), self.num(top))
+            }
             Prim::Plane { normal, offset } => Leaf::Plane(self.num3(normal), self.num(offset)),
             Prim::Octahedron { size } => Leaf::Octahedron(self.num(size)),
             Prim::Ellipsoid { radii } => Leaf::Ellipsoid(self.num3(radii)),

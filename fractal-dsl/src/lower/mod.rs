@@ -327,8 +327,7 @@ impl Lower<'_> {
                     } else {
                         (Helper::SmoothMax, [s.distance, acc.distance])
                     };
-                    let distance =
-                        self.call(blend, vec![Arg::Val(acc.distance), Arg::Val(s.distance), Arg::Val(kv)]);
+                    let distance = self.call(blend, vec![Arg::Val(acc.distance), Arg::Val(s.distance), Arg::Val(kv)]);
                     let fields = match (acc.fields, s.fields) {
                         (Some(a), Some(f)) => {
                             let w = self.call(

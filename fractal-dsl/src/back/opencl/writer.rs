@@ -153,12 +153,16 @@ impl Writer<'_> {
             Entry::Render => "render kernel",
             Entry::Probe => "probe kernel",
         };
-        let _ = writeln!(self.out, "// fractal: OpenCL C {what}, generated from a scene description. Edit the scene, not this file.\n");
+        let _ = writeln!(
+            self.out,
+            "// fractal: OpenCL C {what}, generated from a scene description. Edit the scene, not this file.\n"
+        );
     }
 
     fn structs(&mut self) {
         let layout = self.p.layout();
-        self.out.push_str("typedef struct {\n    float4 origin;\n    float4 right;\n    float4 up;\n    float4 forward;\n");
+        self.out
+            .push_str("typedef struct {\n    float4 origin;\n    float4 right;\n    float4 up;\n    float4 forward;\n");
         let _ = writeln!(self.out, "    float4 lights[{}];", 2 * layout.lights);
         if layout.params > 0 {
             let _ = writeln!(self.out, "    float4 params[{}];", layout.param_slots());
@@ -199,7 +203,12 @@ impl Writer<'_> {
     fn normal(&mut self) {
         let fp = Self::frame_param(self.p.distance_reads_frame);
         let _ = writeln!(self.out, "float3 scene_normal(float3 p, float e{fp}) {{");
-        let k = ["(float3)(1.0f, -1.0f, -1.0f)", "(float3)(-1.0f, -1.0f, 1.0f)", "(float3)(-1.0f, 1.0f, -1.0f)", "(float3)(1.0f, 1.0f, 1.0f)"];
+        let k = [
+            "(float3)(1.0f, -1.0f, -1.0f)",
+            "(float3)(-1.0f, -1.0f, 1.0f)",
+            "(float3)(-1.0f, 1.0f, -1.0f)",
+            "(float3)(1.0f, 1.0f, 1.0f)",
+        ];
         for (i, ki) in k.iter().enumerate() {
             self.line(Level(1), &format!("const float3 k{i} = {ki};"));
         }
@@ -218,7 +227,12 @@ impl Writer<'_> {
         self.line(Level(1), &format!("for (int i = 0; i < {AO_SAMPLES}; i++) {{"));
         self.line(
             Level(2),
-            &format!("const float h = {} + {} * (float)i / {};", lit(AO_START), lit(AO_SPAN), lit((AO_SAMPLES - 1) as f64)),
+            &format!(
+                "const float h = {} + {} * (float)i / {};",
+                lit(AO_START),
+                lit(AO_SPAN),
+                lit((AO_SAMPLES - 1) as f64)
+            ),
         );
         self.line(Level(2), &format!("occ += (h - {}) * weight;", self.de("p + n * h")));
         self.line(Level(2), "weight *= 0.95f;");
@@ -286,7 +300,10 @@ impl Writer<'_> {
         if let Some(b) = self.p.bound {
             self.line(l1, "{");
             self.line(l2, "// Clip the ray to the scene's bound: no marching through empty space.");
-            self.line(l2, &format!("const float3 safe = copysign(fmax(fabs(rd), (float3)({})), rd);", lit(MIN_DIRECTION)));
+            self.line(
+                l2,
+                &format!("const float3 safe = copysign(fmax(fabs(rd), (float3)({})), rd);", lit(MIN_DIRECTION)),
+            );
             self.line(l2, &format!("const float3 t0 = ({} - ro) / safe;", vec3_lit(b.min)));
             self.line(l2, &format!("const float3 t1 = ({} - ro) / safe;", vec3_lit(b.max)));
             self.line(l2, "const float3 tn = fmin(t0, t1);");
@@ -343,7 +360,10 @@ impl Writer<'_> {
                     self.line(l3, &format!("const float3 to_light = frame->lights[{dir_slot}].xyz - p;"));
                     self.line(l3, "const float limit = length(to_light);");
                     self.line(l3, "const float3 l = to_light / limit;");
-                    self.line(l3, &format!("const float3 radiance = frame->lights[{color_slot}].xyz / (limit * limit);"));
+                    self.line(
+                        l3,
+                        &format!("const float3 radiance = frame->lights[{color_slot}].xyz / (limit * limit);"),
+                    );
                 }
             }
             self.line(l3, "const float ndl = fmax(dot(n, l), 0.0f);");
@@ -359,7 +379,10 @@ impl Writer<'_> {
             self.line(l3, &format!("col += m.albedo * (m.diffuse * ndl) * radiance{shade};"));
             if self.p.specular {
                 self.line(l3, "const float3 hv = normalize(l - rd);");
-                self.line(l3, &format!("col += (m.specular * pow(fmax(dot(n, hv), 0.0f), m.shininess)) * radiance{shade};"));
+                self.line(
+                    l3,
+                    &format!("col += (m.specular * pow(fmax(dot(n, hv), 0.0f), m.shininess)) * radiance{shade};"),
+                );
             }
             self.line(l2, "}");
         }

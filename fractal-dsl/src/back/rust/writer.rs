@@ -64,7 +64,8 @@ impl Syntax for RustSyntax {
         format!("length({v})")
     }
     fn call(&self, h: Helper, args: &[String]) -> String {
-        let args = if h == Helper::DeJulia { group_julia(args, |c| format!("[{}]", c.join(", "))) } else { args.to_vec() };
+        let args =
+            if h == Helper::DeJulia { group_julia(args, |c| format!("[{}]", c.join(", "))) } else { args.to_vec() };
         format!("sdf::{}({})", h.name(), args.join(", "))
     }
     fn select(&self, cond: &str, if_true: &str, if_false: &str) -> String {

@@ -133,7 +133,10 @@ impl Writer<'_> {
             Entry::Render => "render kernel",
             Entry::Probe => "probe kernel",
         };
-        let _ = writeln!(self.out, "// fractal: WGSL {what}, generated from a scene description. Edit the scene, not this file.\n");
+        let _ = writeln!(
+            self.out,
+            "// fractal: WGSL {what}, generated from a scene description. Edit the scene, not this file.\n"
+        );
     }
 
     fn structs(&mut self, entry: Entry) {
@@ -337,7 +340,10 @@ impl Writer<'_> {
             self.line(l3, &format!("col += m.albedo * (m.diffuse * ndl) * radiance{shade};"));
             if self.p.specular {
                 self.line(l3, "let hv = normalize(l - rd);");
-                self.line(l3, &format!("col += (m.specular * pow(max(dot(n, hv), 0.0), m.shininess)) * radiance{shade};"));
+                self.line(
+                    l3,
+                    &format!("col += (m.specular * pow(max(dot(n, hv), 0.0), m.shininess)) * radiance{shade};"),
+                );
             }
             self.line(l2, "}");
         }

@@ -1,0 +1,105 @@
+//! Every built-in scene rendered at 96×96 by each backend — CPU (the native evaluator), wgpu (the WGSL kernel) and
+//! OpenCL (the OpenCL C kernel, precise and fast-math) — must draw the same picture: hit masks agree on at least 99 %
+//! of pixels and colours agree within a stated tolerance. This also proves every render kernel builds on each driver.
+//!
+//! Tolerance: a pixel "agrees" when every channel is within 8/255 of the CPU image. The kernels run the same algorithm
+//! in f32, but GPU built-ins (sqrt, pow, normalize, sin) may differ by a few ulps; near a silhouette or a shadow edge
+//! that can flip a hit or a shadow sample, which changes the pixel completely — such flips are what the 1 % allows.
+
+use fractal::runtime::{CpuRenderer, Frame, Image, KernelSources, ParamValues, Pose, RenderJob, Renderer};
+use fractal::scenes;
+
+const SIZE: u32 = 96;
+const CHANNEL_TOLERANCE: u8 = 8;
+/// Of pixels, the share allowed to differ in hit/miss, and the share allowed to differ in colour beyond tolerance.
+const MASK_AGREEMENT: f64 = 0.99;
+const COLOUR_AGREEMENT: f64 = 0.97;
+
+fn require_gpu() -> bool {
+    std::env::var("FRACTAL_REQUIRE_GPU_BACKENDS").is_ok_and(|v| v == "1")
+}
+
+fn frame_of(scene: &fractal::dsl::Scene) -> Frame {
+    let pose = Pose::from_camera(&scene.camera, 0.0, &|p| p.default).expect("built-in cameras are valid");
+    Frame::new(scene, &pose, 0.0, SIZE, SIZE, &ParamValues::defaults(scene)).expect("96x96 is a valid size")
+}
+
+fn background(scene: &fractal::dsl::Scene) -> [u8; 4] {
+    let b = scene.settings.background;
+    // The kernels' output transform: clamp, gamma 2 (sqrt) for every built-in scene, round.
+    assert_eq!(scene.settings.gamma, 2.0);
+    let c = |v: f64| (v.clamp(0.0, 1.0).sqrt() as f32 * 255.0 + 0.5) as u8;
+    [c(b[0]), c(b[1]), c(b[2]), 255]
+}
+
+struct Comparison {
+    mask: f64,
+    colour: f64,
+    hits: usize,
+}
+
+fn compare(reference: &Image, other: &Image, bg: [u8; 4]) -> Comparison {
+    let (mut mask_same, mut colour_same, mut hits) = (0usize, 0usize, 0usize);
+    let n = (reference.width * reference.height) as usize;
+    for y in 0..reference.height {
+        for x in 0..reference.width {
+            let (a, b) = (reference.rgba(x, y).unwrap(), other.rgba(x, y).unwrap());
+            let (hit_a, hit_b) = (a != bg, b != bg);
+            hits += hit_a as usize;
+            mask_same += (hit_a == hit_b) as usize;
+            colour_same += a.iter().zip(b).all(|(p, q)| p.abs_diff(q) <= CHANNEL_TOLERANCE) as usize;
+        }
+    }
+    Comparison { mask: mask_same as f64 / n as f64, colour: colour_same as f64 / n as f64, hits }
+}
+
+fn check_backend(label: &str, mut renderer: impl Renderer, kernels: impl Fn(&str) -> KernelSources<'static>) {
+    let mut cpu = CpuRenderer::new();
+    for (name, compiled) in scenes::ALL {
+        let scene = compiled.scene();
+        let frame = frame_of(scene);
+        let native = compiled.native();
+        let reference = cpu
+            .render(&RenderJob::new(KernelSources::default().with_cpu(&native, scene), &frame))
+            .expect("the CPU renderer renders every built-in scene");
+        let image = renderer
+            .render(&RenderJob::new(kernels(name), &frame))
+            .unwrap_or_else(|e| panic!("{label} failed on {name}: {e}"));
+        let c = compare(&reference, &image, background(scene));
+        eprintln!(
+            "{name:>22} {label:>14}: hit mask {:.2} %, colour within {CHANNEL_TOLERANCE}/255 {:.2} % ({} hit pixels)",
+            100.0 * c.mask,
+            100.0 * c.colour,
+            c.hits
+        );
+        assert!(c.hits > 0, "{name}: the reference image hits nothing");
+        assert!(c.mask >= MASK_AGREEMENT, "{name} on {label}: hit masks agree on {:.2} % only", 100.0 * c.mask);
+        assert!(c.colour >= COLOUR_AGREEMENT, "{name} on {label}: colours agree on {:.2} % only", 100.0 * c.colour);
+    }
+}
+
+fn compiled(name: &str) -> &'static fractal::dsl::CompiledScene {
+    scenes::by_name(name).expect("a built-in scene")
+}
+
+#[test]
+fn wgpu_draws_what_the_cpu_draws() {
+    match fractal::runtime::WgpuRenderer::new() {
+        Ok(r) => check_backend("wgpu", r, |name| KernelSources::default().with_wgsl(compiled(name).wgsl())),
+        Err(e) if !require_gpu() => eprintln!("skipped: no wgpu adapter ({e})"),
+        Err(e) => panic!("wgpu is required (FRACTAL_REQUIRE_GPU_BACKENDS=1) but unavailable: {e}"),
+    }
+}
+
+#[cfg(feature = "opencl")]
+#[test]
+fn opencl_draws_what_the_cpu_draws() {
+    for precise in [true, false] {
+        let label = if precise { "opencl precise" } else { "opencl fast" };
+        match fractal::runtime::OpenClRenderer::new(precise) {
+            Ok(r) => check_backend(label, r, |name| KernelSources::default().with_opencl(compiled(name).opencl())),
+            Err(e) if !require_gpu() => eprintln!("skipped: no OpenCL device ({e})"),
+            Err(e) => panic!("OpenCL is required (FRACTAL_REQUIRE_GPU_BACKENDS=1) but unavailable: {e}"),
+        }
+    }
+}
