@@ -39,13 +39,17 @@
 //! ```
 
 pub mod backend;
+pub mod bench;
 pub mod camera;
+pub mod cli;
 pub mod error;
 pub mod export;
 pub mod frame;
 pub mod image;
+pub mod output;
 pub mod renderer;
 pub mod select;
+pub mod viewer;
 
 pub use backend::cpu::{render_scene, CpuRenderer};
 #[cfg(feature = "opencl")]

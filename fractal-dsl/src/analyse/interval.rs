@@ -4,7 +4,8 @@
 //! Every operation is conservative: the value of the expression lies in the interval for every time and every
 //! parameter setting. Where an operation can produce NaN or has no useful limit (division by an interval containing
 //! zero, the square root of a possibly negative value, a fractional power of a possibly negative base), the answer is
-//! [`Interval::ENTIRE`]; NaN itself is no value, so operations after it (`abs`, `max`) may narrow again.
+//! [`Interval::ENTIRE`]. NaN itself is no value: an expression that produces one somewhere (and then perhaps loses it in
+//! a `min`, which each shading language treats differently) is outside what a range promises.
 
 use crate::ir::{BinOp, Expr, Func};
 
@@ -92,7 +93,12 @@ impl Interval {
         if o.contains(0.0) {
             return Interval::ENTIRE;
         }
-        self.mul(Interval::new(1.0 / o.hi, 1.0 / o.lo))
+        // Quotients of the ends directly (not times a reciprocal, which rounds twice): division rounds monotonically.
+        let ends = [self.lo / o.lo, self.lo / o.hi, self.hi / o.lo, self.hi / o.hi];
+        if ends.iter().any(|v| v.is_nan()) {
+            return Interval::ENTIRE;
+        }
+        Interval::new(ends.iter().copied().fold(f64::INFINITY, f64::min), ends.iter().copied().fold(-f64::INFINITY, f64::max))
     }
     pub fn abs(self) -> Interval {
         Interval::new(self.min_abs(), self.max_abs())

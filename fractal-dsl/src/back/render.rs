@@ -4,7 +4,8 @@
 //! Per pixel (x, y) of a w×h image, with the [`super::FrameLayout`] uniforms:
 //! 1. **Ray.** u = (2(x + 0.5) − w)/h, v = −(2(y + 0.5) − h)/h; ro = origin; rd = normalize(forward + u·right + v·up).
 //! 2. **Clip to the scene bound** (only when the scene is bounded): slab test against the scene's AABB, with each rd
-//!    component of magnitude below [`MIN_DIRECTION`] replaced by ±MIN_DIRECTION (keeps fast-math free of Inf);
+//!    component of magnitude below [`MIN_DIRECTION`] replaced by ±MIN_DIRECTION, + for components ≥ 0 including −0
+//!    (keeps fast-math free of Inf);
 //!    t_near = max(entry, 0), t_far = min(exit, max_distance); a ray that misses (t_near > t_far) is background.
 //!    Unbounded scenes march from 0 to max_distance.
 //! 3. **March.** t = t_near; for step in 0..max_steps: p = ro + rd·t; d = scene_de(p);
@@ -12,13 +13,13 @@
 //!    precision than t has; hit if d < eps; otherwise (glow only) glow += 1/(1 + [`GLOW_FALLOFF`]·d²); t += d;
 //!    stop when t > t_far. Because d ≥ eps ≥ T_SPACING·t, every step moves t by at least 4 ulps: no stalls far away.
 //! 4. **Hit shading.** p = ro + rd·t; n = normalize(Σ k_i·scene_de(p + k_i·eps)) over the tetrahedron
-//!    k = (1,−1,−1), (−1,−1,1), (−1,1,−1), (1,1,1); m = scene_material(p).
+//!    k = (1,−1,−1), (−1,−1,1), (−1,1,−1), (1,1,1) (a zero sum gives the normal +y); m = scene_sample(p).
 //!    Ambient occlusion (when enabled, strength s): occ = Σ_{i<5} (h_i − scene_de(p + n·h_i))·0.95^i with
 //!    h_i = [`AO_START`] + [`AO_SPAN`]·i/4; ao = clamp(1 − 3·s·occ, 0, 1); otherwise ao = 1.
 //!    colour = albedo·ambient·ao; then per light: L and radiance (directional: the slot's unit direction and colour,
 //!    distance limit max_distance; point: L = normalize(pos − p), radiance = colour/|pos − p|², limit |pos − p|);
 //!    ndl = max(dot(n, L), 0); shadow = 1, or (when shadows are on and ndl > 0) a march from p + n·2·eps towards the
-//!    light up to the limit, max_steps steps: hard: 0 at the first d < eps; soft(k): res = min(res, k·d/t) with t
+//!    light up to the limit, max_steps steps: hard: t from 0, 0 at the first d < eps; soft(k): res = min(res, k·d/t) with t
 //!    starting at 2·eps, 0 at d < eps, then shadow = res²(3 − 2·res); colour += albedo·diffuse·ndl·radiance·shadow;
 //!    specular (only if some material has specular ≠ 0): h = normalize(L − rd),
 //!    colour += specular·max(dot(n, h), 0)^shininess·radiance·shadow.

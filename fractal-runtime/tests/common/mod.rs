@@ -1,7 +1,7 @@
-//! Shared helpers of the runtime's integration tests: fixture kernels, frames for them, and the rule for backends
+//! What the runtime's integration tests share: fixture kernels, frames for them, and the rule for backends
 //! that are missing (skip with a note, or fail when FRACTAL_REQUIRE_GPU_BACKENDS=1).
 
-// Each test binary uses its own subset of these helpers.
+// Each test binary uses its own subset of these functions.
 #![allow(dead_code)]
 
 use std::path::Path;

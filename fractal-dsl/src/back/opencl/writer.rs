@@ -300,10 +300,8 @@ impl Writer<'_> {
         if let Some(b) = self.p.bound {
             self.line(l1, "{");
             self.line(l2, "// Clip the ray to the scene's bound: no marching through empty space.");
-            self.line(
-                l2,
-                &format!("const float3 safe = copysign(fmax(fabs(rd), (float3)({})), rd);", lit(MIN_DIRECTION)),
-            );
+            self.line(l2, &format!("const float3 m = fmax(fabs(rd), (float3)({}));", lit(MIN_DIRECTION)));
+            self.line(l2, "const float3 safe = select(-m, m, rd >= (float3)(0.0f));");
             self.line(l2, &format!("const float3 t0 = ({} - ro) / safe;", vec3_lit(b.min)));
             self.line(l2, &format!("const float3 t1 = ({} - ro) / safe;", vec3_lit(b.max)));
             self.line(l2, "const float3 tn = fmin(t0, t1);");

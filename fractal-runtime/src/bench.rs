@@ -1,0 +1,466 @@
+//! The benchmark behind `fractal bench`: renders a fixed camera path for N frames (or S seconds) on one backend, times
+//! the kernel and the whole frame separately, measures the error the speed was bought with, and optionally runs the
+//! hand-written baseline kernels on the same device in the same run.
+//!
+//! **Camera.** A scene with a camera path is rendered along its own path: 120 frames per traversal of its keys, the
+//! scene time equal to the path time. A scene with a look-at camera is rendered from an orbit: the camera circles the
+//! vertical axis through its target, at its own distance and height, one turn per 120 frames (3° per frame), while the
+//! scene time advances 1/30 s per frame. With `--baseline` both the scene and the baseline use the scene's own static
+//! camera at time 0, since the baseline kernels have their camera built in.
+//!
+//! **Timing.** Frames are timed by the bench's own dispatchers ([`timer`]), which do per frame what the renderers do
+//! (upload the frame uniforms, dispatch, wait, read the pixels back) and also read the device's clock:
+//! - wgpu: timestamp queries around the compute pass where the adapter supports them, otherwise the wall time from
+//!   submit to the end of the wait (the report says which);
+//! - OpenCL: the kernel's profiling event (start to end);
+//! - CPU: there is no device and no read-back, so the kernel time is the whole frame.
+//!
+//! The frame time is the wall time of the whole frame, read-back included. A first, untimed frame builds the kernel.
+//!
+//! **Error.** Once, untimed, the first frame of the path is rendered again by the same backend at a reduced size
+//! (at most [`ERROR_WIDTH`] pixels wide, same aspect) and compared with the CPU renderer running the f64 interpreter
+//! on the same frame uniforms and the same settings: the fraction of pixels whose hit/miss differs (a pixel is a miss
+//! when it has the background colour; not available when the scene has glow, which tints misses) and the mean
+//! absolute colour difference in 8-bit levels over all pixels and RGB channels.
+
+mod accuracy;
+mod baseline_cpu;
+mod record;
+mod timer;
+
+use std::f64::consts::TAU;
+use std::io::{self, Write};
+use std::path::Path;
+use std::time::Instant;
+
+use fractal_dsl::{CameraPlacement, Scene};
+use glam::{DQuat, DVec3};
+
+use crate::camera::{CameraPath, Pose};
+use crate::error::RenderError;
+use crate::frame::{Frame, ParamValues};
+use crate::renderer::{Backend, DeviceInfo, KernelSources, RenderJob};
+use crate::select::{BackendChoice, RendererOptions};
+
+pub use accuracy::Accuracy;
+pub use record::BenchRecord;
+pub use timer::KernelClock;
+
+/// The hand-written baseline in OpenCL C: kernel `render(__global uint* out, int w, int h)`.
+pub const BASELINE_OPENCL: &str = include_str!("../baseline/mandelbulb.cl");
+/// The hand-written baseline in WGSL: entry `main`, 8×8 workgroups, binding 0 pixels, binding 1 `{w, h}`.
+pub const BASELINE_WGSL: &str = include_str!("../baseline/mandelbulb.wgsl");
+
+/// Frames per traversal of the bench camera path (one orbit turn, or one pass over a scene's path keys).
+pub const PATH_FRAMES: u64 = 120;
+/// Scene time per frame of an orbit: a nominal 30 frames per second.
+pub const ORBIT_FRAME_TIME: f64 = 1.0 / 30.0;
+/// Largest width of the accuracy comparison (the f64 interpreter is slow; 240×135 at 16:9).
+pub const ERROR_WIDTH: u32 = 240;
+
+/// How long to run.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum BenchLength {
+    /// This many timed frames.
+    Frames(u32),
+    /// Timed frames until their frame times add up to this many seconds (at least one).
+    Seconds(f64),
+}
+
+/// Where the camera goes during the bench.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CameraMotion {
+    /// The scene's own camera path.
+    ScenePath,
+    /// An orbit around the look-at target of the scene's camera.
+    Orbit,
+    /// The scene's camera at time 0, every frame (`--baseline`).
+    Static,
+}
+
+impl CameraMotion {
+    pub fn describe(self) -> &'static str {
+        match self {
+            CameraMotion::ScenePath => "the scene's camera path, 120 frames per pass",
+            CameraMotion::Orbit => "orbit around the camera's target, 3 degrees and 1/30 s per frame",
+            CameraMotion::Static => "the scene's static camera at t = 0 (as the baseline)",
+        }
+    }
+    pub fn name(self) -> &'static str {
+        match self {
+            CameraMotion::ScenePath => "scene-path",
+            CameraMotion::Orbit => "orbit",
+            CameraMotion::Static => "static",
+        }
+    }
+}
+
+/// What to benchmark.
+#[derive(Clone, Copy)]
+pub struct BenchSpec<'a> {
+    /// Name for the report (a built-in name or a file name).
+    pub scene_name: &'a str,
+    pub scene: &'a Scene,
+    /// The scene's kernels and CPU evaluator.
+    pub kernels: KernelSources<'a>,
+    pub params: &'a ParamValues,
+    pub width: u32,
+    pub height: u32,
+    pub length: BenchLength,
+    pub backend: BackendChoice,
+    pub options: RendererOptions,
+    /// Also run the hand-written baseline.
+    pub baseline: bool,
+    /// Whether the scene draws what the baseline draws (the built-in `mandelbulb`), so the baseline's hit mask can be
+    /// checked against the scene's f64 reference.
+    pub baseline_comparable: bool,
+}
+
+/// min / median / mean / max of a set of times in milliseconds.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct Stats {
+    pub min: f64,
+    pub median: f64,
+    pub mean: f64,
+    pub max: f64,
+}
+
+impl Stats {
+    /// Statistics of `samples` (which must not be empty; an empty set gives NaN).
+    pub fn of(samples: &[f64]) -> Stats {
+        let mut sorted = samples.to_vec();
+        sorted.sort_by(f64::total_cmp);
+        let n = sorted.len();
+        if n == 0 {
+            return Stats { min: f64::NAN, median: f64::NAN, mean: f64::NAN, max: f64::NAN };
+        }
+        let median = if n % 2 == 1 { sorted[n / 2] } else { 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]) };
+        Stats { min: sorted[0], median, mean: sorted.iter().sum::<f64>() / n as f64, max: sorted[n - 1] }
+    }
+}
+
+/// The timings of one kernel.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Timings {
+    pub kernel_ms: Vec<f64>,
+    pub frame_ms: Vec<f64>,
+    /// The untimed first frame, including the kernel build.
+    pub first_frame_ms: f64,
+}
+
+impl Timings {
+    pub fn kernel(&self) -> Stats {
+        Stats::of(&self.kernel_ms)
+    }
+    pub fn frame(&self) -> Stats {
+        Stats::of(&self.frame_ms)
+    }
+    /// Frames per second from the mean frame time.
+    pub fn fps(&self) -> f64 {
+        1000.0 / self.frame().mean
+    }
+}
+
+/// The baseline's figures and how the scene compares.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BaselineFigures {
+    pub timings: Timings,
+    /// Hit/miss disagreement of the baseline with the scene's f64 reference (only for the baseline's own scene).
+    pub accuracy: Option<Accuracy>,
+}
+
+/// Everything one bench run measured.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BenchReport {
+    pub scene_name: String,
+    pub width: u32,
+    pub height: u32,
+    pub device: DeviceInfo,
+    pub camera: CameraMotion,
+    pub clock: KernelClock,
+    pub options: RendererOptions,
+    pub generated: Timings,
+    pub accuracy: Accuracy,
+    pub baseline: Option<BaselineFigures>,
+    /// Backends skipped by `auto`, and other remarks.
+    pub notes: Vec<String>,
+}
+
+impl BenchReport {
+    /// generated / baseline of the median kernel and median frame times (< 1: the generated kernel is faster).
+    pub fn ratios(&self) -> Option<(f64, f64)> {
+        self.baseline.as_ref().map(|b| {
+            (
+                self.generated.kernel().median / b.timings.kernel().median,
+                self.generated.frame().median / b.timings.frame().median,
+            )
+        })
+    }
+}
+
+/// The camera pose and scene time of bench frame `index`.
+pub fn bench_pose(
+    scene: &Scene,
+    params: &ParamValues,
+    motion: CameraMotion,
+    index: u64,
+) -> Result<(Pose, f64), crate::error::CameraError> {
+    let lookup = |p: &fractal_dsl::ParamDecl| params.lookup(p);
+    let fraction = (index % PATH_FRAMES) as f64 / PATH_FRAMES as f64;
+    match (motion, &scene.camera.placement) {
+        (CameraMotion::ScenePath, CameraPlacement::Path { keys, interpolation, looped }) => {
+            let (first, last) = CameraPath::new(keys, *interpolation, *looped)?.span();
+            let time = first + (last - first) * fraction;
+            Ok((Pose::from_camera(&scene.camera, time, &lookup)?, time))
+        }
+        (CameraMotion::Orbit, CameraPlacement::LookAt { position, target }) => {
+            let time = index as f64 * ORBIT_FRAME_TIME;
+            let position = DVec3::from_array(position.eval(time, &lookup));
+            let target = DVec3::from_array(target.eval(time, &lookup));
+            let offset = DQuat::from_rotation_y(TAU * fraction) * (position - target);
+            Ok((Pose::look_at(target + offset, target, scene.camera.fov_degrees)?, time))
+        }
+        _ => Ok((Pose::from_camera(&scene.camera, 0.0, &lookup)?, 0.0)),
+    }
+}
+
+/// The camera motion a spec gets.
+pub fn motion_for(spec: &BenchSpec) -> CameraMotion {
+    match (&spec.scene.camera.placement, spec.baseline) {
+        (_, true) => CameraMotion::Static,
+        (CameraPlacement::Path { .. }, false) => CameraMotion::ScenePath,
+        (CameraPlacement::LookAt { .. }, false) => CameraMotion::Orbit,
+    }
+}
+
+/// The size of the accuracy comparison for a `width`×`height` bench.
+pub fn error_size(width: u32, height: u32) -> (u32, u32) {
+    if width <= ERROR_WIDTH {
+        return (width, height);
+    }
+    let h = (height as f64 * ERROR_WIDTH as f64 / width as f64).round().max(1.0) as u32;
+    (ERROR_WIDTH, h)
+}
+
+fn frame_at(spec: &BenchSpec, motion: CameraMotion, index: u64, size: (u32, u32)) -> Result<Frame, RenderError> {
+    let (pose, time) = bench_pose(spec.scene, spec.params, motion, index).map_err(crate::error::FrameError::from)?;
+    Ok(Frame::new(spec.scene, &pose, time, size.0, size.1, spec.params)?)
+}
+
+/// Opens the backend (for `auto`: the first of wgpu, OpenCL, CPU that opens and builds the kernel) and renders the
+/// untimed first frame.
+fn open_timer(
+    spec: &BenchSpec,
+    first: &Frame,
+    notes: &mut Vec<String>,
+) -> Result<(Box<dyn timer::Timer>, f64), RenderError> {
+    let candidates: Vec<Backend> = match spec.backend {
+        BackendChoice::Auto => Backend::ALL.to_vec(),
+        BackendChoice::Only(b) => vec![b],
+    };
+    let mut failures = Vec::new();
+    for backend in candidates {
+        let attempt = timer::open(backend, &spec.options).and_then(|mut t| {
+            let start = Instant::now();
+            t.run(&timer::Work::Generated(RenderJob::new(spec.kernels, first)))?;
+            Ok((t, start.elapsed().as_secs_f64() * 1e3))
+        });
+        match attempt {
+            Ok(found) => return Ok(found),
+            Err(e) if spec.backend == BackendChoice::Auto && e.is_backend_specific() => {
+                notes.push(format!("skipping {backend}: {e}"));
+                failures.push(format!("{backend}: {e}"));
+            }
+            Err(e) => return Err(e),
+        }
+    }
+    Err(RenderError::AllBackendsFailed(failures))
+}
+
+/// Runs the benchmark. `progress` is called after every timed frame with (frames done, elapsed seconds).
+pub fn run(spec: &BenchSpec, progress: &mut dyn FnMut(u64, f64)) -> Result<BenchReport, RenderError> {
+    let motion = motion_for(spec);
+    let size = (spec.width, spec.height);
+    let mut notes = Vec::new();
+    let first = frame_at(spec, motion, 0, size)?;
+    let (mut timer, first_frame_ms) = open_timer(spec, &first, &mut notes)?;
+    let baseline_first_ms = if spec.baseline {
+        let start = Instant::now();
+        timer.run(&timer::Work::Baseline { width: spec.width, height: spec.height })?;
+        Some(start.elapsed().as_secs_f64() * 1e3)
+    } else {
+        None
+    };
+
+    let mut generated = Timings { kernel_ms: Vec::new(), frame_ms: Vec::new(), first_frame_ms };
+    let mut baseline =
+        baseline_first_ms.map(|first_frame_ms| Timings { kernel_ms: Vec::new(), frame_ms: Vec::new(), first_frame_ms });
+    let started = Instant::now();
+    let mut index = 0u64;
+    loop {
+        let done = match spec.length {
+            BenchLength::Frames(n) => index >= n as u64,
+            BenchLength::Seconds(s) => index > 0 && generated.frame_ms.iter().sum::<f64>() >= s * 1e3,
+        };
+        if done {
+            break;
+        }
+        let frame = frame_at(spec, motion, index, size)?;
+        let timed = timer.run(&timer::Work::Generated(RenderJob::new(spec.kernels, &frame)))?;
+        generated.kernel_ms.push(timed.kernel_ms);
+        generated.frame_ms.push(timed.frame_ms);
+        // Interleaved, so a device that warms up or throttles during the run affects both kernels alike.
+        if let Some(b) = baseline.as_mut() {
+            let timed = timer.run(&timer::Work::Baseline { width: spec.width, height: spec.height })?;
+            b.kernel_ms.push(timed.kernel_ms);
+            b.frame_ms.push(timed.frame_ms);
+        }
+        index += 1;
+        progress(index, started.elapsed().as_secs_f64());
+    }
+
+    let error_size = error_size(spec.width, spec.height);
+    let small = frame_at(spec, motion, 0, error_size)?;
+    let image = timer.run(&timer::Work::Generated(RenderJob::new(spec.kernels, &small)))?.image;
+    let reference = accuracy::reference(spec.scene, &small)?;
+    let accuracy = accuracy::compare_scene(spec.scene, &image, &reference);
+    let baseline = match baseline {
+        Some(timings) => {
+            let accuracy = if spec.baseline_comparable {
+                let work = timer::Work::Baseline { width: error_size.0, height: error_size.1 };
+                let image = timer.run(&work)?.image;
+                Some(accuracy::compare_baseline(spec.scene, &image, &reference))
+            } else {
+                notes.push(format!(
+                    "the baseline draws the Mandelbulb, not {}: the ratio compares against a fixed anchor",
+                    spec.scene_name
+                ));
+                None
+            };
+            Some(BaselineFigures { timings, accuracy })
+        }
+        None => None,
+    };
+    Ok(BenchReport {
+        scene_name: spec.scene_name.to_string(),
+        width: spec.width,
+        height: spec.height,
+        device: timer.device(),
+        camera: motion,
+        clock: timer.clock(),
+        options: spec.options,
+        generated,
+        accuracy,
+        baseline,
+        notes,
+    })
+}
+
+fn stats_row(out: &mut dyn Write, label: &str, s: Stats, tail: &str) -> io::Result<()> {
+    writeln!(out, "  {label:<18} {:>10.2} {:>10.2} {:>10.2} {:>10.2}  {tail}", s.min, s.median, s.mean, s.max)
+}
+
+impl BenchReport {
+    /// The human-readable report.
+    pub fn print(&self, out: &mut dyn Write) -> io::Result<()> {
+        let frames = self.generated.frame_ms.len();
+        writeln!(out, "bench {} at {}x{}, {frames} timed frames", self.scene_name, self.width, self.height)?;
+        writeln!(out, "  device:  {}", self.device)?;
+        writeln!(out, "  camera:  {}", self.camera.describe())?;
+        writeln!(out, "  kernel:  {}", self.clock.describe())?;
+        writeln!(out, "  build:   {}", record::BuildRecord::current(&self.options).describe())?;
+        writeln!(out, "  {:<18} {:>10} {:>10} {:>10} {:>10}  (ms)", "", "min", "median", "mean", "max")?;
+        let g = &self.generated;
+        stats_row(out, "kernel", g.kernel(), "")?;
+        stats_row(out, "frame", g.frame(), &format!("{:.2} FPS", g.fps()))?;
+        writeln!(out, "  first frame (incl. kernel build): {:.1} ms", g.first_frame_ms)?;
+        writeln!(out, "  error vs f64 interpreter: {}", self.accuracy.describe())?;
+        if let Some(b) = &self.baseline {
+            stats_row(out, "baseline kernel", b.timings.kernel(), "")?;
+            stats_row(out, "baseline frame", b.timings.frame(), &format!("{:.2} FPS", b.timings.fps()))?;
+            if let Some((kernel, frame)) = self.ratios() {
+                writeln!(
+                    out,
+                    "  generated/baseline (median): kernel {kernel:.3}, frame {frame:.3} (below 1: generated is faster)"
+                )?;
+            }
+            match &b.accuracy {
+                Some(a) => writeln!(out, "  baseline error vs f64 interpreter: {}", a.describe())?,
+                None => writeln!(out, "  baseline error: not compared (it draws another scene)")?,
+            }
+        }
+        for note in &self.notes {
+            writeln!(out, "  note: {note}")?;
+        }
+        Ok(())
+    }
+
+    /// The record written to the CSV and JSON Lines files.
+    pub fn record(&self, scene: &Scene, params: &ParamValues) -> BenchRecord {
+        BenchRecord::new(self, scene, params)
+    }
+}
+
+/// Appends `record` as one CSV row to `path`, writing the header first when the file is new or empty.
+pub fn append_csv(path: &Path, record: &BenchRecord) -> io::Result<()> {
+    record::append_csv(path, record)
+}
+
+/// Appends `record` as one JSON object on its own line (JSON Lines) to `path`.
+pub fn append_json(path: &Path, record: &BenchRecord) -> io::Result<()> {
+    record::append_json(path, record)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use fractal_dsl::builder::{camera, camera_path, key, scene, sphere};
+
+    #[test]
+    fn stats_have_the_usual_meaning() {
+        let s = Stats::of(&[4.0, 1.0, 3.0, 2.0]);
+        assert_eq!(s, Stats { min: 1.0, median: 2.5, mean: 2.5, max: 4.0 });
+        assert_eq!(Stats::of(&[5.0, 1.0, 9.0]).median, 5.0);
+        assert!(Stats::of(&[]).mean.is_nan());
+    }
+
+    #[test]
+    fn error_sizes_keep_the_aspect() {
+        assert_eq!(error_size(1920, 1080), (240, 135));
+        assert_eq!(error_size(3840, 1000), (240, 63));
+        assert_eq!(error_size(64, 48), (64, 48));
+        assert_eq!(error_size(100_000, 1), (240, 1));
+    }
+
+    #[test]
+    fn orbits_keep_distance_and_height_and_return() {
+        let s = scene(sphere(1.0)).camera(camera([0.0, 1.0, -4.0], [0.0, 0.5, 0.0]));
+        let params = ParamValues::defaults(&s);
+        let (start, t0) = bench_pose(&s, &params, CameraMotion::Orbit, 0).unwrap();
+        assert_eq!(t0, 0.0);
+        let target = DVec3::new(0.0, 0.5, 0.0);
+        for i in 1..PATH_FRAMES {
+            let (pose, t) = bench_pose(&s, &params, CameraMotion::Orbit, i).unwrap();
+            assert!((t - i as f64 / 30.0).abs() < 1e-12);
+            assert!((pose.position.distance(target) - start.position.distance(target)).abs() < 1e-9);
+            assert!((pose.position.y - 1.0).abs() < 1e-9);
+            assert!(pose.position.distance(start.position) > 1e-3, "frame {i} is back at the start");
+            assert!(pose.forward.distance((target - pose.position).normalize()) < 1e-9);
+        }
+        let (back, _) = bench_pose(&s, &params, CameraMotion::Orbit, PATH_FRAMES).unwrap();
+        assert!(back.position.distance(start.position) < 1e-9);
+        let (fixed, t) = bench_pose(&s, &params, CameraMotion::Static, 7).unwrap();
+        assert_eq!((fixed.position, t), (start.position, 0.0));
+    }
+
+    #[test]
+    fn paths_are_followed_over_their_span() {
+        let keys = vec![key(1.0, [0.0, 0.0, -4.0], [0.0, 0.0, 0.0]), key(3.0, [4.0, 0.0, 0.0], [0.0, 0.0, 0.0])];
+        let s = scene(sphere(1.0)).camera(camera_path(keys));
+        let params = ParamValues::defaults(&s);
+        let (p0, t0) = bench_pose(&s, &params, CameraMotion::ScenePath, 0).unwrap();
+        assert_eq!((p0.position, t0), (DVec3::new(0.0, 0.0, -4.0), 1.0));
+        let (_, half) = bench_pose(&s, &params, CameraMotion::ScenePath, PATH_FRAMES / 2).unwrap();
+        assert!((half - 2.0).abs() < 1e-12);
+    }
+}

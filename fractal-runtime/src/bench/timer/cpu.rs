@@ -1,0 +1,40 @@
+//! The CPU dispatcher: the scene through [`CpuRenderer`], the baseline through its scalar Rust port; the kernel time
+//! is the whole frame.
+
+use std::time::Instant;
+
+use super::{millis, KernelClock, Timed, Timer, Work};
+use crate::backend::cpu::CpuRenderer;
+use crate::bench::baseline_cpu;
+use crate::error::RenderError;
+use crate::renderer::{DeviceInfo, Renderer};
+
+pub(crate) struct CpuTimer {
+    renderer: CpuRenderer,
+}
+
+impl CpuTimer {
+    pub fn new() -> CpuTimer {
+        CpuTimer { renderer: CpuRenderer::new() }
+    }
+}
+
+impl Timer for CpuTimer {
+    fn device(&self) -> DeviceInfo {
+        self.renderer.device()
+    }
+
+    fn clock(&self) -> KernelClock {
+        KernelClock::WholeFrame
+    }
+
+    fn run(&mut self, work: &Work) -> Result<Timed, RenderError> {
+        let start = Instant::now();
+        let image = match work {
+            Work::Generated(job) => self.renderer.render(job)?,
+            Work::Baseline { width, height } => baseline_cpu::render(*width, *height),
+        };
+        let ms = millis(start.elapsed());
+        Ok(Timed { image, kernel_ms: ms, frame_ms: ms })
+    }
+}

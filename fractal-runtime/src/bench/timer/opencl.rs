@@ -1,0 +1,203 @@
+//! The OpenCL dispatcher (cargo feature `opencl`): opens the device [`crate::OpenClRenderer`] would open, on a queue
+//! with profiling, builds programs with the same options (`-cl-fast-relaxed-math` unless precise; the baseline gets
+//! the same options as the generated kernel), and reads each kernel's time from its profiling event.
+
+use std::time::Instant;
+
+use ocl::enums::{DeviceInfo as ClDeviceInfo, DeviceInfoResult, ProfilingInfo};
+use ocl::{flags, Buffer, Context, Device, Event, Kernel, Platform, Program, Queue};
+
+use super::{millis, KernelClock, Timed, Timer, Work};
+use crate::backend::opencl::FAST_MATH;
+use crate::bench::BASELINE_OPENCL;
+use crate::error::RenderError;
+use crate::image::Image;
+use crate::renderer::{Backend, DeviceInfo};
+
+/// An ocl error in one line where it has one (the API call and status), else its text without banner lines.
+fn brief(e: &ocl::Error) -> String {
+    let text = e.to_string();
+    let lines: Vec<&str> = text.lines().map(str::trim).filter(|l| !l.is_empty() && !l.starts_with("####")).collect();
+    lines.join("\n")
+}
+
+fn no_device(what: &str, e: ocl::Error) -> RenderError {
+    RenderError::NoDevice { backend: Backend::OpenCl, reason: format!("{what}: {}", brief(&e)) }
+}
+
+fn device_error(e: ocl::Error) -> RenderError {
+    RenderError::Device { backend: Backend::OpenCl, message: brief(&e) }
+}
+
+fn rejected(e: ocl::Error) -> RenderError {
+    RenderError::KernelRejected { backend: Backend::OpenCl, log: brief(&e) }
+}
+
+pub(crate) struct OpenClTimer {
+    device: Device,
+    context: Context,
+    queue: Queue,
+    precise: bool,
+    programs: Vec<(String, Program)>,
+    out: Option<(usize, Buffer<u32>)>,
+    info: DeviceInfo,
+}
+
+impl OpenClTimer {
+    pub fn new(precise: bool) -> Result<OpenClTimer, RenderError> {
+        let platform = Platform::first().map_err(|e| no_device("listing platforms", e))?;
+        let device = Device::first(platform).map_err(|e| no_device("listing devices", e))?;
+        let context = Context::builder()
+            .platform(platform)
+            .devices(device)
+            .build()
+            .map_err(|e| no_device("creating a context", e))?;
+        let queue = Queue::new(&context, device, Some(flags::QUEUE_PROFILING_ENABLE))
+            .map_err(|e| no_device("creating a profiling queue", e))?;
+        let text = |r: ocl::Result<String>| r.unwrap_or_else(|e| format!("unknown ({e})"));
+        let info_text = |kind| match device.info(kind) {
+            Ok(DeviceInfoResult::Type(t)) => format!("{t:?}"),
+            Ok(other) => other.to_string(),
+            Err(e) => format!("unknown ({e})"),
+        };
+        let info = DeviceInfo {
+            backend: Backend::OpenCl,
+            api: text(platform.version()),
+            name: text(device.name()),
+            driver: format!("{} {}", text(platform.name()), info_text(ClDeviceInfo::DriverVersion)),
+            device_type: info_text(ClDeviceInfo::Type),
+        };
+        Ok(OpenClTimer { device, context, queue, precise, programs: Vec::new(), out: None, info })
+    }
+
+    fn program(&mut self, source: &str) -> Result<Program, RenderError> {
+        if let Some((_, p)) = self.programs.iter().find(|(s, _)| s == source) {
+            return Ok(p.clone());
+        }
+        let mut builder = Program::builder();
+        builder.src(source).devices(self.device);
+        if !self.precise {
+            builder.cmplr_opt(FAST_MATH);
+        }
+        let program = builder.build(&self.context).map_err(rejected)?;
+        self.programs.push((source.to_string(), program.clone()));
+        Ok(program)
+    }
+
+    fn out(&mut self, count: usize, width: u32, height: u32) -> Result<Buffer<u32>, RenderError> {
+        if let Some((n, buffer)) = &self.out {
+            if *n == count {
+                return Ok(buffer.clone());
+            }
+        }
+        self.out = None;
+        let buffer = Buffer::<u32>::builder()
+            .queue(self.queue.clone())
+            .flags(flags::MEM_WRITE_ONLY)
+            .len(count)
+            .build()
+            .map_err(|e| RenderError::TooLarge {
+                backend: Backend::OpenCl,
+                what: format!("a {width}x{height} image"),
+                detail: brief(&e),
+            })?;
+        self.out = Some((count, buffer.clone()));
+        Ok(buffer)
+    }
+}
+
+fn nanos(event: &Event, which: ProfilingInfo) -> Result<u64, RenderError> {
+    event.profiling_info(which).and_then(|r| r.time().map_err(ocl::Error::from)).map_err(device_error)
+}
+
+impl Timer for OpenClTimer {
+    fn device(&self) -> DeviceInfo {
+        self.info.clone()
+    }
+
+    fn clock(&self) -> KernelClock {
+        KernelClock::ProfilingEvents
+    }
+
+    fn run(&mut self, work: &Work) -> Result<Timed, RenderError> {
+        let (width, height) = match work {
+            Work::Generated(job) => (job.width(), job.height()),
+            Work::Baseline { width, height } => (*width, *height),
+        };
+        let source = match work {
+            Work::Generated(job) => job
+                .kernels
+                .opencl
+                .ok_or(RenderError::MissingKernel { backend: Backend::OpenCl, what: "OpenCL kernel" })?,
+            Work::Baseline { .. } => BASELINE_OPENCL,
+        };
+        let program = self.program(source)?;
+        let count = width as usize * height as usize;
+        let out = self.out(count, width, height)?;
+
+        let start = Instant::now();
+        let frame_buffer = match work {
+            Work::Generated(job) => {
+                let floats: &[f32] = bytemuck::cast_slice(job.frame.slots());
+                let buffer = Buffer::<f32>::builder()
+                    .queue(self.queue.clone())
+                    .flags(flags::MEM_READ_ONLY)
+                    .len(floats.len())
+                    .copy_host_slice(floats)
+                    .build()
+                    .map_err(device_error)?;
+                Some(buffer)
+            }
+            Work::Baseline { .. } => None,
+        };
+        let mut builder = Kernel::builder();
+        builder.program(&program).name("render").queue(self.queue.clone()).global_work_size((width, height));
+        match &frame_buffer {
+            Some(frame) => builder.arg(&out).arg(frame),
+            None => builder.arg(&out).arg(width as i32).arg(height as i32),
+        };
+        let kernel = builder.build().map_err(rejected)?;
+        let mut event = Event::empty();
+        // Safety: `out` holds one u32 per pixel; both kernels write only pixels inside (width, height).
+        unsafe { kernel.cmd().enew(&mut event).enq() }.map_err(device_error)?;
+        event.wait_for().map_err(device_error)?;
+        let mut pixels = vec![0u32; count];
+        out.read(&mut pixels).enq().map_err(device_error)?;
+        let frame_ms = millis(start.elapsed());
+        let kernel_ns = nanos(&event, ProfilingInfo::End)?.saturating_sub(nanos(&event, ProfilingInfo::Start)?);
+        Ok(Timed { image: Image { width, height, pixels }, kernel_ms: kernel_ns as f64 / 1e6, frame_ms })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::frame::{Frame, ParamValues};
+    use crate::renderer::{KernelSources, RenderJob, Renderer};
+    use crate::{OpenClRenderer, Pose};
+    use fractal_dsl::builder::{mandelbulb, scene};
+
+    /// The bench must time what the renderer draws: the same kernel and frame give the same pixels.
+    #[test]
+    fn the_dispatcher_draws_what_the_renderer_draws() {
+        let (mut timer, mut renderer) = match (OpenClTimer::new(false), OpenClRenderer::new(false)) {
+            (Ok(t), Ok(r)) => (t, r),
+            (Err(e), _) | (_, Err(e)) => {
+                let required = std::env::var("FRACTAL_REQUIRE_GPU_BACKENDS").is_ok_and(|v| v == "1");
+                assert!(!required, "OpenCL is required but could not be opened: {e}");
+                eprintln!("note: skipping, no OpenCL device: {e}");
+                return;
+            }
+        };
+        let s = scene(mandelbulb(8));
+        let kernels = fractal_dsl::compile(&s);
+        let pose = Pose::from_camera(&s.camera, 0.0, &|p| p.default).unwrap();
+        let frame = Frame::new(&s, &pose, 0.0, 24, 16, &ParamValues::defaults(&s)).unwrap();
+        let job = RenderJob::new(KernelSources::compiled(&kernels), &frame);
+        let timed = timer.run(&Work::Generated(job)).unwrap();
+        assert_eq!(timed.image, renderer.render(&job).unwrap());
+        assert!(timed.kernel_ms > 0.0 && timed.kernel_ms <= timed.frame_ms, "{} {}", timed.kernel_ms, timed.frame_ms);
+        let baseline = timer.run(&Work::Baseline { width: 24, height: 16 }).unwrap();
+        assert!(!baseline.image.is_uniform());
+    }
+}

@@ -1,0 +1,367 @@
+//! The wgpu dispatcher: opens the adapter [`crate::WgpuRenderer`] would open, with timestamp queries when the adapter
+//! has them, and runs a WGSL compute kernel the way the renderer does (uniform upload, 8×8 workgroups, copy to a
+//! read-back buffer, map). Both the generated kernel (`render`, binding 1 = frame uniforms) and the baseline (`main`,
+//! binding 1 = `{w, h}`) write packed pixels to binding 0, so one path serves both; bind group layouts come from the
+//! shaders themselves.
+
+use std::sync::{mpsc, Arc, Mutex};
+use std::time::Instant;
+
+use wgpu::util::DeviceExt;
+
+use super::{millis, KernelClock, Timed, Timer, Work};
+use crate::bench::BASELINE_WGSL;
+use crate::error::RenderError;
+use crate::image::Image;
+use crate::renderer::{Backend, DeviceInfo};
+
+const WORKGROUP: u32 = 8;
+
+fn device_error(message: impl ToString) -> RenderError {
+    RenderError::Device { backend: Backend::Wgpu, message: message.to_string() }
+}
+
+struct Timestamps {
+    set: wgpu::QuerySet,
+    resolve: wgpu::Buffer,
+    read: wgpu::Buffer,
+    period_ns: f64,
+}
+
+struct Targets {
+    bytes: u64,
+    out: wgpu::Buffer,
+    readback: wgpu::Buffer,
+}
+
+pub(crate) struct WgpuTimer {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    info: wgpu::AdapterInfo,
+    timestamps: Option<Timestamps>,
+    pipelines: Vec<(String, &'static str, wgpu::ComputePipeline)>,
+    targets: Option<Targets>,
+    uncaptured: Arc<Mutex<Vec<String>>>,
+}
+
+impl WgpuTimer {
+    pub fn new() -> Result<WgpuTimer, RenderError> {
+        let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
+        desc.backends = wgpu::Backends::all().with_env();
+        desc.flags = wgpu::InstanceFlags::VALIDATION_INDIRECT_CALL.with_env();
+        let instance = wgpu::Instance::new(desc);
+        let options = wgpu::RequestAdapterOptions {
+            power_preference: wgpu::PowerPreference::HighPerformance,
+            ..Default::default()
+        };
+        let adapter = pollster::block_on(instance.request_adapter(&options))
+            .map_err(|e| RenderError::NoDevice { backend: Backend::Wgpu, reason: e.to_string() })?;
+        let info = adapter.get_info();
+        let features = adapter.features() & wgpu::Features::TIMESTAMP_QUERY;
+        let descriptor = wgpu::DeviceDescriptor {
+            label: Some("fractal bench"),
+            required_features: features,
+            required_limits: adapter.limits(),
+            memory_hints: wgpu::MemoryHints::Performance,
+            ..Default::default()
+        };
+        let (device, queue) = pollster::block_on(adapter.request_device(&descriptor)).map_err(|e| {
+            RenderError::NoDevice { backend: Backend::Wgpu, reason: format!("{} ({}): {e}", info.name, info.backend) }
+        })?;
+        let uncaptured = Arc::new(Mutex::new(Vec::new()));
+        let sink = Arc::clone(&uncaptured);
+        device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
+            if let Ok(mut errors) = sink.lock() {
+                errors.push(e.to_string());
+            }
+        }));
+        let timestamps = features.contains(wgpu::Features::TIMESTAMP_QUERY).then(|| Timestamps {
+            set: device.create_query_set(&wgpu::QuerySetDescriptor {
+                label: Some("kernel time"),
+                ty: wgpu::QueryType::Timestamp,
+                count: 2,
+            }),
+            resolve: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("timestamps"),
+                size: 16,
+                usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            }),
+            read: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("timestamps readback"),
+                size: 16,
+                usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }),
+            period_ns: queue.get_timestamp_period() as f64,
+        });
+        Ok(WgpuTimer { device, queue, info, timestamps, pipelines: Vec::new(), targets: None, uncaptured })
+    }
+
+    fn pipeline(&mut self, source: &str, entry: &'static str) -> Result<wgpu::ComputePipeline, RenderError> {
+        if let Some((_, _, p)) = self.pipelines.iter().find(|(s, e, _)| s == source && *e == entry) {
+            return Ok(p.clone());
+        }
+        let (pipeline, error) = capture(&self.device, || {
+            let module = self.device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some(entry),
+                source: wgpu::ShaderSource::Wgsl(source.into()),
+            });
+            self.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(entry),
+                layout: None,
+                module: &module,
+                entry_point: Some(entry),
+                compilation_options: Default::default(),
+                cache: None,
+            })
+        });
+        if let Some(e) = error {
+            return Err(RenderError::KernelRejected { backend: Backend::Wgpu, log: e.to_string() });
+        }
+        self.pipelines.push((source.to_string(), entry, pipeline.clone()));
+        Ok(pipeline)
+    }
+
+    fn targets(&mut self, width: u32, height: u32) -> Result<(), RenderError> {
+        let bytes = width as u64 * height as u64 * 4;
+        let limits = self.device.limits();
+        let max_bytes = limits.max_storage_buffer_binding_size.min(limits.max_buffer_size);
+        let max_groups = limits.max_compute_workgroups_per_dimension;
+        if bytes > max_bytes || width.div_ceil(WORKGROUP) > max_groups || height.div_ceil(WORKGROUP) > max_groups {
+            return Err(RenderError::TooLarge {
+                backend: Backend::Wgpu,
+                what: format!("a {width}x{height} image"),
+                detail: format!("storage buffers up to {max_bytes} bytes, {max_groups} workgroups per dimension"),
+            });
+        }
+        if self.targets.as_ref().is_some_and(|t| t.bytes == bytes) {
+            return Ok(());
+        }
+        self.targets = None;
+        let buffer = |label, usage| {
+            self.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: bytes,
+                usage,
+                mapped_at_creation: false,
+            })
+        };
+        let (targets, error) = capture(&self.device, || Targets {
+            bytes,
+            out: buffer("pixels", wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC),
+            readback: buffer("readback", wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST),
+        });
+        self.check(error)?;
+        self.targets = Some(targets);
+        Ok(())
+    }
+
+    fn check(&self, scoped: Option<wgpu::Error>) -> Result<(), RenderError> {
+        let mut messages: Vec<String> = scoped.into_iter().map(|e| e.to_string()).collect();
+        if let Ok(mut escaped) = self.uncaptured.lock() {
+            messages.append(&mut escaped);
+        }
+        if messages.is_empty() {
+            Ok(())
+        } else {
+            Err(device_error(messages.join("\n")))
+        }
+    }
+
+    fn wait(&self) -> Result<(), RenderError> {
+        self.device.poll(wgpu::PollType::wait_indefinitely()).map(|_| ()).map_err(device_error)
+    }
+}
+
+/// Reads a mapped-for-reading buffer as u32 or u64 words after the wait, then unmaps it.
+fn map(buffer: &wgpu::Buffer, bytes: u64) -> mpsc::Receiver<Result<(), wgpu::BufferAsyncError>> {
+    let (sender, receiver) = mpsc::channel();
+    buffer.slice(..bytes).map_async(wgpu::MapMode::Read, move |result| {
+        let _ = sender.send(result);
+    });
+    receiver
+}
+
+fn read_mapped(
+    buffer: &wgpu::Buffer,
+    bytes: u64,
+    mapped: mpsc::Receiver<Result<(), wgpu::BufferAsyncError>>,
+) -> Result<Vec<u8>, RenderError> {
+    mapped.recv().map_err(device_error)?.map_err(device_error)?;
+    let data = buffer.slice(..bytes).get_mapped_range().map_err(device_error)?.to_vec();
+    buffer.unmap();
+    Ok(data)
+}
+
+/// Runs `f` inside validation, out-of-memory and internal error scopes and returns the first error they caught.
+fn capture<T>(device: &wgpu::Device, f: impl FnOnce() -> T) -> (T, Option<wgpu::Error>) {
+    let internal = device.push_error_scope(wgpu::ErrorFilter::Internal);
+    let memory = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
+    let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let value = f();
+    let errors = [validation.pop(), memory.pop(), internal.pop()].map(pollster::block_on);
+    (value, errors.into_iter().flatten().next())
+}
+
+impl Timer for WgpuTimer {
+    fn device(&self) -> DeviceInfo {
+        let driver = match (self.info.driver.is_empty(), self.info.driver_info.is_empty()) {
+            (false, false) => format!("{} {}", self.info.driver, self.info.driver_info),
+            (false, true) => self.info.driver.clone(),
+            (true, _) => self.info.driver_info.clone(),
+        };
+        DeviceInfo {
+            backend: Backend::Wgpu,
+            api: format!("{:?}", self.info.backend),
+            name: self.info.name.clone(),
+            driver,
+            device_type: format!("{:?}", self.info.device_type),
+        }
+    }
+
+    fn clock(&self) -> KernelClock {
+        if self.timestamps.is_some() {
+            KernelClock::DeviceTimestamps
+        } else {
+            KernelClock::WallClock
+        }
+    }
+
+    fn run(&mut self, work: &Work) -> Result<Timed, RenderError> {
+        let (source, entry, uniform, width, height) = match work {
+            Work::Generated(job) => {
+                let source = job
+                    .kernels
+                    .wgsl
+                    .ok_or(RenderError::MissingKernel { backend: Backend::Wgpu, what: "WGSL kernel" })?;
+                (source, "render", job.frame.as_bytes().to_vec(), job.width(), job.height())
+            }
+            Work::Baseline { width, height } => {
+                // `{w: u32, h: u32}`, padded to the 16 bytes of a uniform block.
+                let words = [*width, *height, 0, 0];
+                (BASELINE_WGSL, "main", bytemuck::cast_slice(&words).to_vec(), *width, *height)
+            }
+        };
+        let pipeline = self.pipeline(source, entry)?;
+        self.targets(width, height)?;
+        let (Some(targets), ts) = (self.targets.as_ref(), self.timestamps.as_ref()) else {
+            return Err(device_error("output buffers were not created"));
+        };
+        let bytes = targets.bytes;
+
+        let start = Instant::now();
+        let (encoder, error) = capture(&self.device, || {
+            let uniform = self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("uniforms"),
+                contents: &uniform,
+                usage: wgpu::BufferUsages::UNIFORM,
+            });
+            let bind_group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some(entry),
+                layout: &pipeline.get_bind_group_layout(0),
+                entries: &[
+                    wgpu::BindGroupEntry { binding: 0, resource: targets.out.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 1, resource: uniform.as_entire_binding() },
+                ],
+            });
+            let mut encoder =
+                self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(entry) });
+            {
+                let timestamp_writes = ts.map(|t| wgpu::ComputePassTimestampWrites {
+                    query_set: &t.set,
+                    beginning_of_pass_write_index: Some(0),
+                    end_of_pass_write_index: Some(1),
+                });
+                let mut pass =
+                    encoder.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some(entry), timestamp_writes });
+                pass.set_pipeline(&pipeline);
+                pass.set_bind_group(0, &bind_group, &[]);
+                pass.dispatch_workgroups(width.div_ceil(WORKGROUP), height.div_ceil(WORKGROUP), 1);
+            }
+            if let Some(t) = ts {
+                encoder.resolve_query_set(&t.set, 0..2, &t.resolve, 0);
+            }
+            encoder.finish()
+        });
+        self.check(error)?;
+        let submitted = Instant::now();
+        self.queue.submit([encoder]);
+        self.wait()?;
+        let kernel_wall = millis(submitted.elapsed());
+
+        let mut copy = self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("readback") });
+        copy.copy_buffer_to_buffer(&targets.out, 0, &targets.readback, 0, bytes);
+        if let Some(t) = ts {
+            copy.copy_buffer_to_buffer(&t.resolve, 0, &t.read, 0, 16);
+        }
+        self.queue.submit([copy.finish()]);
+        let pixels_mapped = map(&targets.readback, bytes);
+        let ticks_mapped = ts.map(|t| map(&t.read, 16));
+        self.wait()?;
+        let raw = read_mapped(&targets.readback, bytes, pixels_mapped)?;
+        let pixels: Vec<u32> = raw.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
+        let frame_ms = millis(start.elapsed());
+        self.check(None)?;
+
+        let kernel_ms = match (ts, ticks_mapped) {
+            (Some(t), Some(mapped)) => {
+                let raw = read_mapped(&t.read, 16, mapped)?;
+                let tick = |i: usize| u64::from_le_bytes(raw[8 * i..8 * i + 8].try_into().unwrap_or([0; 8]));
+                let (begin, end) = (tick(0), tick(1));
+                // A device that wrote no usable timestamps (reordered or zero) still gets the wall time.
+                if end > begin {
+                    (end - begin) as f64 * t.period_ns / 1e6
+                } else {
+                    kernel_wall
+                }
+            }
+            _ => kernel_wall,
+        };
+        Ok(Timed { image: Image { width, height, pixels }, kernel_ms, frame_ms })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::frame::{Frame, ParamValues};
+    use crate::renderer::{KernelSources, RenderJob, Renderer};
+    use crate::{Pose, WgpuRenderer};
+    use fractal_dsl::builder::{mandelbulb, scene, sphere, union, vec3, ShapeExt};
+
+    fn required() -> bool {
+        std::env::var("FRACTAL_REQUIRE_GPU_BACKENDS").is_ok_and(|v| v == "1")
+    }
+
+    /// The bench must time what the renderer draws: the same kernel and frame give the same pixels.
+    #[test]
+    fn the_dispatcher_draws_what_the_renderer_draws() {
+        let (timer, renderer) = match (WgpuTimer::new(), WgpuRenderer::new()) {
+            (Ok(t), Ok(r)) => (t, r),
+            (Err(e), _) | (_, Err(e)) => {
+                assert!(!required(), "wgpu is required but could not be opened: {e}");
+                eprintln!("note: skipping, no wgpu adapter: {e}");
+                return;
+            }
+        };
+        let (mut timer, mut renderer) = (timer, renderer);
+        let s = scene(union(mandelbulb(8), sphere(0.5).translate(vec3(1.2, 0.0, 0.0))));
+        let kernels = fractal_dsl::compile(&s);
+        let pose = Pose::from_camera(&s.camera, 0.0, &|p| p.default).unwrap();
+        let frame = Frame::new(&s, &pose, 0.0, 40, 24, &ParamValues::defaults(&s)).unwrap();
+        let job = RenderJob::new(KernelSources::compiled(&kernels), &frame);
+        let timed = timer.run(&Work::Generated(job)).unwrap();
+        assert_eq!(timed.image, renderer.render(&job).unwrap());
+        assert!(!timed.image.is_uniform());
+        assert!(
+            timed.kernel_ms > 0.0 && timed.frame_ms >= timed.kernel_ms * 0.5,
+            "{} {}",
+            timed.kernel_ms,
+            timed.frame_ms
+        );
+        let baseline = timer.run(&Work::Baseline { width: 40, height: 24 }).unwrap();
+        assert_eq!((baseline.image.width, baseline.image.height), (40, 24));
+        assert!(!baseline.image.is_uniform());
+    }
+}

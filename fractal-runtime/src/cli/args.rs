@@ -1,0 +1,246 @@
+//! The command-line grammar (clap derive) and the parsers of its values: sizes, frame ranges, shards, parameter
+//! assignments, backends and export targets. Every value is checked here, so a bad one is a usage error before any
+//! work starts (an image size is checked against [`crate::MAX_IMAGE_SIDE`] before anything is allocated).
+
+use std::path::PathBuf;
+
+use clap::{Args, Parser, Subcommand};
+
+use crate::export::Target;
+use crate::frame::check_image_size;
+use crate::output::{FrameRange, Shard};
+use crate::select::BackendChoice;
+
+const AFTER_HELP: &str = "\
+<SCENE> is a built-in scene name (see `fractal list`) or a path to a .fractal file.
+
+Examples:
+  fractal render mandelbulb --size 3840x2160 --time 2.5 -o bulb.png
+  fractal render sphere_box --frames 0..240 --fps 30 -o frames/%05d.png
+  fractal render sphere_box --frames 0..240 --shard 3/8 -o frames/%05d.png
+  fractal render my_scene.fractal --frames 0..120 -o clip.mp4
+  fractal bench mandelbulb --size 1920x1080 --frames 10 --backend wgpu --baseline --csv bench.csv
+  fractal export sierpinski_collection --target glsl -o sierpinski.comp
+
+Exit status: 0 on success, 2 for usage errors, 1 when rendering or writing fails.";
+
+#[derive(Debug, Parser)]
+#[command(
+    name = "fractal",
+    version,
+    about = "Render, benchmark and export 3D fractal and signed-distance scenes",
+    long_about = "Render, benchmark and export 3D fractal and signed-distance scenes.\n\n\
+                  Scenes run as generated WGSL (wgpu), OpenCL C, or natively on the CPU.",
+    after_help = AFTER_HELP,
+    propagate_version = true
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Render a scene to a PNG, a numbered PNG sequence or a video
+    Render(RenderArgs),
+    /// Time a scene on one backend and record the figures (CSV, JSON Lines)
+    Bench(BenchArgs),
+    /// Write a scene's render kernel for another engine
+    Export(ExportArgs),
+    /// List the built-in scenes
+    List,
+}
+
+/// Options shared by the commands that render.
+#[derive(Debug, Args)]
+pub struct RenderOptions {
+    /// Image size, WIDTHxHEIGHT (each side 1..=16384)
+    #[arg(long, value_name = "WxH", default_value = "1920x1080", value_parser = parse_size)]
+    pub size: (u32, u32),
+    /// Backend: auto tries wgpu, then OpenCL, then the CPU
+    #[arg(long, value_name = "auto|wgpu|opencl|cpu", default_value = "auto", value_parser = parse_backend)]
+    pub backend: BackendChoice,
+    /// OpenCL: build without -cl-fast-relaxed-math
+    #[arg(long)]
+    pub precise: bool,
+    /// Set a scene parameter (repeatable)
+    #[arg(long = "param", value_name = "NAME=VALUE", value_parser = parse_param)]
+    pub params: Vec<(String, f64)>,
+}
+
+#[derive(Debug, Args)]
+#[command(after_help = "\
+Sequences: each frame is written atomically (NAME.partial, then renamed), and rerunning the same command renders only
+the frames that are missing, so an interrupted render resumes where it stopped.
+
+Shards: --shard I/N renders the frames f with (f - START) mod N = I. N jobs with I = 0..N-1 cover every frame exactly
+once and may share one output directory, e.g. as a Slurm job array:
+  #SBATCH --array=0-7
+  fractal render mandelbulb --frames 0..2400 --fps 60 --shard $SLURM_ARRAY_TASK_ID/8 -o frames/%05d.png
+
+Video (.mp4, .webm, .mkv, .mov) pipes raw RGBA frames to ffmpeg, which must be on PATH; sizes must be even.")]
+pub struct RenderArgs {
+    /// Built-in scene name or .fractal file
+    pub scene: String,
+    #[command(flatten)]
+    pub render: RenderOptions,
+    /// Scene time in seconds (single images)
+    #[arg(long, value_name = "SECONDS", default_value_t = 0.0, conflicts_with = "frames", value_parser = parse_time)]
+    pub time: f64,
+    /// Output: a .png file, a frame pattern such as frames/%05d.png, or a video (.mp4, .webm, .mkv, .mov)
+    /// [default: SCENE.png, or SCENE/%05d.png with --frames]
+    #[arg(short, long, value_name = "PATH")]
+    pub output: Option<PathBuf>,
+    /// Render an animation: frames START..END (end exclusive) or START..=END; frame f is at time f / fps
+    #[arg(long, value_name = "START..END", value_parser = parse_frames)]
+    pub frames: Option<FrameRange>,
+    /// Frames per second of the animation
+    #[arg(long, default_value_t = 30.0, requires = "frames", value_parser = parse_fps)]
+    pub fps: f64,
+    /// Render only shard I of N of the frames (for job arrays)
+    #[arg(long, value_name = "I/N", requires = "frames", value_parser = parse_shard)]
+    pub shard: Option<Shard>,
+}
+
+#[derive(Debug, Args)]
+#[command(after_help = "\
+Camera: the scene's own camera path if it has one (120 frames per pass, scene time = path time); otherwise an orbit
+around the camera's target at its distance and height (3 degrees and 1/30 s of scene time per frame). With --baseline,
+the scene's static camera at t = 0 for both the scene and the hand-written baseline.
+
+Kernel time is read from the device where it can be (wgpu timestamp queries, OpenCL profiling events); the report
+says when wall time is used instead. The error is measured once, untimed, against the CPU renderer running the f64
+interpreter on the same frame at a reduced size (at most 240 pixels wide).")]
+pub struct BenchArgs {
+    /// Built-in scene name or .fractal file
+    pub scene: String,
+    #[command(flatten)]
+    pub render: RenderOptions,
+    /// Number of timed frames [default: 10]
+    #[arg(long, value_name = "N", conflicts_with = "seconds", value_parser = clap::value_parser!(u32).range(1..))]
+    pub frames: Option<u32>,
+    /// Time frames until their frame times add up to this many seconds
+    #[arg(long, value_name = "S", value_parser = parse_seconds)]
+    pub seconds: Option<f64>,
+    /// Append one CSV row to this file (header written when the file is new)
+    #[arg(long, value_name = "PATH")]
+    pub csv: Option<PathBuf>,
+    /// Append one JSON record (one line, JSON Lines) to this file
+    #[arg(long, value_name = "PATH")]
+    pub json: Option<PathBuf>,
+    /// Also time the hand-written baseline Mandelbulb kernel on the same device and print generated/baseline
+    #[arg(long)]
+    pub baseline: bool,
+}
+
+#[derive(Debug, Args)]
+#[command(after_help = "\
+Text targets go to standard output without -o. SPIR-V is binary: it needs -o, or a standard output that is not a
+terminal (a pipe or a file).")]
+pub struct ExportArgs {
+    /// Built-in scene name or .fractal file
+    pub scene: String,
+    /// Target language
+    #[arg(long, value_name = "TARGET", value_parser = parse_target)]
+    pub target: Target,
+    /// Output file
+    #[arg(short, long, value_name = "PATH")]
+    pub output: Option<PathBuf>,
+}
+
+/// `WIDTHxHEIGHT`, each side within the renderers' limits.
+pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
+    let expected = || format!("expected WIDTHxHEIGHT, e.g. 1920x1080, got `{text}`");
+    let (w, h) = text.split_once(['x', 'X']).ok_or_else(expected)?;
+    let side = |s: &str| s.trim().parse::<u32>().map_err(|_| expected());
+    let (w, h) = (side(w)?, side(h)?);
+    check_image_size(w, h).map_err(|e| e.to_string())?;
+    Ok((w, h))
+}
+
+pub fn parse_backend(text: &str) -> Result<BackendChoice, String> {
+    text.parse::<BackendChoice>().map_err(|e| e.to_string())
+}
+
+pub fn parse_target(text: &str) -> Result<Target, String> {
+    text.parse::<Target>().map_err(|e| e.to_string())
+}
+
+pub fn parse_frames(text: &str) -> Result<FrameRange, String> {
+    text.parse::<FrameRange>().map_err(|e| e.to_string())
+}
+
+pub fn parse_shard(text: &str) -> Result<Shard, String> {
+    text.parse::<Shard>().map_err(|e| e.to_string())
+}
+
+/// `name=value` with a finite number.
+pub fn parse_param(text: &str) -> Result<(String, f64), String> {
+    let (name, value) = text.split_once('=').ok_or_else(|| format!("expected NAME=VALUE, got `{text}`"))?;
+    let value: f64 = value.trim().parse().map_err(|_| format!("`{value}` is not a number"))?;
+    if !value.is_finite() {
+        return Err(format!("`{text}`: the value must be finite"));
+    }
+    Ok((name.trim().to_string(), value))
+}
+
+fn finite(text: &str, what: &str) -> Result<f64, String> {
+    let value: f64 = text.trim().parse().map_err(|_| format!("{what} `{text}` is not a number"))?;
+    if !value.is_finite() {
+        return Err(format!("{what} `{text}` is not finite"));
+    }
+    Ok(value)
+}
+
+pub fn parse_time(text: &str) -> Result<f64, String> {
+    finite(text, "time")
+}
+
+pub fn parse_fps(text: &str) -> Result<f64, String> {
+    let fps = finite(text, "frame rate")?;
+    if fps <= 0.0 {
+        return Err(format!("frame rate `{text}` must be greater than 0"));
+    }
+    Ok(fps)
+}
+
+pub fn parse_seconds(text: &str) -> Result<f64, String> {
+    let s = finite(text, "duration")?;
+    if s <= 0.0 {
+        return Err(format!("duration `{text}` must be greater than 0"));
+    }
+    Ok(s)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::CommandFactory;
+
+    #[test]
+    fn the_grammar_is_consistent() {
+        Cli::command().debug_assert();
+    }
+
+    #[test]
+    fn sizes_are_checked_before_anything_is_allocated() {
+        assert_eq!(parse_size("1920x1080"), Ok((1920, 1080)));
+        assert_eq!(parse_size("32X16"), Ok((32, 16)));
+        assert!(parse_size("0x0").unwrap_err().contains("invalid"));
+        assert!(parse_size("100000x100000").unwrap_err().contains("1..=16384"));
+        for bad in ["", "1920", "x", "axb", "-1x5", "1920x1080x3"] {
+            assert!(parse_size(bad).is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn params_and_rates_are_numbers() {
+        assert_eq!(parse_param("power=8.5"), Ok(("power".to_string(), 8.5)));
+        assert!(parse_param("power").is_err());
+        assert!(parse_param("power=inf").is_err());
+        assert!(parse_fps("0").is_err());
+        assert!(parse_fps("NaN").is_err());
+        assert_eq!(parse_fps("29.97"), Ok(29.97));
+        assert!(parse_seconds("-1").is_err());
+    }
+}

@@ -1,0 +1,77 @@
+//! The `fractal` command line: `render`, `bench`, `export` and `list`. The binary is a shim that passes in the
+//! built-in scene table ([`SceneLibrary`]), so the runtime does not depend on the scene library.
+//!
+//! Errors print as one `error: …` line on stderr and exit with 2 for usage errors and 1 for failures
+//! ([`error::CliError`]); nothing a user types makes the program panic.
+
+pub mod args;
+mod bench;
+pub mod error;
+mod export;
+mod list;
+mod render;
+pub mod scene;
+
+use std::ffi::OsString;
+use std::process::ExitCode;
+
+use clap::error::ErrorKind as ClapErrorKind;
+use clap::Parser;
+use fractal_dsl::CompiledScene;
+
+use args::{Cli, Command};
+pub use error::CliError;
+
+/// The built-in scenes the program offers.
+#[derive(Clone, Copy)]
+pub struct SceneLibrary<'a> {
+    /// Every built-in scene with its name.
+    pub scenes: &'a [(&'a str, &'a CompiledScene)],
+    /// The `.fractal` source of a built-in scene by name (its leading comment describes it in `fractal list`).
+    pub source_file: fn(&str) -> Option<&'static str>,
+}
+
+/// Runs the program on the process's arguments.
+pub fn main(library: &SceneLibrary) -> ExitCode {
+    run_with_args(std::env::args_os(), library)
+}
+
+/// Runs the program on `args` (the first is the program name) and prints any error.
+pub fn run_with_args(args: impl IntoIterator<Item = OsString>, library: &SceneLibrary) -> ExitCode {
+    let cli = match Cli::try_parse_from(args) {
+        Ok(cli) => cli,
+        Err(e) => return clap_exit(e),
+    };
+    match run(cli.command, library) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            e.exit_code()
+        }
+    }
+}
+
+/// Help and version go to stdout with status 0; a value our parsers refused prints as clap's first line (which
+/// carries our message), other grammar errors as clap writes them, with status 2.
+fn clap_exit(e: clap::Error) -> ExitCode {
+    match e.kind() {
+        ClapErrorKind::InvalidValue | ClapErrorKind::ValueValidation => {
+            let text = e.to_string();
+            eprintln!("{}", text.lines().next().unwrap_or("error: invalid value"));
+            ExitCode::from(2)
+        }
+        _ => {
+            let _ = e.print();
+            ExitCode::from(u8::try_from(e.exit_code()).unwrap_or(2))
+        }
+    }
+}
+
+fn run(command: Command, library: &SceneLibrary) -> Result<(), CliError> {
+    match command {
+        Command::Render(args) => render::render(&args, library),
+        Command::Bench(args) => bench::bench(&args, library),
+        Command::Export(args) => export::export(&args, library),
+        Command::List => list::list(library),
+    }
+}

@@ -1,0 +1,233 @@
+//! `fractal render`: one PNG, a numbered PNG sequence (atomic writes, resume, shards, progress bar) or a video through
+//! ffmpeg. The output is checked (directory created, a file can be written) before the device is opened, so a bad
+//! path costs no rendering time.
+
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+
+use crate::camera::Pose;
+use crate::cli::args::{RenderArgs, RenderOptions};
+use crate::cli::error::CliError;
+use crate::cli::scene::LoadedScene;
+use crate::cli::SceneLibrary;
+use crate::error::RenderError;
+use crate::frame::{Frame, ParamValues};
+use crate::image::Image;
+use crate::output::png::{prepare_output, write_png};
+use crate::output::sequence::{plan, FramePattern, Shard};
+use crate::output::video::{Container, VideoWriter};
+use crate::renderer::{RenderJob, Renderer};
+use crate::select::{select, BackendChoice, RendererOptions};
+
+/// What `-o` and `--frames` ask for.
+enum Output {
+    Image(PathBuf),
+    Sequence(FramePattern),
+    Video(PathBuf),
+}
+
+fn path_text(path: &Path) -> Result<&str, CliError> {
+    path.to_str().ok_or_else(|| CliError::usage(format!("output path {} is not valid UTF-8", path.display())))
+}
+
+fn is_png(path: &Path) -> bool {
+    path.extension().is_some_and(|e| e.eq_ignore_ascii_case("png"))
+}
+
+fn unsupported(path: &Path) -> CliError {
+    CliError::usage(format!(
+        "cannot write {}: images are written as .png, videos as .mp4, .webm, .mkv or .mov",
+        path.display()
+    ))
+}
+
+fn decide_output(args: &RenderArgs, scene_name: &str) -> Result<Output, CliError> {
+    if args.frames.is_none() {
+        let path = args.output.clone().unwrap_or_else(|| PathBuf::from(format!("{scene_name}.png")));
+        if Container::from_path(&path).is_some() {
+            return Err(CliError::usage(format!(
+                "{} is a video: give the frames to encode with --frames START..END",
+                path.display()
+            )));
+        }
+        if FramePattern::looks_like_pattern(path_text(&path)?) {
+            return Err(CliError::usage(format!(
+                "{} is a frame pattern: give the frames with --frames START..END",
+                path.display()
+            )));
+        }
+        return if is_png(&path) { Ok(Output::Image(path)) } else { Err(unsupported(&path)) };
+    }
+    let Some(path) = &args.output else {
+        let pattern = FramePattern::parse(&format!("{}/%05d.png", scene_name.replace('%', "%%")))
+            .map_err(|e| CliError::usage(e.to_string()))?;
+        return Ok(Output::Sequence(pattern));
+    };
+    if Container::from_path(path).is_some() {
+        if args.shard.is_some() {
+            return Err(CliError::usage(
+                "a video cannot be split into shards: render a PNG sequence with --shard and encode it afterwards",
+            ));
+        }
+        let (w, h) = args.render.size;
+        if w % 2 != 0 || h % 2 != 0 {
+            return Err(CliError::usage(format!("video sizes must be even (yuv420p), got {w}x{h}")));
+        }
+        return Ok(Output::Video(path.clone()));
+    }
+    let pattern = FramePattern::parse(path_text(path)?).map_err(|e| CliError::usage(e.to_string()))?;
+    if !pattern.suffix().to_ascii_lowercase().ends_with(".png") {
+        return Err(unsupported(path));
+    }
+    Ok(Output::Sequence(pattern))
+}
+
+fn note(message: &str) {
+    eprintln!("fractal: {message}");
+}
+
+fn open_renderer(options: &RenderOptions) -> Result<Box<dyn Renderer>, CliError> {
+    let mut renderer = select(options.backend, &RendererOptions { precise: options.precise })?;
+    for n in renderer.take_notes() {
+        note(&n);
+    }
+    if options.backend != BackendChoice::Auto {
+        note(&format!("using {}", renderer.device()));
+    }
+    Ok(renderer)
+}
+
+/// One frame of the scene at `time`, seen from its own camera.
+fn render_frame(
+    renderer: &mut dyn Renderer,
+    loaded: &LoadedScene,
+    params: &ParamValues,
+    time: f64,
+    (width, height): (u32, u32),
+) -> Result<Image, CliError> {
+    let pose = Pose::from_camera(&loaded.scene.camera, time, &|p| params.lookup(p))
+        .map_err(|e| CliError::failure(format!("scene {}: camera at t = {time}: {e}", loaded.name)))?;
+    let frame = Frame::new(&loaded.scene, &pose, time, width, height, params).map_err(RenderError::from)?;
+    let image = renderer.render(&RenderJob::new(loaded.sources(), &frame));
+    for n in renderer.take_notes() {
+        note(&n);
+    }
+    Ok(image?)
+}
+
+pub fn render(args: &RenderArgs, library: &SceneLibrary) -> Result<(), CliError> {
+    let loaded = LoadedScene::load(&args.scene, library)?;
+    let params = loaded.params(&args.render.params)?;
+    let size = args.render.size;
+    match decide_output(args, &loaded.name)? {
+        Output::Image(path) => {
+            prepare_output(&path)?;
+            let mut renderer = open_renderer(&args.render)?;
+            let start = Instant::now();
+            let image = render_frame(renderer.as_mut(), &loaded, &params, args.time, size)?;
+            let elapsed = start.elapsed().as_secs_f64();
+            write_png(&path, &image)?;
+            eprintln!("wrote {} ({}x{}, t = {}, {elapsed:.2} s)", path.display(), size.0, size.1, args.time);
+            Ok(())
+        }
+        Output::Sequence(pattern) => render_sequence(args, &loaded, &params, &pattern),
+        Output::Video(path) => render_video(args, &loaded, &params, &path),
+    }
+}
+
+fn progress_bar(len: u64) -> ProgressBar {
+    if !std::io::stderr().is_terminal() {
+        return ProgressBar::with_draw_target(Some(len), ProgressDrawTarget::hidden());
+    }
+    let style = ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} frames, {per_sec}, eta {eta}")
+        .unwrap_or_else(|_| ProgressStyle::default_bar())
+        .progress_chars("=> ");
+    ProgressBar::with_draw_target(Some(len), ProgressDrawTarget::stderr()).with_style(style)
+}
+
+fn render_sequence(
+    args: &RenderArgs,
+    loaded: &LoadedScene,
+    params: &ParamValues,
+    pattern: &FramePattern,
+) -> Result<(), CliError> {
+    let Some(range) = args.frames else {
+        return Err(CliError::usage("a frame sequence needs --frames START..END"));
+    };
+    let shard = args.shard.unwrap_or(Shard::ALL);
+    let plan = plan(pattern, range, shard);
+    let owned = plan.todo.len() + plan.done.len();
+    let of_shard = if shard == Shard::ALL { String::new() } else { format!(" of shard {shard}") };
+    if plan.todo.is_empty() {
+        eprintln!("nothing to do: all {owned} frames{of_shard} of {range} already exist ({pattern})");
+        return Ok(());
+    }
+    if !plan.done.is_empty() {
+        note(&format!("resuming: {} of {owned} frames{of_shard} already complete", plan.done.len()));
+    }
+    prepare_output(&pattern.path(plan.todo[0]))?;
+    let mut renderer = open_renderer(&args.render)?;
+    let batch_log = !std::io::stderr().is_terminal();
+    let bar = progress_bar(plan.todo.len() as u64);
+    let started = Instant::now();
+    for (done, &f) in plan.todo.iter().enumerate() {
+        let start = Instant::now();
+        let image = render_frame(renderer.as_mut(), loaded, params, f as f64 / args.fps, args.render.size)?;
+        let path = pattern.path(f);
+        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+            std::fs::create_dir_all(dir)
+                .map_err(|source| crate::output::OutputError::Write { path: path.clone(), source })?;
+        }
+        write_png(&path, &image)?;
+        bar.inc(1);
+        if batch_log {
+            // No progress bar without a terminal: one line per frame keeps job-scheduler logs informative.
+            eprintln!(
+                "frame {f} ({}/{}) -> {} in {:.2} s",
+                done + 1,
+                plan.todo.len(),
+                path.display(),
+                start.elapsed().as_secs_f64()
+            );
+        }
+    }
+    bar.finish_and_clear();
+    eprintln!(
+        "wrote {} frames{of_shard} to {pattern} in {:.1} s ({} already complete)",
+        plan.todo.len(),
+        started.elapsed().as_secs_f64(),
+        plan.done.len()
+    );
+    Ok(())
+}
+
+fn render_video(args: &RenderArgs, loaded: &LoadedScene, params: &ParamValues, path: &Path) -> Result<(), CliError> {
+    let Some(range) = args.frames else {
+        return Err(CliError::usage("a video needs --frames START..END"));
+    };
+    prepare_output(path)?;
+    let (width, height) = args.render.size;
+    // ffmpeg starts first, so a missing ffmpeg is reported before any device time is spent.
+    let mut video = VideoWriter::start(path, width, height, args.fps)?;
+    let mut renderer = open_renderer(&args.render)?;
+    let bar = progress_bar(range.len());
+    let started = Instant::now();
+    for f in range.iter() {
+        let image = render_frame(renderer.as_mut(), loaded, params, f as f64 / args.fps, args.render.size)?;
+        video.push(&image)?;
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+    let written = video.finish()?;
+    eprintln!(
+        "wrote {} ({} frames {range} at {} fps, {width}x{height}) in {:.1} s",
+        written.display(),
+        range.len(),
+        args.fps,
+        started.elapsed().as_secs_f64()
+    );
+    Ok(())
+}

@@ -1,0 +1,113 @@
+//! The `<scene>` argument: a built-in scene by name (kernels and native evaluator compiled into the program) or a
+//! `.fractal` file, parsed and compiled at run time (kernels from the scene compiler, the interpreter on the CPU).
+//!
+//! A name is looked up among the built-ins first; anything else is a path. An argument that looks like neither (no
+//! such built-in, no such file, no path separator or `.fractal` extension) is reported as an unknown scene with the
+//! list of built-ins.
+
+use std::path::{Path, PathBuf};
+
+use fractal_dsl::compiled::{CompiledScene, Kernels, NativeFns};
+use fractal_dsl::eval::interp::Interpreter;
+use fractal_dsl::eval::Evaluator;
+use fractal_dsl::Scene;
+
+use crate::cli::error::CliError;
+use crate::cli::SceneLibrary;
+use crate::error::FrameError;
+use crate::export::{export, export_compiled, ExportError, Exported, Target};
+use crate::frame::ParamValues;
+use crate::renderer::KernelSources;
+
+/// Where a scene came from.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum SceneOrigin {
+    BuiltIn,
+    File(PathBuf),
+}
+
+enum Forms<'a> {
+    BuiltIn { compiled: &'a CompiledScene, native: NativeFns },
+    File { kernels: Box<Kernels>, interpreter: Box<Interpreter> },
+}
+
+/// A scene ready to render: its IR, kernels and CPU evaluator.
+pub struct LoadedScene<'a> {
+    pub name: String,
+    pub origin: SceneOrigin,
+    pub scene: Scene,
+    forms: Forms<'a>,
+}
+
+impl<'a> LoadedScene<'a> {
+    /// Resolves `arg` against `library`, then the file system.
+    pub fn load(arg: &str, library: &SceneLibrary<'a>) -> Result<LoadedScene<'a>, CliError> {
+        if let Some(&(name, compiled)) = library.scenes.iter().find(|(name, _)| *name == arg) {
+            return Ok(LoadedScene {
+                name: name.to_string(),
+                origin: SceneOrigin::BuiltIn,
+                scene: compiled.scene().clone(),
+                forms: Forms::BuiltIn { compiled, native: compiled.native() },
+            });
+        }
+        let path = Path::new(arg);
+        let path_like = arg.contains(['/', '\\']) || path.extension().is_some_and(|e| e == "fractal");
+        if !path.exists() && !path_like {
+            let names: Vec<&str> = library.scenes.iter().map(|(n, _)| *n).collect();
+            return Err(CliError::usage(format!(
+                "unknown scene `{arg}`: not a built-in scene ({}) and no such file",
+                names.join(", ")
+            )));
+        }
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| CliError::failure(format!("cannot read scene file {}: {e}", path.display())))?;
+        let scene =
+            fractal_dsl::parse::parse_str(&text).map_err(|e| CliError::failure(format!("{}:{e}", path.display())))?;
+        let kernels = fractal_dsl::compile(&scene);
+        let interpreter = Interpreter::new(&scene);
+        let name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| arg.to_string());
+        Ok(LoadedScene {
+            name,
+            origin: SceneOrigin::File(path.to_path_buf()),
+            scene,
+            forms: Forms::File { kernels: Box::new(kernels), interpreter: Box::new(interpreter) },
+        })
+    }
+
+    /// Every form of the scene a renderer may run.
+    pub fn sources(&self) -> KernelSources<'_> {
+        match &self.forms {
+            Forms::BuiltIn { compiled, native } => KernelSources::default()
+                .with_wgsl(compiled.wgsl())
+                .with_opencl(compiled.opencl())
+                .with_cpu(native as &dyn Evaluator<f32>, &self.scene),
+            Forms::File { kernels, interpreter } => {
+                KernelSources::compiled(kernels).with_cpu(&**interpreter as &dyn Evaluator<f32>, &self.scene)
+            }
+        }
+    }
+
+    /// The render kernel for another engine.
+    pub fn export(&self, target: Target) -> Result<Exported, ExportError> {
+        match &self.forms {
+            Forms::BuiltIn { compiled, .. } => export_compiled(compiled, target),
+            Forms::File { kernels, .. } => export(kernels, target),
+        }
+    }
+
+    /// Parameter values: the defaults, overridden by `name=value` pairs from the command line.
+    pub fn params(&self, assignments: &[(String, f64)]) -> Result<ParamValues, CliError> {
+        let mut values = ParamValues::defaults(&self.scene);
+        for (name, value) in assignments {
+            values.set(name, *value).map_err(|e| match e {
+                FrameError::UnknownParam(_) => {
+                    let known: Vec<&str> = values.decls().iter().map(|d| d.name.as_str()).collect();
+                    let known = if known.is_empty() { "none".to_string() } else { known.join(", ") };
+                    CliError::usage(format!("{e} (its parameters: {known})"))
+                }
+                _ => CliError::usage(e.to_string()),
+            })?;
+        }
+        Ok(values)
+    }
+}

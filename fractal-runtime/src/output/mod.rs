@@ -1,0 +1,33 @@
+//! Offline output of rendered images: PNG files written atomically ([`png`]), numbered frame sequences that resume
+//! after an interruption and split into shards across machines ([`sequence`]), and video through ffmpeg ([`video`]).
+
+pub mod png;
+pub mod sequence;
+pub mod video;
+
+use std::io;
+use std::path::PathBuf;
+
+pub use png::{partial_path, read_png, write_atomic, write_png};
+pub use sequence::{plan, FramePattern, FrameRange, SequencePlan, Shard};
+pub use video::{Container, VideoWriter};
+
+/// Why an output file could not be written (or read back).
+#[derive(Debug, thiserror::Error)]
+pub enum OutputError {
+    #[error("cannot write {}: {source}", .path.display())]
+    Write { path: PathBuf, source: io::Error },
+    #[error("cannot read {}: {source}", .path.display())]
+    Read { path: PathBuf, source: io::Error },
+    #[error("cannot encode {}: {message}", .path.display())]
+    Encode { path: PathBuf, message: String },
+    #[error("{} is not a readable PNG: {message}", .path.display())]
+    Decode { path: PathBuf, message: String },
+    #[error(
+        "ffmpeg was not found on PATH: install ffmpeg to write video, or render a PNG sequence \
+         (-o frames/%05d.png) and encode it later"
+    )]
+    FfmpegMissing,
+    #[error("video {}: {message}", .path.display())]
+    Video { path: PathBuf, message: String },
+}

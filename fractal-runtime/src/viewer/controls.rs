@@ -1,0 +1,129 @@
+//! Key bindings: which key does what ([`binding`]), the actions keys and scripts share ([`Action`]), and the help text.
+
+use winit::keyboard::KeyCode;
+
+/// A direction the camera moves in while its key is held.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Move {
+    Forward,
+    Back,
+    Left,
+    Right,
+    Down,
+    Up,
+}
+
+/// Everything a key (or a scripted step) can ask the viewer to do.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Action {
+    /// Held: moves the camera.
+    Move(Move),
+    /// Held: moves 4× faster.
+    Sprint,
+    /// Shadows none → hard → soft → none.
+    CycleShadows,
+    ToggleAmbientOcclusion,
+    ToggleGlow,
+    ToggleFog,
+    TogglePause,
+    TimeForward,
+    TimeBack,
+    Screenshot,
+    PrintPose,
+    NextParam,
+    PreviousParam,
+    IncreaseParam,
+    DecreaseParam,
+    ResetParam,
+    FasterMovement,
+    SlowerMovement,
+    MoreSensitive,
+    LessSensitive,
+    /// Back to the scene's camera (or the loaded camera path).
+    FollowScenePath,
+    /// Release the mouse, or quit when it is not captured.
+    ReleaseOrQuit,
+    Help,
+}
+
+impl Action {
+    /// Whether the action lasts while its key is held (rather than happening once per press).
+    pub fn is_held(self) -> bool {
+        matches!(self, Action::Move(_) | Action::Sprint)
+    }
+}
+
+/// The action of `key`; `shift` tells whether a Shift key is down (Shift+Tab selects the previous parameter).
+pub fn binding(key: KeyCode, shift: bool) -> Option<Action> {
+    use KeyCode::*;
+    Some(match key {
+        KeyW => Action::Move(Move::Forward),
+        KeyS => Action::Move(Move::Back),
+        KeyA => Action::Move(Move::Left),
+        KeyD => Action::Move(Move::Right),
+        KeyQ => Action::Move(Move::Down),
+        KeyE => Action::Move(Move::Up),
+        ShiftLeft | ShiftRight => Action::Sprint,
+        Digit1 | Numpad1 => Action::CycleShadows,
+        Digit2 | Numpad2 => Action::ToggleAmbientOcclusion,
+        Digit3 | Numpad3 => Action::ToggleGlow,
+        Digit4 | Numpad4 => Action::ToggleFog,
+        Space => Action::TogglePause,
+        ArrowRight => Action::TimeForward,
+        ArrowLeft => Action::TimeBack,
+        F12 | KeyK => Action::Screenshot,
+        KeyP => Action::PrintPose,
+        Tab if shift => Action::PreviousParam,
+        Tab => Action::NextParam,
+        ArrowUp => Action::IncreaseParam,
+        ArrowDown => Action::DecreaseParam,
+        Backspace => Action::ResetParam,
+        Equal | NumpadAdd => Action::FasterMovement,
+        Minus | NumpadSubtract => Action::SlowerMovement,
+        BracketRight => Action::MoreSensitive,
+        BracketLeft => Action::LessSensitive,
+        KeyC => Action::FollowScenePath,
+        Escape => Action::ReleaseOrQuit,
+        KeyH | F1 => Action::Help,
+        _ => return None,
+    })
+}
+
+/// The controls, one line each.
+pub const HELP: &str = "\
+controls:
+  left click        capture the mouse (look around); Esc releases it, Esc again quits
+  W A S D / Q E     move forward, left, back, right / down, up (Shift: 4x faster)
+  + / -             move speed x1.25 / /1.25      ] / [   mouse sensitivity x1.25 / /1.25
+  mouse wheel       field of view                 C       back to the scene's camera path
+  P                 print the camera pose (as a .fractal key(..) and a TOML [[key]])
+  1 2 3 4           shadows none/hard/soft, ambient occlusion, glow, fog (recompiles the kernels)
+  Space             pause / resume time           <- / -> time -1 s / +1 s
+  Tab / Shift+Tab   next / previous param(..)     Up / Down  change it (Shift: 5x)   Backspace  reset it
+  F12 or K          save a PNG screenshot         H       this help";
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_documented_key_is_bound() {
+        let keys = [
+            (KeyCode::KeyW, Action::Move(Move::Forward)),
+            (KeyCode::KeyQ, Action::Move(Move::Down)),
+            (KeyCode::KeyE, Action::Move(Move::Up)),
+            (KeyCode::F12, Action::Screenshot),
+            (KeyCode::KeyK, Action::Screenshot),
+            (KeyCode::KeyP, Action::PrintPose),
+            (KeyCode::Escape, Action::ReleaseOrQuit),
+            (KeyCode::Digit1, Action::CycleShadows),
+        ];
+        for (key, action) in keys {
+            assert_eq!(binding(key, false), Some(action), "{key:?}");
+        }
+        assert_eq!(binding(KeyCode::Tab, false), Some(Action::NextParam));
+        assert_eq!(binding(KeyCode::Tab, true), Some(Action::PreviousParam));
+        assert_eq!(binding(KeyCode::KeyZ, false), None);
+        assert!(Action::Sprint.is_held() && !Action::Screenshot.is_held());
+    }
+}

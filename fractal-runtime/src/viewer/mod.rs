@@ -1,0 +1,274 @@
+//! The interactive viewer (`fractal view <scene>` and the examples): a winit window that renders a scene every frame
+//! with whichever backend was selected, lets the user fly the camera, toggle effects, change `param(..)` values and
+//! take screenshots, and reloads a `.fractal` file whenever it is saved.
+//!
+//! The game loop ([`app`]) runs once per frame: poll input → update time, camera and parameters → render → present.
+//! - Rendering: wgpu frames are computed into a storage buffer and drawn to a wgpu surface by a small full-screen pass
+//!   that also upscales them ([`present`]); CPU and OpenCL frames, and wgpu frames when no surface can be had (it says
+//!   so on stderr), are read back and presented through softbuffer.
+//! - The render size is a fraction of the window ([`RenderScale`]); by default the fraction adapts to hold a target
+//!   frame rate, and the image is upscaled to the window (nearest pixel).
+//! - Effects (shadows, ambient occlusion, glow, fog) are compiled into the kernels, so a toggle recompiles them with
+//!   [`fractal_dsl::compile`]; `param(..)` values are uniforms, so changing one only repacks the frame.
+//! - With no display, [`run`] returns [`ViewerError::NoDisplay`] and [`run_or_render`] renders a PNG instead.
+//!
+//! Controls (also printed at start-up, and again with H):
+//!
+//! | key | does |
+//! |---|---|
+//! | left click | capture the mouse (look around) |
+//! | Esc | release the mouse; quits when the mouse is not captured |
+//! | W A S D | move forward / left / back / right (takes the camera off its path) |
+//! | Q / E | move down / up |
+//! | Shift | move 4× faster (held) |
+//! | + / − | move speed ×1.25 / ÷1.25 |
+//! | ] / [ | mouse sensitivity ×1.25 / ÷1.25 |
+//! | mouse wheel | field of view |
+//! | C | back to the scene's camera (or the loaded camera path) |
+//! | P | print the camera pose as a `.fractal` `key(..)` and a TOML `[[key]]` |
+//! | 1 / 2 / 3 / 4 | shadows none → hard → soft / ambient occlusion / glow / fog (recompiles the kernels) |
+//! | Space | pause or resume time |
+//! | ← / → | time −1 s / +1 s |
+//! | Tab / Shift+Tab | select the next / previous `param(..)` |
+//! | ↑ / ↓ | increase / decrease the selected parameter (Shift: 5× the step), within its range |
+//! | Backspace | reset the selected parameter to its default |
+//! | F12 or K | save a PNG screenshot (the file name is printed) |
+//! | H | print the controls |
+
+mod app;
+mod camera_control;
+pub mod controls;
+mod effects;
+mod engine;
+mod headless;
+mod live_scene;
+mod params;
+pub mod path_file;
+mod present;
+mod scale;
+pub mod screenshot;
+mod script;
+mod title;
+
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+use fractal_dsl::{CompiledScene, Scene};
+
+use crate::camera::Pose;
+use crate::frame::ParamValues;
+use crate::renderer::DeviceInfo;
+use crate::select::{BackendChoice, RendererOptions};
+
+pub use controls::{Action, Move};
+pub use headless::{display_available, render_png};
+pub use path_file::{load_camera_path, parse_camera_path, CameraPathFile};
+pub use scale::RenderScale;
+pub use screenshot::{read_png, write_png};
+pub use script::ScriptedStep;
+
+/// The scene a viewer shows.
+#[derive(Clone, Debug)]
+pub enum ViewerScene {
+    /// A scene compiled at build time (`scene!`, `scene_file!`): its kernels, and its native evaluator for the CPU.
+    Compiled { name: String, scene: &'static CompiledScene },
+    /// A `.fractal` file, loaded and compiled at run time (the interpreter draws it on the CPU) and reloaded whenever
+    /// it is saved.
+    File(PathBuf),
+    /// A scene value built at run time (builder API), compiled when the viewer starts.
+    Built { name: String, scene: Box<Scene> },
+}
+
+impl ViewerScene {
+    pub fn compiled(name: impl Into<String>, scene: &'static CompiledScene) -> ViewerScene {
+        ViewerScene::Compiled { name: name.into(), scene }
+    }
+    pub fn file(path: impl Into<PathBuf>) -> ViewerScene {
+        ViewerScene::File(path.into())
+    }
+    pub fn built(name: impl Into<String>, scene: Scene) -> ViewerScene {
+        ViewerScene::Built { name: name.into(), scene: Box::new(scene) }
+    }
+    /// The name shown in the title and used for screenshot files.
+    pub fn name(&self) -> String {
+        match self {
+            ViewerScene::Compiled { name, .. } | ViewerScene::Built { name, .. } => name.clone(),
+            ViewerScene::File(path) => {
+                path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "scene".to_string())
+            }
+        }
+    }
+}
+
+/// How frames reach the window.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum PresentMode {
+    /// A wgpu surface when the backend is wgpu and a surface can be made; softbuffer otherwise.
+    #[default]
+    Auto,
+    /// Always read frames back and present them through softbuffer.
+    Softbuffer,
+}
+
+/// Everything about a viewer session that is not the scene.
+#[derive(Clone, Debug)]
+pub struct ViewerOptions {
+    pub backend: BackendChoice,
+    pub renderer: RendererOptions,
+    /// Window inner size in physical pixels; also the size of the PNG written when there is no display.
+    pub window_size: (u32, u32),
+    /// Where to place the window (physical pixels from the top-left of the screen); the window system decides when
+    /// `None`.
+    pub window_position: Option<(i32, i32)>,
+    pub render_scale: RenderScale,
+    pub present: PresentMode,
+    /// Camera speed in scene units per second (Shift: 4×).
+    pub move_speed: f64,
+    /// Radians of turn per pixel of mouse motion.
+    pub mouse_sensitivity: f64,
+    /// A TOML camera path to play instead of the scene's camera (see [`path_file`]).
+    pub camera_path: Option<PathBuf>,
+    /// Scene time at start, in seconds.
+    pub start_time: f64,
+    /// Start with time paused.
+    pub paused: bool,
+    /// Advance time and movement by this many seconds per frame instead of the measured frame time (deterministic
+    /// runs: scripts, recordings).
+    pub fixed_time_step: Option<f64>,
+    /// Folder for screenshots taken with F12 / K.
+    pub screenshot_dir: PathBuf,
+    /// Reload a `.fractal` scene file when it changes.
+    pub watch: bool,
+    /// Scripted input: when set, the viewer plays these steps instead of waiting for the user and exits at the end.
+    pub script: Option<Vec<ScriptedStep>>,
+    /// Print the controls at start-up.
+    pub print_help: bool,
+}
+
+impl Default for ViewerOptions {
+    fn default() -> Self {
+        ViewerOptions {
+            backend: BackendChoice::Auto,
+            renderer: RendererOptions::default(),
+            window_size: (1280, 720),
+            window_position: None,
+            render_scale: RenderScale::default(),
+            present: PresentMode::Auto,
+            move_speed: 1.0,
+            mouse_sensitivity: 0.003,
+            camera_path: None,
+            start_time: 0.0,
+            paused: false,
+            fixed_time_step: None,
+            screenshot_dir: PathBuf::from("."),
+            watch: true,
+            script: None,
+            print_help: true,
+        }
+    }
+}
+
+/// What was on screen when a screenshot was taken: enough to render the same image offline.
+#[derive(Clone, Debug)]
+pub struct ScreenshotInfo {
+    pub path: PathBuf,
+    /// The scene as rendered, with the viewer's effect toggles applied to its settings.
+    pub scene: Scene,
+    pub pose: Pose,
+    pub time: f64,
+    pub params: ParamValues,
+    /// Size of the rendered image (before upscaling).
+    pub render_size: (u32, u32),
+    /// Size of the window (and of the screenshot).
+    pub window_size: (u32, u32),
+    pub device: DeviceInfo,
+    /// `"wgpu surface"` or `"softbuffer"`.
+    pub presenter: &'static str,
+}
+
+/// What a viewer session did.
+#[derive(Clone, Debug, Default)]
+pub struct ViewerSummary {
+    pub frames: u64,
+    pub screenshots: Vec<ScreenshotInfo>,
+    /// The device of the last frame drawn.
+    pub device: Option<DeviceInfo>,
+    pub presenter: Option<&'static str>,
+}
+
+/// Why a viewer could not run.
+#[derive(Debug, thiserror::Error)]
+pub enum ViewerError {
+    /// No window system to open a window on.
+    #[error("no display: {0}")]
+    NoDisplay(String),
+    /// The scene could not be loaded (missing file, `file:line:column: message` for broken text).
+    #[error("{0}")]
+    Scene(String),
+    /// The camera path file could not be used.
+    #[error("{0}")]
+    CameraPath(String),
+    /// No backend could render the scene.
+    #[error(transparent)]
+    Render(#[from] crate::error::RenderError),
+    #[error(transparent)]
+    Frame(#[from] crate::error::FrameError),
+    /// The window system failed after the window opened.
+    #[error("window error: {0}")]
+    Window(String),
+    #[error("cannot write {path}: {message}")]
+    Output { path: PathBuf, message: String },
+}
+
+/// Opens the viewer and runs it until the window is closed (or the script ends). Returns
+/// [`ViewerError::NoDisplay`] when there is no window system; [`run_or_render`] falls back to a PNG then.
+pub fn run(scene: ViewerScene, options: ViewerOptions) -> Result<ViewerSummary, ViewerError> {
+    display_available().map_err(ViewerError::NoDisplay)?;
+    app::run(scene, options)
+}
+
+/// What [`run_or_render`] did.
+#[derive(Clone, Debug)]
+pub enum Outcome {
+    Viewed(ViewerSummary),
+    /// There was no display; the scene was rendered to this PNG instead.
+    Rendered {
+        path: PathBuf,
+        device: DeviceInfo,
+    },
+}
+
+/// [`run`], or, with no display, renders the scene at the window size to `png` and says so in one line on stdout.
+pub fn run_or_render(scene: ViewerScene, options: ViewerOptions, png: &Path) -> Result<Outcome, ViewerError> {
+    match run(scene.clone(), options.clone()) {
+        Err(ViewerError::NoDisplay(reason)) => {
+            let device = render_png(&scene, &options, png)?;
+            println!(
+                "no display ({reason}): rendered {} at {}x{} with {} to {} instead",
+                scene.name(),
+                options.window_size.0,
+                options.window_size.1,
+                device.backend,
+                png.display()
+            );
+            Ok(Outcome::Rendered { path: png.to_path_buf(), device })
+        }
+        other => other.map(Outcome::Viewed),
+    }
+}
+
+/// The `main` of the examples: views `scene`, or renders it to `<png_stem>.png` in the current directory when there
+/// is no display. Errors are printed; the exit code is 0 on success.
+pub fn example_main(png_stem: &str, scene: ViewerScene) -> std::process::ExitCode {
+    let png = PathBuf::from(format!("{png_stem}.png"));
+    match run_or_render(scene, ViewerOptions::default(), &png) {
+        Ok(_) => std::process::ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            std::process::ExitCode::FAILURE
+        }
+    }
+}
+
+/// How long a scripted [`ScriptedStep::Idle`] may last at most; longer requests are clamped so a script always ends.
+pub const MAX_IDLE: Duration = Duration::from_secs(600);

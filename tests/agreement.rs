@@ -1,0 +1,196 @@
+//! Agreement: one meaning, many evaluators. The same points of every vocabulary item (and of the evaluation hard
+//! cases) go through the interpreter in f32, the native evaluator in f64 and f32, the WGSL probe kernel (wgpu;
+//! lavapipe without a GPU) and the OpenCL probe kernel (pocl without a GPU; precise, and fast-math as a separate,
+//! looser comparison), and each must agree with the f64 interpreter within the tolerances of `agreement/tolerance.rs`.
+//!
+//! The suite is written once against [`harness::Subject`] and instantiated per evaluator (Fidget's
+//! `float_slice_tests!` pattern). Each test prints its table of largest differences; the test finishing last prints
+//! the rows × evaluators summary. GPU evaluators are skipped with a note when their driver is missing, and fail
+//! instead when `FRACTAL_REQUIRE_GPU_BACKENDS=1`.
+
+#[path = "agreement/harness.rs"]
+mod harness;
+#[path = "agreement/rows.rs"]
+mod rows;
+#[path = "agreement/tolerance.rs"]
+mod tolerance;
+
+use std::sync::Mutex;
+
+use fractal::dsl::back::{self, Entry};
+use fractal::dsl::eval::interp::Interpreter;
+use fractal::dsl::lower::lower;
+use fractal::dsl::math::V3;
+use fractal::runtime::{Frame, ParamValues, Pose, ProbeSample, WgpuRenderer};
+use harness::{cpu_answers, Answer, Column, Row, Subject};
+use tolerance::Class;
+
+fn require_gpu() -> bool {
+    std::env::var("FRACTAL_REQUIRE_GPU_BACKENDS").is_ok_and(|v| v == "1")
+}
+
+/// Every row: the vocabulary, then the hard cases.
+fn all_rows() -> Vec<Row> {
+    let mut rows = rows::vocabulary();
+    rows.extend(rows::hard_cases());
+    rows
+}
+
+// ---- the evaluators -------------------------------------------------------------------------------------------------
+
+struct InterpreterF32;
+impl Subject for InterpreterF32 {
+    fn name(&self) -> &'static str {
+        "interp f32"
+    }
+    fn class(&self) -> Class {
+        Class::CpuF32
+    }
+    fn answers(&mut self, row: &Row, points: &[V3<f32>]) -> Result<Vec<Answer>, String> {
+        cpu_answers::<f32>(&Interpreter::new(row.scene()), row, points)
+    }
+}
+
+struct NativeF64;
+impl Subject for NativeF64 {
+    fn name(&self) -> &'static str {
+        "native f64"
+    }
+    fn class(&self) -> Class {
+        Class::Twin
+    }
+    fn answers(&mut self, row: &Row, points: &[V3<f32>]) -> Result<Vec<Answer>, String> {
+        cpu_answers::<f64>(&row.compiled.native(), row, points)
+    }
+}
+
+struct NativeF32;
+impl Subject for NativeF32 {
+    fn name(&self) -> &'static str {
+        "native f32"
+    }
+    fn class(&self) -> Class {
+        Class::CpuF32
+    }
+    fn answers(&mut self, row: &Row, points: &[V3<f32>]) -> Result<Vec<Answer>, String> {
+        cpu_answers::<f32>(&row.compiled.native(), row, points)
+    }
+}
+
+/// The frame a probe kernel reads its time and parameters from (the pose and size do not matter to a probe).
+fn probe_frame(row: &Row) -> Result<Frame, String> {
+    let scene = row.scene();
+    let pose = Pose::look_at(glam::DVec3::new(0.0, 0.0, -3.0), glam::DVec3::ZERO, 60.0).map_err(|e| e.to_string())?;
+    let values: Vec<f64> = row.param_values().iter().map(|&v| v as f64).collect();
+    let params = ParamValues::from_values(scene, &values).map_err(|e| e.to_string())?;
+    Frame::new(scene, &pose, row.time as f64, 1, 1, &params).map_err(|e| e.to_string())
+}
+
+fn probe_points(points: &[V3<f32>]) -> Vec<[f32; 4]> {
+    points.iter().map(|p| [p.x, p.y, p.z, 0.0]).collect()
+}
+
+/// A probe sample `[distance, ambient, diffuse, specular, r, g, b, shininess]` is already in [`Answer`] order.
+fn widen(samples: Vec<ProbeSample>) -> Vec<Answer> {
+    samples.into_iter().map(|s| s.map(f64::from)).collect()
+}
+
+struct WgslProbe(WgpuRenderer);
+impl Subject for WgslProbe {
+    fn name(&self) -> &'static str {
+        "wgsl"
+    }
+    fn class(&self) -> Class {
+        Class::Gpu
+    }
+    fn answers(&mut self, row: &Row, points: &[V3<f32>]) -> Result<Vec<Answer>, String> {
+        let source = back::wgsl::write(&lower(row.scene()), Entry::Probe);
+        let frame = probe_frame(row)?;
+        self.0.probe(&source, &frame, &probe_points(points)).map(widen).map_err(|e| e.to_string())
+    }
+}
+
+#[cfg(feature = "opencl")]
+struct OpenClProbe(fractal::runtime::OpenClRenderer);
+#[cfg(feature = "opencl")]
+impl Subject for OpenClProbe {
+    fn name(&self) -> &'static str {
+        if self.0.precise() {
+            "opencl"
+        } else {
+            "opencl fast"
+        }
+    }
+    fn class(&self) -> Class {
+        if self.0.precise() {
+            Class::Gpu
+        } else {
+            Class::FastMath
+        }
+    }
+    fn answers(&mut self, row: &Row, points: &[V3<f32>]) -> Result<Vec<Answer>, String> {
+        let source = back::opencl::write(&lower(row.scene()), Entry::Probe);
+        let frame = probe_frame(row)?;
+        self.0.probe(&source, &frame, &probe_points(points)).map(widen).map_err(|e| e.to_string())
+    }
+}
+
+// ---- the suite, instantiated per evaluator --------------------------------------------------------------------------
+
+/// How many columns the summary waits for: one per test below.
+const SUBJECTS: usize = if cfg!(feature = "opencl") { 6 } else { 4 };
+
+static COLUMNS: Mutex<Vec<Column>> = Mutex::new(Vec::new());
+
+/// Runs every row through `subject` (or records why it could not be opened), prints its table, prints the summary
+/// if this is the last column, and fails on any disagreement.
+fn check(opened: Result<Box<dyn Subject>, (&'static str, String)>) {
+    let column = match opened {
+        Ok(mut subject) => harness::run(subject.as_mut(), &all_rows()),
+        Err((name, why)) => {
+            if require_gpu() {
+                panic!("{name} is required (FRACTAL_REQUIRE_GPU_BACKENDS=1) but unavailable: {why}");
+            }
+            eprintln!("{name} skipped: {why}");
+            harness::skipped(name, &all_rows(), &why)
+        }
+    };
+    eprint!("{}", harness::column_table(&column));
+    let failures = column.failures();
+    {
+        let mut columns = COLUMNS.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+        columns.push(column);
+        if columns.len() == SUBJECTS {
+            columns.sort_by_key(|c| harness::order_of(c.subject));
+            eprint!("{}", harness::summary_table(&columns));
+        }
+    }
+    assert!(failures.is_empty(), "{} disagreements:\n{}", failures.len(), failures.join("\n"));
+}
+
+macro_rules! agreement_tests {
+    ($($(#[$meta:meta])* $test:ident => $open:expr;)*) => {$(
+        $(#[$meta])*
+        #[test]
+        fn $test() {
+            check($open);
+        }
+    )*};
+}
+
+agreement_tests! {
+    interpreter_f32_agrees_with_the_f64_interpreter => Ok(Box::new(InterpreterF32));
+    native_f64_agrees_with_the_f64_interpreter => Ok(Box::new(NativeF64));
+    native_f32_agrees_with_the_f64_interpreter => Ok(Box::new(NativeF32));
+    wgsl_probe_agrees_with_the_f64_interpreter => WgpuRenderer::new()
+        .map(|r| Box::new(WgslProbe(r)) as Box<dyn Subject>)
+        .map_err(|e| ("wgsl", e.to_string()));
+    #[cfg(feature = "opencl")]
+    opencl_probe_agrees_with_the_f64_interpreter => fractal::runtime::OpenClRenderer::new(true)
+        .map(|r| Box::new(OpenClProbe(r)) as Box<dyn Subject>)
+        .map_err(|e| ("opencl", e.to_string()));
+    #[cfg(feature = "opencl")]
+    opencl_fast_math_probe_agrees_within_its_looser_tolerance => fractal::runtime::OpenClRenderer::new(false)
+        .map(|r| Box::new(OpenClProbe(r)) as Box<dyn Subject>)
+        .map_err(|e| ("opencl fast", e.to_string()));
+}

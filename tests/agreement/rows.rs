@@ -1,0 +1,257 @@
+//! The agreement table: one row per vocabulary item (every primitive, fractal, CSG operation, transform, domain
+//! operation, material rule and expression function), and the hard cases of evaluation. Each row is a `scene!`
+//! invocation, so the native evaluator and both kernels exist for it; adding a vocabulary item is one row here.
+
+use fractal::dsl::CompiledScene;
+
+use crate::harness::{Family, Row};
+
+/// A row from the scene written once: `row!("name", Family, { scene tokens })`, then chained settings.
+macro_rules! row {
+    ($name:literal, $family:expr, { $($scene:tt)* }) => {
+        Row::new($name, $family, {
+            static SCENE: CompiledScene = fractal::scene! { $($scene)* };
+            &SCENE
+        })
+    };
+}
+
+/// Every vocabulary item.
+pub fn vocabulary() -> Vec<Row> {
+    use Family::*;
+    vec![
+        // ---- primitives
+        row!("sphere", Exact, { sphere(1.0) }),
+        row!("box3", Exact, { box3(vec3(1.0, 0.5, 0.75)) }),
+        row!("round_box", Exact, { round_box(vec3(1.0, 0.5, 0.75), 0.25) }),
+        row!("torus", Exact, { torus(1.0, 0.3) }),
+        row!("capsule", Exact, { capsule(vec3(-0.6, -0.4, 0.1), vec3(0.5, 0.7, -0.2), 0.3) }),
+        row!("cylinder", Exact, { cylinder(0.6, 0.9) }),
+        row!("cone", Exact, { cone(0.8, 0.6, 0.2) }),
+        row!("plane", Exact, { plane(vec3(0.3, 1.0, -0.2), 0.4) }),
+        row!("octahedron", Exact, { octahedron(1.2) }),
+        row!("ellipsoid", Exact, { ellipsoid(vec3(1.0, 0.5, 0.75)) }),
+        // ---- fractals
+        row!("mandelbulb(8) trig-free", Mandelbulb, { mandelbulb(8) }).within(1.5),
+        row!("mandelbulb(7.5) trig", Mandelbulb, { mandelbulb(7.5) }).within(1.5),
+        row!("mandelbulb(8 + sin t) animated", Mandelbulb, { mandelbulb(8.0 + sin(t)) }).within(1.5).at_time(0.75),
+        row!("mandelbulb iterations, bailout", Mandelbulb, { mandelbulb(8).iterations(5).bailout(4.0) }).within(1.5),
+        row!("menger", Menger, { menger(4) }).within(1.5),
+        row!("sierpinski_tetrahedron", Sierpinski, { sierpinski_tetrahedron(8) }).within(1.5),
+        row!("julia", Julia, { julia(vec4(-0.2, 0.6, 0.2, 0.0)) }).within(1.5),
+        row!("julia iterations, bailout", Julia, { julia(vec4(-0.8, 0.156, 0.0, 0.1)).iterations(8).bailout(3.0) })
+            .within(1.5),
+        row!("mandelbox", Mandelbox, { mandelbox(2.0) }).within(6.5),
+        row!("mandelbox min_radius, fold_limit, negative scale", Mandelbox, {
+            mandelbox(-1.5).iterations(10).min_radius(0.4).fold_limit(1.1)
+        })
+        .within(4.0),
+        // ---- CSG (each child its own material, so the material rules are compared too)
+        row!("union", Exact, {
+            union(
+                sphere(0.7).material(rgb(0.9, 0.2, 0.1)),
+                box3(vec3(0.5, 0.4, 0.6)).translate(vec3(0.8, 0.3, 0.0)).material(rgb(0.1, 0.8, 0.3)),
+                torus(0.8, 0.2).translate(vec3(-0.5, -0.4, 0.2)).material(rgb(0.2, 0.3, 0.9)),
+            )
+        }),
+        row!("intersect", Exact, {
+            intersect(sphere(1.0).material(rgb(0.9, 0.2, 0.1)), box3(vec3(0.8, 0.8, 0.8)).material(rgb(0.1, 0.8, 0.3)))
+        }),
+        row!("subtract", Exact, {
+            subtract(box3(vec3(0.8, 0.8, 0.8)).material(rgb(0.9, 0.2, 0.1)), sphere(0.95).material(rgb(0.1, 0.8, 0.3)))
+        }),
+        row!("smooth_union", Exact, {
+            smooth_union(
+                sphere(0.6).material(rgb(0.9, 0.2, 0.1)),
+                box3(vec3(0.45, 0.45, 0.45)).translate(vec3(0.6, 0.25, 0.0)).material(rgb(0.1, 0.8, 0.3)),
+                0.3,
+            )
+        }),
+        row!("smooth_intersect", Exact, {
+            smooth_intersect(
+                sphere(1.0).material(rgb(0.9, 0.2, 0.1)),
+                box3(vec3(0.75, 0.75, 0.75)).material(rgb(0.1, 0.8, 0.3)),
+                0.2,
+            )
+        }),
+        row!("smooth_subtract", Exact, {
+            smooth_subtract(
+                box3(vec3(0.8, 0.8, 0.8)).material(rgb(0.9, 0.2, 0.1)),
+                sphere(0.95).material(rgb(0.1, 0.8, 0.3)),
+                0.25,
+            )
+        }),
+        row!("union with a guarded fractal child", Mandelbulb, {
+            union(
+                sphere(0.4).translate(vec3(2.0, 0.0, 0.0)).material(rgb(0.9, 0.2, 0.1)),
+                mandelbulb(8).material(rgb(0.1, 0.8, 0.3)),
+            )
+        })
+        .within(3.0),
+        // ---- transforms
+        row!("translate", Exact, { box3(vec3(0.5, 0.4, 0.3)).translate(vec3(0.3, -0.2, 0.5)) }),
+        row!("rotate_x", Exact, { box3(vec3(1.0, 0.5, 0.25)).rotate_x(0.6) }),
+        row!("rotate_y (animated)", Trig, { box3(vec3(1.0, 0.5, 0.25)).rotate_y(0.5 * t) }).at_time(1.25),
+        row!("rotate_z", Exact, { box3(vec3(1.0, 0.5, 0.25)).rotate_z(-0.9) }),
+        row!("rotate(axis) (animated)", Trig, { box3(vec3(1.0, 0.5, 0.25)).rotate(vec3(1.0, 2.0, -0.5), 0.4 + t) })
+            .at_time(0.75),
+        row!("scale", Exact, { torus(1.0, 0.3).scale(1.75) }).within(3.0),
+        // ---- domain operations
+        row!("repeat", Exact, { sphere(0.3).repeat(vec3(1.0, 0.0, 1.5)) }).within(4.0),
+        row!("repeat_limited", Exact, { sphere(0.3).repeat_limited(vec3(1.0, 1.25, 0.0), vec3(2, 1, 0)) }).within(4.0),
+        row!("twist", Trig, { box3(vec3(0.5, 1.0, 0.5)).twist(0.8) }),
+        row!("bend", Trig, { box3(vec3(1.0, 0.2, 0.3)).bend(0.5) }),
+        row!("round", Exact, { box3(vec3(0.6, 0.4, 0.5)).round(0.2) }),
+        row!("onion", Exact, { sphere(1.0).onion(0.1) }),
+        row!("elongate", Exact, { sphere(0.5).elongate(vec3(0.5, 0.0, 0.25)) }),
+        // ---- materials
+        row!("material: default surface", Exact, { sphere(1.0) }),
+        row!("material: rgb", Exact, { sphere(1.0).material(rgb(0.2, 0.4, 0.8)) }),
+        row!("material: phong", Exact, { sphere(1.0).material(phong(rgb(0.3, 0.7, 0.35), 0.15, 0.85, 0.4, 32.0)) }),
+        row!("material: ambient, diffuse, specular, shininess setters", Exact, {
+            sphere(1.0).material(rgb(0.3, 0.7, 0.35).ambient(0.3).diffuse(0.6).specular(0.5).shininess(16.0))
+        }),
+        row!("material: orbit_trap on a fractal", Mandelbulb, {
+            mandelbulb(8).material(orbit_trap(rgb(0.9, 0.6, 0.2), rgb(0.1, 0.3, 0.8)))
+        })
+        .within(1.5),
+        row!("material: orbit_trap on a primitive takes its first colour", Exact, {
+            sphere(1.0).material(orbit_trap(rgb(0.9, 0.6, 0.2), rgb(0.1, 0.3, 0.8)))
+        }),
+        row!("material: union picks the nearer child", Exact, {
+            union(
+                sphere(0.8).material(phong(rgb(0.9, 0.2, 0.1), 0.1, 0.9, 0.0, 8.0)),
+                sphere(0.8).translate(vec3(0.9, 0.0, 0.0)).material(phong(rgb(0.1, 0.8, 0.3), 0.3, 0.6, 0.5, 64.0)),
+            )
+        }),
+        row!("material: smooth_union blends every term", Exact, {
+            smooth_union(
+                sphere(0.8).material(phong(rgb(0.9, 0.2, 0.1), 0.1, 0.9, 0.0, 8.0)),
+                sphere(0.8).translate(vec3(0.9, 0.0, 0.0)).material(phong(rgb(0.1, 0.8, 0.3), 0.3, 0.6, 0.5, 64.0)),
+                0.5,
+            )
+        }),
+        row!("material: the innermost wins", Exact, {
+            union(sphere(0.8).material(rgb(0.9, 0.2, 0.1)), sphere(0.8).translate(vec3(0.9, 0.0, 0.0)))
+                .material(rgb(0.1, 0.8, 0.3))
+        }),
+        row!("material: animated and parametric terms", Trig, {
+            sphere(1.0)
+                .material(rgb(0.5 + 0.5 * sin(t), abs(cos(t)), param("blue", 0.5, 0.0..1.0)).shininess(8.0 + 8.0 * t))
+        })
+        .at_time(1.25)
+        .with_params(&[0.75]),
+        // ---- expressions (each reads `t` or a param, so folding cannot remove it from the kernels)
+        row!("expr: t", Exact, { sphere(1.0 + 0.25 * t) }).at_time(1.5),
+        row!("expr: param", Exact, { sphere(param("radius", 1.0, 0.5..2.0)) }).with_params(&[1.25]),
+        row!("expr: params in two uniform slots", Exact, {
+            sphere(param("a", 0.5, 0.0..1.0) + param("b", 0.25, 0.0..1.0)).translate(vec3(
+                param("c", 0.0, -1.0..1.0),
+                param("d", 0.0, -1.0..1.0),
+                param("e", 0.0, -1.0..1.0),
+            ))
+        })
+        .with_params(&[0.625, 0.125, -0.25, 0.5, 0.375]),
+        row!("expr: +", Exact, { sphere(0.5 + t) }).at_time(0.5),
+        row!("expr: -", Exact, { sphere(2.0 - t).translate(vec3(t - 1.0, 0.0, 0.0)) }).at_time(1.25),
+        row!("expr: unary -", Exact, { sphere(1.0).translate(vec3(-t, 0.0, 0.0)) }).at_time(0.5),
+        row!("expr: *", Exact, { sphere(0.75 * t) }).at_time(1.5),
+        row!("expr: /", Exact, { sphere(1.5 / t) }).at_time(1.25),
+        row!("expr: sin", Trig, { sphere(1.0).translate(vec3(sin(t), 0.0, 0.0)) }).at_time(0.75),
+        row!("expr: cos", Trig, { sphere(1.0).translate(vec3(0.0, cos(t), 0.0)) }).at_time(0.75),
+        row!("expr: abs", Exact, { sphere(abs(t - 2.0)) }).at_time(0.75),
+        row!("expr: sqrt", Exact, { sphere(sqrt(t)) }).at_time(1.5),
+        row!("expr: min", Exact, { sphere(min(t, 1.25)) }).at_time(0.75),
+        row!("expr: max", Exact, { sphere(max(t, 1.25)) }).at_time(0.75),
+        row!("expr: pow", Trig, { sphere(pow(t, 1.5)) }).at_time(1.25),
+        row!("expr: clamp", Exact, { sphere(clamp(t, 0.5, 0.875)) }).at_time(1.5),
+        row!("expr: mix", Exact, { sphere(mix(0.5, 1.5, t)) }).at_time(0.25),
+    ]
+}
+
+/// DESIGN.md's hard cases that concern evaluation, each through every evaluator. Hand-picked points come first in
+/// each row; the random ones follow.
+pub fn hard_cases() -> Vec<Row> {
+    use Family::*;
+    // The polar axis of the Mandelbulb here is z (θ = acos(z/r)); x = y = 0 is the pole, and 1e-7, 1e-30 off it.
+    let mut pole = Vec::new();
+    for i in 0..=24 {
+        let z = -1.5 + 0.125 * i as f32;
+        for (x, y) in [(0.0, 0.0), (1e-7, 0.0), (0.0, 1e-7), (-1e-7, 1e-7), (1e-30, 0.0), (1e-30, 1e-30), (0.0, -1e-30)]
+        {
+            pole.push([x, y, z]);
+        }
+    }
+    // p = 0 exactly and points whose orbits never escape (deep inside the bulb).
+    let bounded = vec![
+        [0.0, 0.0, 0.0],
+        [-0.0, 0.0, -0.0],
+        [0.1, 0.2, 0.3],
+        [-0.3, 0.2, 0.1],
+        [0.4, -0.1, 0.05],
+        [0.0, 0.5, 0.0],
+        [0.25, 0.25, -0.25],
+        [1e-20, -1e-20, 1e-20],
+    ];
+    // Coordinates exactly on (the f32 roundings of) the k/3^j planes of the sponge, and points 100 units away.
+    let mut planes = Vec::new();
+    for j in 1..=4 {
+        let s = 3f32.powi(j);
+        for k in [-3i32, -2, -1, 0, 1, 2, 3] {
+            let c = k as f32 / s;
+            planes.push([c, 0.3, -0.7]);
+            planes.push([0.45, c, c]);
+            planes.push([c, c, c]);
+            planes.push([1.0, c, 1.0 / s]);
+        }
+    }
+    for p in [[100.0, 0.3, 0.2], [-70.0, 70.0, 10.0], [0.0, 0.0, 100.0], [1.0 / 3.0, 100.0, 1.0 / 9.0]] {
+        planes.push(p);
+    }
+    vec![
+        row!("hard: mandelbulb(8) pole axis", Mandelbulb, { mandelbulb(8) }).within(1.5).with_points(&pole),
+        row!("hard: mandelbulb(power 8 by param, trig path) pole axis", Mandelbulb, {
+            mandelbulb(param("power", 8.0, 2.0..16.0))
+        })
+        .within(1.5)
+        .with_params(&[8.0])
+        .with_points(&pole),
+        row!("hard: mandelbulb(8) at p = 0 and never-escaping points", Mandelbulb, { mandelbulb(8) })
+            .within(0.5)
+            .with_points(&bounded),
+        row!("hard: mandelbulb(7.5) at p = 0 and never-escaping points", Mandelbulb, { mandelbulb(7.5) })
+            .within(0.5)
+            .with_points(&bounded),
+        row!("hard: mandelbulb(16) bailout 256", Mandelbulb, { mandelbulb(16).bailout(256.0) })
+            .within(1.5)
+            .with_points(&bounded),
+        row!("hard: mandelbulb(32) bailout 256", Mandelbulb, { mandelbulb(32).bailout(256.0) })
+            .within(1.5)
+            .with_points(&bounded),
+        row!("hard: menger(6) on k/3 planes and 100 away", Menger, { menger(6) }).within(1.5).with_points(&planes),
+        row!("hard: smooth_union k = 0 (param)", Exact, {
+            smooth_union(
+                sphere(0.5).material(rgb(0.9, 0.2, 0.1)),
+                sphere(0.5).translate(vec3(0.6, 0.0, 0.0)).material(rgb(0.1, 0.8, 0.3)),
+                param("k", 0.5, 0.0..4.0),
+            )
+        })
+        .with_params(&[0.0]),
+        row!("hard: smooth_union k = 0 (literal)", Exact, {
+            smooth_union(
+                sphere(0.5).material(rgb(0.9, 0.2, 0.1)),
+                sphere(0.5).translate(vec3(0.6, 0.0, 0.0)).material(rgb(0.1, 0.8, 0.3)),
+                0.0,
+            )
+        }),
+        row!("hard: smooth_union k larger than both shapes", Exact, {
+            smooth_union(
+                sphere(0.5).material(rgb(0.9, 0.2, 0.1)),
+                sphere(0.5).translate(vec3(0.6, 0.0, 0.0)).material(rgb(0.1, 0.8, 0.3)),
+                3.0,
+            )
+        }),
+        row!("hard: unit sphere 1e5 away", Exact, { sphere(1.0).translate(vec3(100000.0, 0.0, 0.0)) })
+            .around([100000.0, 0.0, 0.0], 2.0),
+    ]
+}

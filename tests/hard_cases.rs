@@ -1,0 +1,123 @@
+//! The render-level hard cases of the design notes, through the CPU renderer (interpreter) and the WGSL kernel
+//! (wgpu): far geometry must not stall the march below the float spacing of t, a camera inside geometry and grazing
+//! rays must give finite, sensible pixels, and shadow rays must not shadow the surface they start on.
+
+use fractal::dsl::builder::*;
+use fractal::dsl::eval::interp::Interpreter;
+use fractal::dsl::{compile, Scene};
+use fractal::runtime::{
+    CpuRenderer, Frame, Image, KernelSources, ParamValues, Pose, RenderJob, Renderer, WgpuRenderer,
+};
+use glam::DVec3;
+
+fn require_gpu() -> bool {
+    std::env::var("FRACTAL_REQUIRE_GPU_BACKENDS").is_ok_and(|v| v == "1")
+}
+
+/// Renders `scene` from `pose` with the CPU renderer and, when available, wgpu.
+fn render_both(scene: &Scene, pose: &Pose, size: u32) -> Vec<(&'static str, Image)> {
+    let frame = Frame::new(scene, pose, 0.0, size, size, &ParamValues::defaults(scene)).unwrap();
+    let interp = Interpreter::new(scene);
+    let kernels = compile(scene);
+    let mut out = vec![(
+        "cpu",
+        CpuRenderer::new().render(&RenderJob::new(KernelSources::default().with_cpu(&interp, scene), &frame)).unwrap(),
+    )];
+    match WgpuRenderer::new() {
+        Ok(mut gpu) => {
+            out.push(("wgpu", gpu.render(&RenderJob::new(KernelSources::compiled(&kernels), &frame)).unwrap()))
+        }
+        Err(e) if !require_gpu() => eprintln!("wgpu skipped: {e}"),
+        Err(e) => panic!("wgpu required but unavailable: {e}"),
+    }
+    out
+}
+
+fn centre(img: &Image) -> [u8; 4] {
+    img.rgba(img.width / 2, img.height / 2).unwrap()
+}
+
+#[test]
+fn a_unit_sphere_far_away_is_still_hit() {
+    for distance in [1e4, 3e4, 1e5, 3e5] {
+        // The plane far below makes the scene unbounded, so the ray is not clipped to the sphere's bound and the
+        // march itself has to cover the distance.
+        let s = scene(union(
+            sphere(1.0).translate(vec3(0.0, 0.0, distance)).material(rgb(1.0, 0.0, 0.0)),
+            plane(vec3(0.0, 1.0, 0.0), 1e7),
+        ))
+        .max_distance(distance * 2.0)
+        .max_steps(256)
+        .background(rgb(0.0, 0.0, 1.0));
+        // Field of view such that the sphere spans about half the image.
+        let fov = (2.0 * (2.0 / distance).atan()).to_degrees();
+        let pose = Pose::look_at(DVec3::ZERO, DVec3::new(0.0, 0.0, distance), fov).unwrap();
+        // Every pixel whose ray passes within 0.8 of the centre must hit: one stalled march is a blue pixel.
+        let size = 32;
+        for (backend, img) in render_both(&s, &pose, size) {
+            for y in 0..size {
+                for x in 0..size {
+                    let (u, v) =
+                        ((x as f64 + 0.5) / size as f64 * 2.0 - 1.0, (y as f64 + 0.5) / size as f64 * 2.0 - 1.0);
+                    if (u * u + v * v).sqrt() * 2.0 < 0.8 {
+                        let c = img.rgba(x, y).unwrap();
+                        assert!(c[0] > 40 && c[2] < 40, "{backend}: sphere at {distance} missed at ({x}, {y}): {c:?}");
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn a_camera_inside_geometry_sees_its_surface_colour() {
+    let s = scene(sphere(10.0).material(rgb(0.0, 1.0, 0.0))).background(rgb(0.0, 0.0, 1.0));
+    let pose = Pose::look_at(DVec3::ZERO, DVec3::new(0.0, 0.0, 1.0), 60.0).unwrap();
+    for (backend, img) in render_both(&s, &pose, 8) {
+        for y in 0..8 {
+            for x in 0..8 {
+                let c = img.rgba(x, y).unwrap();
+                assert!(c[1] > c[2], "{backend}: pixel ({x}, {y}) inside the sphere shows {c:?}");
+            }
+        }
+    }
+}
+
+#[test]
+fn a_ray_grazing_a_box_face_ends_without_stalling() {
+    // Rays 1e-4 above the top face of a long box, parallel to it: each step is only 1e-4 long. With the default
+    // epsilon (5e-4) the ray counts as touching the face; with a tighter one it must still end (step budget) and
+    // show either the box or the background, never garbage.
+    for eps in [5e-4, 1e-5] {
+        let s =
+            scene(box3(vec3(1.0, 1.0, 100.0)).material(rgb(1.0, 0.0, 0.0))).epsilon(eps).background(rgb(0.0, 0.0, 1.0));
+        let pose = Pose::look_at(DVec3::new(0.0, 1.0 + 1e-4, -101.0), DVec3::new(0.0, 1.0 + 1e-4, 0.0), 0.01).unwrap();
+        for (backend, img) in render_both(&s, &pose, 4) {
+            let c = centre(&img);
+            let is_box = c[0] > 0 && c[2] < 60;
+            let is_background = c[0] == 0 && c[2] > 200;
+            assert!(is_box || is_background, "{backend} eps {eps}: grazing pixel {c:?}");
+            if eps == 5e-4 {
+                assert!(is_box, "{backend}: within epsilon of the face is a hit, got {c:?}");
+            }
+        }
+    }
+}
+
+#[test]
+fn shadow_rays_do_not_shadow_their_own_surface() {
+    // A sphere lit from straight above, seen from above: its top faces the light, so with hard or soft shadows it must
+    // be as bright as without shadows (the shadow ray starts on the surface it lights).
+    let base = scene(sphere(1.0).material(rgb(1.0, 1.0, 1.0)))
+        .light(directional(vec3(0.0, 1.0, 0.0), rgb(1.0, 1.0, 1.0)))
+        .background(rgb(0.0, 0.0, 0.0));
+    let pose = Pose::look_at(DVec3::new(0.0, 5.0, 0.001), DVec3::ZERO, 20.0).unwrap();
+    let lit = render_both(&base, &pose, 8);
+    for shadowed in [base.clone().hard_shadows(), base.clone().soft_shadows(16.0)] {
+        for ((backend, with), (_, without)) in render_both(&shadowed, &pose, 8).iter().zip(&lit) {
+            let (a, b) = (centre(with), centre(without));
+            assert!(a[0].abs_diff(b[0]) <= 2, "{backend}: the lit top is shadowed ({a:?} vs {b:?} without shadows)");
+            assert!(a[0] > 200, "{backend}: the lit top is dark: {a:?}");
+        }
+    }
+}
