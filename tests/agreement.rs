@@ -194,3 +194,22 @@ agreement_tests! {
         .map(|r| Box::new(OpenClProbe(r)) as Box<dyn Subject>)
         .map_err(|e| ("opencl fast", e.to_string()));
 }
+
+#[test]
+fn zz_debug_power16() {
+    use fractal::dsl::math::v3;
+    for row in rows::hard_cases().iter().filter(|r| r.name.contains("(16)") || r.name.contains("(32)")) {
+        let pts = [v3(2.9730025e-1f32, 6.4247036e-1, 1.091232e0), v3(1.6017969e-1, 4.859082e-1, 8.163427e-1), v3(1.9711668e-2, 1.0597593e0, 1.1338331e-1)];
+        let reference = harness::Reference::new(row);
+        let f32s = cpu_answers::<f32>(&Interpreter::new(row.scene()), row, &pts).unwrap();
+        let mut w = WgslProbe(WgpuRenderer::new().unwrap());
+        let g = w.answers(row, &pts).unwrap();
+        let mut o = OpenClProbe(fractal::runtime::OpenClRenderer::new(true).unwrap());
+        let c = o.answers(row, &pts).unwrap();
+        for (i, p) in pts.iter().enumerate() {
+            eprintln!("{} {:?}: ref {:e} f32 {:e} wgsl {:e} opencl {:e}", row.name, p, reference.distance(p.cast()), f32s[i][0], g[i][0], c[i][0]);
+        }
+    }
+    let row = &rows::hard_cases()[5];
+    eprintln!("{}", back::opencl::write(&lower(row.scene()), Entry::Probe));
+}

@@ -9,8 +9,9 @@ pub const TINY: f64 = 1e-30;
 /// Derivative cap for escape-time fractals: past it the estimate is 0 to within float precision anyway, and stopping
 /// keeps f32 from overflowing to Inf (and Inf/Inf to NaN) at high powers.
 pub const DR_MAX: f64 = 1e30;
-/// Largest log2 of |z|^power an iteration may produce: keeps r^power finite in f32 (max ~2^128).
-pub const POW_LOG2_MAX: f64 = 120.0;
+/// Largest log2 of |z|^power an iteration may produce: `length` squares |z|, so 2^60 keeps |z|² (2^120) finite in
+/// f32 (max ~2^128).
+pub const POW_LOG2_MAX: f64 = 60.0;
 
 #[inline(always)]
 pub fn sd_sphere<F: Real>(p: V3<F>, r: F) -> F {

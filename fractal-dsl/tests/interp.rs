@@ -204,8 +204,12 @@ fn fractal_leaves_call_the_leaf_functions_times_the_step_factor() {
     // A power that folds to 8 takes the polynomial form; a parameter power takes the trigonometric one.
     let folded = Interpreter::new(&scene(mandelbulb(Expr::Lit(4.0) * 2.0)));
     assert_eq!(folded.distance_in(p, &env), sdf::de_mandelbulb8(p, 8, 2.0)[0] * 0.75);
+    // Its step factor is that of the lowest power it can take (2 here).
     let animated = Interpreter::new(&scene(mandelbulb(param("power", 8.0, 2.0..12.0))));
-    assert_eq!(animated.distance_in(p, &Env { time: 0.0, params: &[8.0] }), sdf::de_mandelbulb(p, 8.0, 8, 2.0)[0] * 0.75);
+    assert_eq!(
+        animated.distance_in(p, &Env { time: 0.0, params: &[8.0] }),
+        sdf::de_mandelbulb(p, 8.0, 8, 2.0)[0] * 0.35
+    );
 }
 
 #[test]
@@ -231,7 +235,10 @@ fn domain_operations_follow_the_evaluation_rules() {
     let long = Interpreter::new(&scene(box3([2.0, 0.2, 0.2]).rotate_z(std::f64::consts::FRAC_PI_2)));
     assert!(d64(&long, [0.0, 1.9, 0.0]) < 0.0 && d64(&long, [1.9, 0.0, 0.0]) > 0.0);
     // Any-axis rotation about z equals rotate_z.
-    assert!((at(box3([1.0, 0.5, 0.3]).rotate([0.0, 0.0, 2.0], 0.8)) - at(box3([1.0, 0.5, 0.3]).rotate_z(0.8))).abs() < 1e-12);
+    assert!(
+        (at(box3([1.0, 0.5, 0.3]).rotate([0.0, 0.0, 2.0], 0.8)) - at(box3([1.0, 0.5, 0.3]).rotate_z(0.8))).abs()
+            < 1e-12
+    );
     // Repetition: p − period·floor(p/period + 0.5) on repeated axes; the limited form clamps the cell.
     let rep = Interpreter::new(&scene(sphere(0.3).repeat([2.0, 0.0, 0.0])));
     assert!((d64(&rep, [4.1, 0.2, 0.0]) - d64(&rep, [0.1, 0.2, 0.0])).abs() < 1e-12);
@@ -242,11 +249,13 @@ fn domain_operations_follow_the_evaluation_rules() {
     let child = |q: [f64; 3]| box_distance(q, [0.5, 1.0, 0.3]);
     let a = k * p[1];
     let q = [a.cos() * p[0] - a.sin() * p[2], p[1], a.sin() * p[0] + a.cos() * p[2]];
-    let twist = child(q) / (1.0 + (k * p[0].hypot(p[2])).powi(2)).sqrt();
+    // The largest stretch of the map at radius ρ from the axis: (v + sqrt(v² + 4))/2 with v = |k|·ρ.
+    let stretch = |rho: f64| (k * rho + ((k * rho).powi(2) + 4.0).sqrt()) / 2.0;
+    let twist = child(q) / stretch(p[0].hypot(p[2]));
     assert!((at(box3([0.5, 1.0, 0.3]).twist(k)) - twist).abs() < 1e-12);
     let a = k * p[0];
     let q = [a.cos() * p[0] - a.sin() * p[1], a.sin() * p[0] + a.cos() * p[1], p[2]];
-    let bend = child(q) / (1.0 + (k * p[0].hypot(p[1])).powi(2)).sqrt();
+    let bend = child(q) / stretch(p[0].hypot(p[1]));
     assert!((at(box3([0.5, 1.0, 0.3]).bend(k)) - bend).abs() < 1e-12);
     // Scale divides the point and multiplies the distance back.
     assert!((at(box3([0.5, 1.0, 0.3]).scale(2.5)) - 2.5 * child(p.map(|v| v / 2.5))).abs() < 1e-12);
@@ -279,18 +288,19 @@ fn tree() -> impl Strategy<Value = Node> {
             (inner.clone(), -4.0..4.0f64).prop_map(|(a, t)| a.rotate([1.0, 2.0, 0.5], t)),
             (inner.clone(), 0.3..3.0f64).prop_map(|(a, s)| a.scale(s)),
             (inner.clone(), -1.0..1.0f64).prop_map(|(a, k)| a.twist(k)),
-            (inner.clone(), vec3_in(0.5, 2.0)).prop_map(|(a, per)| a.repeat(per)),
+            (inner.clone(), vec3_in(0.5, 2.0), 0u32..3).prop_map(|(a, per, n)| a.repeat_limited(per, [n, n, n])),
             (inner.clone(), 0.0..0.3f64).prop_map(|(a, r)| a.round(r).onion(0.05)),
             (inner, vec3_in(0.0, 0.5)).prop_map(|(a, h)| a.elongate(h)),
         ]
     })
 }
 
-/// f32 against f64 on trees of primitives: each operation rounds to f32 relative to the magnitudes it handles (the
-/// point's coordinates, up to 3 here, and the distances), and the trees are at most a few levels deep, so the
-/// difference stays within 4e-6 × (1 + |p| + |d|) — about 30 f32 ulps of the largest magnitude involved. Points that
-/// fall on a repetition cell boundary in one precision and not the other are skipped (the cell index differs there).
-const F32_TOLERANCE: f64 = 4e-6;
+/// f32 against f64 on trees of primitives, evaluated at the same (f32) point: each operation rounds to f32 relative to
+/// the magnitudes it handles (coordinates up to 3, the distances), so the difference is a few f32 ulps of
+/// 1 + |p| + |d|: measured at most 2e-7 of it over 3000 random trees; the tolerance is ten times that. Limited
+/// repetition picks cell floor(p/period + 0.5), which can differ between precisions exactly on a cell boundary: such
+/// points (within 1e-5 of one, in the tree's local coordinates) are skipped.
+const F32_TOLERANCE: f64 = 2e-6;
 
 proptest! {
     #![proptest_config(ProptestConfig { cases: 256, ..ProptestConfig::default() })]
@@ -299,22 +309,46 @@ proptest! {
     fn f32_agrees_with_f64_on_primitive_trees(t in tree(), points in prop::collection::vec(vec3_in(-3.0, 3.0), 32)) {
         let i = Interpreter::new(&scene(t.clone()));
         for p in points {
-            // The f32 point is what both evaluate, so the comparison measures evaluation error only.
             let p32 = p.map(|v| v as f32 as f64);
             let (a, b) = (d32(&i, p32) as f64, d64(&i, p32));
             let scale = 1.0 + len(p32) + b.abs();
             if (a - b).abs() > F32_TOLERANCE * scale {
-                // Repetition picks cell floor(p/period + 0.5): on a cell boundary the two precisions may disagree.
-                let near_cell_boundary = format!("{t:?}").contains("Repeat");
-                prop_assert!(near_cell_boundary, "f32 {a} vs f64 {b} at {p32:?} for {t:?}");
+                prop_assert!(on_cell_boundary(&t, p32), "f32 {a} vs f64 {b} at {p32:?} for {t:?}");
             }
         }
     }
 }
 
+/// Whether some limited repetition in `n` sees `p` (carried through the transforms above it) within 1e-5 of a cell
+/// boundary on a repeated axis.
+fn on_cell_boundary(n: &Node, p: [f64; 3]) -> bool {
+    let lit = |e: &Expr| e.as_lit().unwrap_or(0.0);
+    match n {
+        Node::RepeatLimited(c, period, _) => {
+            (0..3).any(|i| {
+                let per = lit(&period.0[i]);
+                per != 0.0 && {
+                    let x = p[i] / per + 0.5;
+                    (x - x.round()).abs() < 1e-5
+                }
+            }) || on_cell_boundary(c, p)
+        }
+        Node::Translate(c, v) => on_cell_boundary(c, [0, 1, 2].map(|i| p[i] - lit(&v.0[i]))),
+        Node::Scale(c, s) => on_cell_boundary(c, p.map(|v| v / lit(s))),
+        // Below a rotation, twist or elongation the local point is not tracked here: any boundary counts.
+        Node::Rotate(c, ..) | Node::Twist(c, _) | Node::Elongate(c, _) => contains_repeat(c),
+        _ => n.children().iter().any(|c| on_cell_boundary(c, p)),
+    }
+}
+
+fn contains_repeat(n: &Node) -> bool {
+    matches!(n, Node::RepeatLimited(..)) || n.children().iter().any(|c| contains_repeat(c))
+}
+
 /// Fractal estimators iterate a chaotic map: near the set, f32 rounding in the first iterations grows like the
-/// derivative and the two precisions follow different orbits. Away from the surface (f64 estimate above 0.05) they
-/// agree to a relative 1e-3; everywhere they stay finite.
+/// derivative and the two precisions follow different orbits, so no tolerance holds there. Away from the surface (f64
+/// estimate above 0.05) the orbits escape early and the two agree to a relative 2e-5 (measured at most 1.9e-6);
+/// everywhere both stay finite.
 #[test]
 fn f32_agrees_with_f64_on_fractals_away_from_the_surface() {
     let fractals: Vec<(&str, Fractal, f64)> = vec![
@@ -342,7 +376,7 @@ fn f32_agrees_with_f64_on_fractals_away_from_the_surface() {
             if b > 0.05 {
                 let rel = (a - b).abs() / b;
                 worst = worst.max(rel);
-                assert!(rel < 1e-3, "{name} at {p:?}: f32 {a} vs f64 {b}");
+                assert!(rel < 2e-5, "{name} at {p:?}: f32 {a} vs f64 {b}");
             }
         }
         eprintln!("{name}: largest relative f32/f64 difference away from the surface {worst:.2e}");
@@ -358,37 +392,44 @@ fn bulb_forms<F: fractal_dsl::math::Real>(p: [f64; 3], iterations: u32) -> (F, F
 }
 
 /// Case 1: on the pole axis (x = y = 0; the polar axis is z) and 1e-7 and 1e-30 off it, both forms are finite and
-/// agree: in f64 to 1e-9 (relative to 1 + |d|), in f32 to 1e-4 (they round differently: r⁸ by products against
-/// cos(8·acos(z/r))·r^8).
+/// agree, relative to 1 + |d|: in f64 to 5e-8, in f32 to 5e-6 (measured 6.8e-9 and 5.5e-7). They differ by more than
+/// rounding of products because acos(z/r) is ill-conditioned next to the pole: z/r = ±(1 − ε) gives θ ≈ √(2ε), so an
+/// ulp of z/r moves θ by ulp/√(2ε) (about 1e-9 at 1e-7 off the axis), which the trigonometric form then multiplies
+/// by 8; the polynomial form never takes the angle.
 #[test]
 fn mandelbulb_on_and_near_the_pole_axis() {
     let mut worst = [0.0f64; 2];
     for k in -30..=30 {
         let z = k as f64 * 0.05;
         for off in [0.0, 1e-7, 1e-30] {
-            for p in [[off, 0.0, z], [0.0, off, z], [off, off, z]] {
+            // Our polar axis is z; the y axis (DESIGN.md's x = z = 0, a y-up convention) is checked as well.
+            for p in [[off, 0.0, z], [0.0, off, z], [off, off, z], [off, z, 0.0], [0.0, z, off]] {
                 for iterations in [1, 4, 8, 16] {
                     let (a, b) = bulb_forms::<f64>(p, iterations);
                     assert!(a.is_finite() && b.is_finite(), "f64 at {p:?}: {a}, {b}");
                     let e = (a - b).abs() / (1.0 + a.abs());
                     worst[0] = worst[0].max(e);
-                    assert!(e < 1e-3, "f64 forms differ at {p:?} × {iterations}: {a} vs {b}");
+                    assert!(e < 5e-8, "f64 forms differ at {p:?} × {iterations}: {a} vs {b}");
                     let (a, b) = bulb_forms::<f32>(p, iterations);
                     assert!(a.is_finite() && b.is_finite(), "f32 at {p:?}: {a}, {b}");
                     let e = (a - b).abs() as f64 / (1.0 + a.abs() as f64);
                     worst[1] = worst[1].max(e);
-                    assert!(e < 1e-1, "f32 forms differ at {p:?} × {iterations}: {a} vs {b}");
+                    assert!(e < 5e-6, "f32 forms differ at {p:?} × {iterations}: {a} vs {b}");
                 }
             }
         }
     }
-    eprintln!("pole axis: largest difference between the two power-8 forms: f64 {:.1e}, f32 {:.1e}", worst[0], worst[1]);
+    eprintln!(
+        "pole axis: largest difference between the two power-8 forms: f64 {:.1e}, f32 {:.1e}",
+        worst[0], worst[1]
+    );
 }
 
 /// Case 2: p = 0 exactly, and points whose orbit never escapes, give a finite estimate at or below 0.
 #[test]
 fn mandelbulb_at_the_origin_and_at_points_that_never_escape() {
-    let bulbs = [Interpreter::new(&scene(mandelbulb(8))), Interpreter::new(&scene(mandelbulb(param("n", 8.0, 2.0..16.0))))];
+    let bulbs =
+        [Interpreter::new(&scene(mandelbulb(8))), Interpreter::new(&scene(mandelbulb(param("n", 8.0, 2.0..16.0))))];
     for i in &bulbs {
         for p in [[0.0, 0.0, 0.0], [0.0, 0.0, 0.5], [0.1, -0.2, 0.15], [-0.3, 0.1, 0.2], [0.0, 0.4, -0.3]] {
             let (a, b) = (d32(i, p), d64(i, p));
@@ -402,9 +443,8 @@ fn mandelbulb_at_the_origin_and_at_points_that_never_escape() {
     }
 }
 
-/// Case 3: powers 16 and 32 with bailout 256 and up to the iteration cap: no Inf or NaN anywhere, in either precision.
-#[test]
-fn high_power_mandelbulbs_stay_finite() {
+/// Random points, mostly near the set and one in ten up to 100 units away.
+fn high_power_points(n: usize) -> Vec<[f64; 3]> {
     let mut rng = 12345u64;
     let mut next = move || {
         rng ^= rng << 13;
@@ -412,15 +452,41 @@ fn high_power_mandelbulbs_stay_finite() {
         rng ^= rng << 17;
         (rng >> 11) as f64 / (1u64 << 53) as f64
     };
+    (0..n)
+        .map(|k| {
+            let reach = if k % 10 == 0 { 100.0 } else { 1.2 };
+            [0, 1, 2].map(|_| (next() * 2.0 - 1.0) * reach)
+        })
+        .collect()
+}
+
+/// Case 3: powers 16 and 32 with bailout 256, up to the iteration cap: no Inf or NaN in f64.
+#[test]
+fn high_power_mandelbulbs_stay_finite_in_f64() {
     for power in [16.0, 32.0] {
         for iterations in [8, 32, MAX_ITERATIONS] {
             let i = Interpreter::new(&scene(mandelbulb(power).bailout(256.0).iterations(iterations)));
-            for k in 0..3000 {
-                // Near the set mostly, some far away.
-                let reach = if k % 10 == 0 { 100.0 } else { 1.2 };
-                let p = [0, 1, 2].map(|_| (next() * 2.0 - 1.0) * reach);
-                let (a, b) = (d32(&i, p), d64(&i, p));
-                assert!(a.is_finite() && b.is_finite(), "power {power} × {iterations} at {p:?}: f32 {a}, f64 {b}");
+            for p in high_power_points(3000) {
+                let d = d64(&i, p);
+                assert!(d.is_finite(), "power {power} × {iterations} at {p:?}: {d}");
+            }
+        }
+    }
+}
+
+/// Case 3 in f32. `sdf::mandelbulb_escape` keeps |z|^power below 2^120, but `length` squares the new z, which overflows
+/// f32 (2^128) once |z| passes 2^64: the estimate becomes +∞. With bailout 256, 15% of points within 1.5 of the origin
+/// at power 16 and 3% at power 32 are affected (measured over 100 000 points).
+#[test]
+fn high_power_mandelbulbs_stay_finite_in_f32() {
+    let d = sdf::de_mandelbulb(v3(-0.73857415f32, -1.087467, 0.24681997), 16.0, 8, 256.0)[0];
+    assert!(d.is_finite(), "power 16 × 8, bailout 256 at (-0.73857415, -1.087467, 0.24681997): {d}");
+    for power in [16.0, 32.0] {
+        for iterations in [8, 32, MAX_ITERATIONS] {
+            let i = Interpreter::new(&scene(mandelbulb(power).bailout(256.0).iterations(iterations)));
+            for p in high_power_points(3000) {
+                let d = d32(&i, p);
+                assert!(d.is_finite(), "power {power} × {iterations} at {p:?}: {d}");
             }
         }
     }
@@ -483,7 +549,6 @@ fn smooth_union_at_zero_and_huge_blend_radius() {
 /// 0 by 0 when c = 0 (NaN) and a positive log by 0 for escaping c (+∞). Kept as a record until `sdf::de_julia` guards
 /// the division.
 #[test]
-#[ignore = "sdf::de_julia is NaN at p = 0 for c = 0 and +inf for c = (0.3, 0, 0, 0): reported, not ours to change"]
 fn julia_at_its_critical_point_is_finite() {
     for c in [[0.0; 4], [0.3, 0.0, 0.0, 0.0]] {
         let d = sdf::de_julia(v3(0.0f64, 0.0, 0.0), c, 11, 4.0)[0];

@@ -181,7 +181,7 @@ fn measured_ratio(fractal: Fractal, half: f64, exterior: &dyn Fn([f64; 3]) -> bo
         tries += 1;
         let p = rng.in_cube(half);
         let fp = f64_at(&interp, p);
-        if !(fp > 0.0 && fp < 0.1 * half * step) || !exterior(p) {
+        if !(fp > 0.0 && fp < 0.1 * half * step && exterior(p)) {
             continue;
         }
         let d = rng.direction();
@@ -190,20 +190,30 @@ fn measured_ratio(fractal: Fractal, half: f64, exterior: &dyn Fn([f64; 3]) -> bo
             continue;
         }
         found += 1;
-        let r = (fp - f64_at(&interp, q)).abs() / h;
-        if r > worst && std::env::var("SHOW_WORST").is_ok() {
-            eprintln!("  worst so far {r} p {p:?} q {q:?} fp {fp} fq {}", f64_at(&interp, q));
-        }
-        worst = worst.max(r);
+        worst = worst.max((fp - f64_at(&interp, q)).abs() / h);
     }
     assert!(found == pairs, "only {found} of {pairs} near-surface pairs found");
     worst
 }
 
-fn check_family(name: &str, variants: Vec<(String, Fractal, f64, Box<dyn Fn([f64; 3]) -> bool>)>) {
-    let step = variants[0].1.kind.step_factor();
+/// One measured configuration of a fractal family.
+struct Variant {
+    label: String,
+    fractal: Fractal,
+    /// Half extent of the region sampled (the bound's).
+    half: f64,
+    /// Whether a point lies outside the set, where the estimate is a distance.
+    exterior: Box<dyn Fn([f64; 3]) -> bool>,
+}
+
+fn variant(label: String, fractal: Fractal, half: f64, exterior: impl Fn([f64; 3]) -> bool + 'static) -> Variant {
+    Variant { label, fractal, half, exterior: Box::new(exterior) }
+}
+
+fn check_family(name: &str, variants: Vec<Variant>) {
+    let step = variants[0].fractal.kind.step_factor();
     let mut worst = 0.0f64;
-    for (i, (label, fractal, half, exterior)) in variants.into_iter().enumerate() {
+    for (i, Variant { label, fractal, half, exterior }) in variants.into_iter().enumerate() {
         let scaled = measured_ratio(fractal, half, &*exterior, 200_000, 0x5eed + i as u64);
         eprintln!(
             "{name} {label}: Lipschitz ratio of the raw estimator {:.3}, scaled by {step}: {scaled:.3}",
@@ -220,21 +230,21 @@ fn check_family(name: &str, variants: Vec<(String, Fractal, f64, Box<dyn Fn([f64
 
 #[test]
 fn mandelbulb_step_factor_keeps_the_estimate_within_the_lipschitz_bound() {
-    let mut variants: Vec<(String, Fractal, f64, Box<dyn Fn([f64; 3]) -> bool>)> = Vec::new();
+    let mut variants = Vec::new();
     for (iterations, bailout) in [(8, 2.0), (4, 2.0), (12, 2.0), (16, 256.0)] {
-        variants.push((
+        variants.push(variant(
             format!("power 8 (polynomial form), {iterations} iterations, bailout {bailout}"),
             mandelbulb(8).iterations(iterations).bailout(bailout),
             1.2,
-            Box::new(move |p| mandelbulb_escapes(p, 8.0, iterations, bailout)),
+            move |p| mandelbulb_escapes(p, 8.0, iterations, bailout),
         ));
     }
     // The same power through the trigonometric form (a power that is not the literal 8).
-    variants.push((
+    variants.push(variant(
         "power 8 (trigonometric form), 8 iterations".into(),
         mandelbulb(4.0 + param("extra", 4.0, 2.0..6.0)),
         1.2,
-        Box::new(|p| mandelbulb_escapes(p, 8.0, 8, 2.0)),
+        |p| mandelbulb_escapes(p, 8.0, 8, 2.0),
     ));
     check_family("mandelbulb", variants);
 
@@ -253,15 +263,15 @@ fn mandelbulb_step_factor_keeps_the_estimate_within_the_lipschitz_bound() {
 
 #[test]
 fn julia_step_factor_keeps_the_estimate_within_the_lipschitz_bound() {
-    let mut variants: Vec<(String, Fractal, f64, Box<dyn Fn([f64; 3]) -> bool>)> = Vec::new();
+    let mut variants = Vec::new();
     for (c, iterations, bailout) in
         [([-0.2, 0.6, 0.2, 0.0], 11, 4.0), ([-0.4, 0.6, 0.0, 0.0], 11, 4.0), ([-0.2, 0.6, 0.2, 0.0], 6, 16.0)]
     {
-        variants.push((
+        variants.push(variant(
             format!("c = {c:?}, {iterations} iterations, bailout {bailout}"),
             julia(c).iterations(iterations).bailout(bailout),
             1.6,
-            Box::new(move |p| julia_escapes(p, c, iterations, bailout)),
+            move |p| julia_escapes(p, c, iterations, bailout),
         ));
     }
     check_family("julia", variants);
@@ -269,13 +279,13 @@ fn julia_step_factor_keeps_the_estimate_within_the_lipschitz_bound() {
 
 #[test]
 fn mandelbox_step_factor_keeps_the_estimate_within_the_lipschitz_bound() {
-    let mut variants: Vec<(String, Fractal, f64, Box<dyn Fn([f64; 3]) -> bool>)> = Vec::new();
+    let mut variants = Vec::new();
     for (scale, iterations, half) in [(-1.5, 12, 2.1), (2.0, 12, 6.1), (3.0, 12, 4.1), (-2.0, 8, 2.1)] {
-        variants.push((
+        variants.push(variant(
             format!("scale {scale}, {iterations} iterations"),
             mandelbox(scale).iterations(iterations),
             half,
-            Box::new(|_| true),
+            |_| true,
         ));
     }
     check_family("mandelbox", variants);

@@ -8,8 +8,8 @@
 //! scene time advances 1/30 s per frame. With `--baseline` both the scene and the baseline use the scene's own static
 //! camera at time 0, since the baseline kernels have their camera built in.
 //!
-//! **Timing.** Frames are timed by the bench's own dispatchers ([`timer`]), which do per frame what the renderers do
-//! (upload the frame uniforms, dispatch, wait, read the pixels back) and also read the device's clock:
+//! **Timing.** Frames are timed by the bench's own dispatchers (module `timer`), which do per frame what the renderers
+//! do (upload the frame uniforms, dispatch, wait, read the pixels back) and also read the device's clock:
 //! - wgpu: timestamp queries around the compute pass where the adapter supports them, otherwise the wall time from
 //!   submit to the end of the wait (the report says which);
 //! - OpenCL: the kernel's profiling event (start to end);

@@ -145,7 +145,7 @@ pub fn vocabulary() -> Vec<Row> {
         row!("expr: t", Exact, { sphere(1.0 + 0.25 * t) }).at_time(1.5),
         row!("expr: param", Exact, { sphere(param("radius", 1.0, 0.5..2.0)) }).with_params(&[1.25]),
         row!("expr: params in two uniform slots", Exact, {
-            sphere(param("a", 0.5, 0.0..1.0) + param("b", 0.25, 0.0..1.0)).translate(vec3(
+            sphere(param("a", 0.5, 0.25..1.0) + param("b", 0.25, 0.0..1.0)).translate(vec3(
                 param("c", 0.0, -1.0..1.0),
                 param("d", 0.0, -1.0..1.0),
                 param("e", 0.0, -1.0..1.0),
@@ -153,17 +153,17 @@ pub fn vocabulary() -> Vec<Row> {
         })
         .with_params(&[0.625, 0.125, -0.25, 0.5, 0.375]),
         row!("expr: +", Exact, { sphere(0.5 + t) }).at_time(0.5),
-        row!("expr: -", Exact, { sphere(2.0 - t).translate(vec3(t - 1.0, 0.0, 0.0)) }).at_time(1.25),
+        row!("expr: -", Exact, { sphere(1.0).translate(vec3(t - 1.0, 0.0, 0.0)) }).at_time(1.25),
         row!("expr: unary -", Exact, { sphere(1.0).translate(vec3(-t, 0.0, 0.0)) }).at_time(0.5),
-        row!("expr: *", Exact, { sphere(0.75 * t) }).at_time(1.5),
-        row!("expr: /", Exact, { sphere(1.5 / t) }).at_time(1.25),
+        row!("expr: *", Exact, { sphere(0.5 + 0.75 * t) }).at_time(1.5),
+        row!("expr: /", Exact, { sphere(0.5 + 1.0 / (1.0 + t)) }).at_time(1.25),
         row!("expr: sin", Trig, { sphere(1.0).translate(vec3(sin(t), 0.0, 0.0)) }).at_time(0.75),
         row!("expr: cos", Trig, { sphere(1.0).translate(vec3(0.0, cos(t), 0.0)) }).at_time(0.75),
-        row!("expr: abs", Exact, { sphere(abs(t - 2.0)) }).at_time(0.75),
-        row!("expr: sqrt", Exact, { sphere(sqrt(t)) }).at_time(1.5),
-        row!("expr: min", Exact, { sphere(min(t, 1.25)) }).at_time(0.75),
+        row!("expr: abs", Exact, { sphere(0.5 + abs(t - 2.0)) }).at_time(0.75),
+        row!("expr: sqrt", Exact, { sphere(0.5 + sqrt(t)) }).at_time(1.5),
+        row!("expr: min", Exact, { sphere(0.5 + min(t, 1.25)) }).at_time(0.75),
         row!("expr: max", Exact, { sphere(max(t, 1.25)) }).at_time(0.75),
-        row!("expr: pow", Trig, { sphere(pow(t, 1.5)) }).at_time(1.25),
+        row!("expr: pow", Trig, { sphere(0.5 + pow(t, 1.5)) }).at_time(1.25),
         row!("expr: clamp", Exact, { sphere(clamp(t, 0.5, 0.875)) }).at_time(1.5),
         row!("expr: mix", Exact, { sphere(mix(0.5, 1.5, t)) }).at_time(0.25),
     ]
@@ -221,6 +221,9 @@ pub fn hard_cases() -> Vec<Row> {
             .with_points(&bounded),
         row!("hard: mandelbulb(7.5) at p = 0 and never-escaping points", Mandelbulb, { mandelbulb(7.5) })
             .within(0.5)
+            .with_points(&bounded),
+        row!("hard: mandelbulb(8) bailout 256", Mandelbulb, { mandelbulb(8).bailout(256.0) })
+            .within(1.5)
             .with_points(&bounded),
         row!("hard: mandelbulb(16) bailout 256", Mandelbulb, { mandelbulb(16).bailout(256.0) })
             .within(1.5)

@@ -73,33 +73,6 @@ impl Interval {
         Interval::new(self.lo.min(o.lo), self.hi.max(o.hi))
     }
 
-    pub fn neg(self) -> Interval {
-        Interval::new(-self.hi, -self.lo)
-    }
-    pub fn add(self, o: Interval) -> Interval {
-        Interval::new(self.lo + o.lo, self.hi + o.hi)
-    }
-    pub fn sub(self, o: Interval) -> Interval {
-        self.add(o.neg())
-    }
-    pub fn mul(self, o: Interval) -> Interval {
-        let ends = [mul_end(self.lo, o.lo), mul_end(self.lo, o.hi), mul_end(self.hi, o.lo), mul_end(self.hi, o.hi)];
-        Interval::new(
-            ends.iter().copied().fold(f64::INFINITY, f64::min),
-            ends.iter().copied().fold(-f64::INFINITY, f64::max),
-        )
-    }
-    pub fn div(self, o: Interval) -> Interval {
-        if o.contains(0.0) {
-            return Interval::ENTIRE;
-        }
-        // Quotients of the ends directly (not times a reciprocal, which rounds twice): division rounds monotonically.
-        let ends = [self.lo / o.lo, self.lo / o.hi, self.hi / o.lo, self.hi / o.hi];
-        if ends.iter().any(|v| v.is_nan()) {
-            return Interval::ENTIRE;
-        }
-        Interval::new(ends.iter().copied().fold(f64::INFINITY, f64::min), ends.iter().copied().fold(-f64::INFINITY, f64::max))
-    }
     pub fn abs(self) -> Interval {
         Interval::new(self.min_abs(), self.max_abs())
     }
@@ -122,7 +95,7 @@ impl Interval {
     }
     /// `a + (b − a)·t`, as [`Func::Mix`] evaluates.
     pub fn mix(self, b: Interval, t: Interval) -> Interval {
-        self.add(b.sub(self).mul(t))
+        self + (b - self) * t
     }
     pub fn sin(self) -> Interval {
         use std::f64::consts::FRAC_PI_2;
@@ -182,9 +155,60 @@ impl Interval {
             return Interval::ENTIRE;
         }
         let log = Interval::new(self.lo.ln(), self.hi.ln());
-        let p = e.mul(log);
+        let p = e * log;
         // exp(e·ln x) and powf(x, e) round differently: widen by a relative margin far above either's error.
         Interval::new(p.lo.exp() * (1.0 - 1e-12), p.hi.exp() * (1.0 + 1e-12))
+    }
+}
+
+impl core::ops::Neg for Interval {
+    type Output = Interval;
+    fn neg(self) -> Interval {
+        Interval::new(-self.hi, -self.lo)
+    }
+}
+
+impl core::ops::Add for Interval {
+    type Output = Interval;
+    fn add(self, o: Interval) -> Interval {
+        Interval::new(self.lo + o.lo, self.hi + o.hi)
+    }
+}
+
+impl core::ops::Sub for Interval {
+    type Output = Interval;
+    fn sub(self, o: Interval) -> Interval {
+        self + -o
+    }
+}
+
+impl core::ops::Mul for Interval {
+    type Output = Interval;
+    fn mul(self, o: Interval) -> Interval {
+        let ends = [mul_end(self.lo, o.lo), mul_end(self.lo, o.hi), mul_end(self.hi, o.lo), mul_end(self.hi, o.hi)];
+        Interval::new(
+            ends.iter().copied().fold(f64::INFINITY, f64::min),
+            ends.iter().copied().fold(-f64::INFINITY, f64::max),
+        )
+    }
+}
+
+impl core::ops::Div for Interval {
+    type Output = Interval;
+    /// Unbounded when the divisor's range contains 0.
+    fn div(self, o: Interval) -> Interval {
+        if o.contains(0.0) {
+            return Interval::ENTIRE;
+        }
+        // Quotients of the ends directly (not times a reciprocal, which rounds twice): division rounds monotonically.
+        let ends = [self.lo / o.lo, self.lo / o.hi, self.hi / o.lo, self.hi / o.hi];
+        if ends.iter().any(|v| v.is_nan()) {
+            return Interval::ENTIRE;
+        }
+        Interval::new(
+            ends.iter().copied().fold(f64::INFINITY, f64::min),
+            ends.iter().copied().fold(-f64::INFINITY, f64::max),
+        )
     }
 }
 
@@ -195,14 +219,14 @@ pub fn range(e: &Expr) -> Interval {
         Expr::Time => Interval::TIME,
         // The default is included so a declaration whose default lies outside its range stays covered.
         Expr::Param(p) => Interval::new(p.min, p.max).hull(Interval::point(p.default)),
-        Expr::Neg(a) => range(a).neg(),
+        Expr::Neg(a) => -range(a),
         Expr::Bin(op, a, b) => {
             let (a, b) = (range(a), range(b));
             match op {
-                BinOp::Add => a.add(b),
-                BinOp::Sub => a.sub(b),
-                BinOp::Mul => a.mul(b),
-                BinOp::Div => a.div(b),
+                BinOp::Add => a + b,
+                BinOp::Sub => a - b,
+                BinOp::Mul => a * b,
+                BinOp::Div => a / b,
             }
         }
         Expr::Call(f, args) => {

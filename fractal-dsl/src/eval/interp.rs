@@ -593,7 +593,9 @@ impl Interpreter {
                 let ra = co * a - si * b;
                 let rb = si * a + co * b;
                 let q = if twist { v3(ra, p.y, rb) } else { v3(ra, rb, p.z) };
-                let stretch = (F::one() + k * k * (a * a + b * b)).sqrt();
+                // The map's largest stretch at radius ρ: (v + sqrt(v² + 4))/2 with v = |k|·ρ (as the lowering).
+                let v = k.abs() * (a * a + b * b).sqrt();
+                let stretch = (v + (v * v + F::c(4.0)).sqrt()) * F::c(0.5);
                 (c, q, Post::Div(stretch))
             }
             Op::Round(c, r) => (c, p, Post::Sub(r.eval(env))),

@@ -108,9 +108,21 @@ impl FractalKind {
     /// distances. Largest ratios over 20 million pairs per variant: Mandelbulb power 8 at 4–16 iterations and bailout 2
     /// or 256, 1.28 → 0.75; quaternion Julia with connected sets (c = (−0.2, 0.6, 0.2, 0), (−0.4, 0.6, 0, 0)), 1.15 →
     /// 0.85; Mandelbox at scales −2, −1.5, 2, 3, 1.30 → 0.75. Menger and Sierpinski are 1-Lipschitz: 1.
+    ///
+    /// The Mandelbulb's ratio depends on the power (measured: power 3 → 2.7, 4 → 1.4, 5.5 → 1.5, 8 → 1.28,
+    /// 16 → 0.93), so its factor follows the lowest power the expression can take.
     pub fn step_factor(&self) -> f64 {
         match self {
-            FractalKind::Mandelbulb { .. } => 0.75,
+            FractalKind::Mandelbulb { power } => {
+                let lowest = crate::analyse::interval::range(power).lo;
+                if lowest >= 8.0 {
+                    0.75
+                } else if lowest >= 4.0 {
+                    0.65
+                } else {
+                    0.35
+                }
+            }
             FractalKind::Menger => 1.0,
             FractalKind::Sierpinski => 1.0,
             FractalKind::Julia { .. } => 0.85,

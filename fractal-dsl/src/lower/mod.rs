@@ -71,8 +71,9 @@ impl Program {
 
 /// Lowers a scene (folding it first).
 pub fn lower(scene: &Scene) -> Program {
-    let scene = fold::fold_scene(scene);
+    // Param slots come from the scene as written (folding may drop a param's only use; the host packs them all).
     let params = scene.params();
+    let scene = fold::fold_scene(scene);
     let default_material = Material::default_surface();
 
     let mut l = Lower { b: Builder::new(), params: &params, material: false };
@@ -374,8 +375,9 @@ impl Lower<'_> {
                 self.node(c, q, m)
             }
             Node::Twist(c, k) | Node::Bend(c, k) => {
-                // Twist turns the xz plane by k·y; bend turns the xy plane by k·x. The map stretches space by up to
-                // sqrt(1 + (k·ρ)²) at radius ρ from the axis, so the child's distance is divided by that.
+                // Twist turns the xz plane by k·y; bend turns the xy plane by k·x. At radius ρ from the axis the map
+                // stretches space by up to (v + sqrt(v² + 4))/2 with v = |k|·ρ (the Jacobian's largest singular
+                // value), so the child's distance is divided by that to stay a lower bound.
                 let twist = matches!(n, Node::Twist(..));
                 let kv = self.expr(k);
                 let [x, y, z] = self.comps(p);
@@ -394,11 +396,16 @@ impl Lower<'_> {
                 let aa = self.b.mul(a_in, a_in);
                 let bb = self.b.mul(b_in, b_in);
                 let rho2 = self.b.add(aa, bb);
-                let kk = self.b.mul(kv, kv);
-                let stretch2 = self.b.mul(kk, rho2);
-                let one = self.b.lit(1.0);
-                let s2 = self.b.add(one, stretch2);
-                let stretch = self.b.math(MathFn::Sqrt, vec![s2]);
+                let rho = self.b.math(MathFn::Sqrt, vec![rho2]);
+                let k_abs = self.b.math(MathFn::Abs, vec![kv]);
+                let v = self.b.mul(k_abs, rho);
+                let vv = self.b.mul(v, v);
+                let four = self.b.lit(4.0);
+                let vv4 = self.b.add(vv, four);
+                let root = self.b.math(MathFn::Sqrt, vec![vv4]);
+                let sum = self.b.add(v, root);
+                let half = self.b.lit(0.5);
+                let stretch = self.b.mul(sum, half);
                 Surf { distance: self.b.div(r.distance, stretch), fields: r.fields }
             }
             Node::Round(c, r) => {

@@ -174,6 +174,8 @@ impl BenchRecord {
     /// Column names and values of the CSV row, in order.
     pub fn csv_fields(&self) -> Vec<(&'static str, String)> {
         let opt = |v: Option<f64>| v.map(|v| v.to_string()).unwrap_or_default();
+        // Times to the microsecond: the clocks resolve no finer in practice, and rows stay readable.
+        let ms = |v: f64| format!("{v:.3}");
         let g = &self.generated;
         let b = self.baseline.as_ref();
         let s = &self.settings;
@@ -192,16 +194,16 @@ impl BenchRecord {
             ("frames", self.frames.to_string()),
             ("camera", self.camera.to_string()),
             ("kernel_clock", self.kernel_clock.to_string()),
-            ("kernel_min_ms", g.kernel_ms.min.to_string()),
-            ("kernel_median_ms", g.kernel_ms.median.to_string()),
-            ("kernel_mean_ms", g.kernel_ms.mean.to_string()),
-            ("kernel_max_ms", g.kernel_ms.max.to_string()),
-            ("frame_min_ms", g.frame_ms.min.to_string()),
-            ("frame_median_ms", g.frame_ms.median.to_string()),
-            ("frame_mean_ms", g.frame_ms.mean.to_string()),
-            ("frame_max_ms", g.frame_ms.max.to_string()),
-            ("fps", g.fps.to_string()),
-            ("first_frame_ms", g.first_frame_ms.to_string()),
+            ("kernel_min_ms", ms(g.kernel_ms.min)),
+            ("kernel_median_ms", ms(g.kernel_ms.median)),
+            ("kernel_mean_ms", ms(g.kernel_ms.mean)),
+            ("kernel_max_ms", ms(g.kernel_ms.max)),
+            ("frame_min_ms", ms(g.frame_ms.min)),
+            ("frame_median_ms", ms(g.frame_ms.median)),
+            ("frame_mean_ms", ms(g.frame_ms.mean)),
+            ("frame_max_ms", ms(g.frame_ms.max)),
+            ("fps", format!("{:.4}", g.fps)),
+            ("first_frame_ms", ms(g.first_frame_ms)),
             ("error_size", format!("{}x{}", self.error.width, self.error.height)),
             ("hit_mismatch", opt(self.error.hit_mismatch)),
             ("mean_colour_difference", opt(self.error.mean_colour_difference)),
@@ -213,8 +215,8 @@ impl BenchRecord {
             ("glow", s.glow.map(|c| format!("{} {} {}", c[0], c[1], c[2])).unwrap_or_default()),
             ("fog_density", opt(s.fog_density)),
             ("params", s.params.join(" ")),
-            ("baseline_kernel_median_ms", opt(b.map(|b| b.timings.kernel_ms.median))),
-            ("baseline_frame_median_ms", opt(b.map(|b| b.timings.frame_ms.median))),
+            ("baseline_kernel_median_ms", b.map(|b| ms(b.timings.kernel_ms.median)).unwrap_or_default()),
+            ("baseline_frame_median_ms", b.map(|b| ms(b.timings.frame_ms.median)).unwrap_or_default()),
             ("kernel_ratio", opt(b.map(|b| b.kernel_ratio))),
             ("frame_ratio", opt(b.map(|b| b.frame_ratio))),
             ("baseline_hit_mismatch", opt(b.and_then(|b| b.error.as_ref()).and_then(|e| e.hit_mismatch))),

@@ -49,6 +49,8 @@ pub enum Command {
     Export(ExportArgs),
     /// List the built-in scenes
     List,
+    /// Open a scene in the interactive viewer (needs a display; press H in the window for the controls)
+    View(ViewArgs),
 }
 
 /// Options shared by the commands that render.
@@ -148,6 +150,40 @@ pub struct ExportArgs {
     pub output: Option<PathBuf>,
 }
 
+#[derive(Debug, Args)]
+#[command(after_help = "\
+Controls: click to capture the mouse (Esc releases it), W A S D to move, Q / E down / up, Shift faster, P prints the
+camera pose, 1-4 toggle shadows / ambient occlusion / glow / fog, Space pauses time, Tab and the arrow keys change
+parameters, F12 or K saves a screenshot, H prints all controls. A .fractal file is reloaded whenever it is saved.")]
+pub struct ViewArgs {
+    /// Built-in scene name or .fractal file
+    pub scene: String,
+    /// Window size, WIDTHxHEIGHT
+    #[arg(long, value_name = "WxH", default_value = "1280x720", value_parser = parse_size)]
+    pub size: (u32, u32),
+    /// Backend: auto tries wgpu, then OpenCL, then the CPU
+    #[arg(long, value_name = "auto|wgpu|opencl|cpu", default_value = "auto", value_parser = parse_backend)]
+    pub backend: BackendChoice,
+    /// OpenCL: build without -cl-fast-relaxed-math
+    #[arg(long)]
+    pub precise: bool,
+    /// Scene time at start, in seconds
+    #[arg(long, value_name = "SECONDS", default_value_t = 0.0, value_parser = parse_time)]
+    pub time: f64,
+    /// Start with time paused
+    #[arg(long)]
+    pub paused: bool,
+    /// Play this TOML camera path instead of the scene's camera
+    #[arg(long, value_name = "PATH")]
+    pub camera_path: Option<PathBuf>,
+    /// Camera speed in scene units per second
+    #[arg(long, value_name = "SPEED", default_value_t = 1.0, value_parser = parse_positive)]
+    pub move_speed: f64,
+    /// Mouse sensitivity in radians per pixel
+    #[arg(long, value_name = "RADIANS", default_value_t = 0.003, value_parser = parse_positive)]
+    pub mouse_sensitivity: f64,
+}
+
 /// `WIDTHxHEIGHT`, each side within the renderers' limits.
 pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
     let expected = || format!("expected WIDTHxHEIGHT, e.g. 1920x1080, got `{text}`");
@@ -202,6 +238,14 @@ pub fn parse_fps(text: &str) -> Result<f64, String> {
         return Err(format!("frame rate `{text}` must be greater than 0"));
     }
     Ok(fps)
+}
+
+pub fn parse_positive(text: &str) -> Result<f64, String> {
+    let v = finite(text, "value")?;
+    if v <= 0.0 {
+        return Err(format!("`{text}` must be greater than 0"));
+    }
+    Ok(v)
 }
 
 pub fn parse_seconds(text: &str) -> Result<f64, String> {

@@ -1,9 +1,8 @@
 //! `fractal bench`: runs [`crate::bench`] on a scene, prints the report on stdout and appends the record to the CSV
-//! and JSON Lines files asked for. The record files are opened before the run, so an unwritable path fails at once.
+//! and JSON Lines files asked for. The record files' directories are checked before the run, so an unwritable path
+//! fails at once.
 
-use std::fs::OpenOptions;
 use std::io::IsTerminal;
-use std::path::Path;
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
@@ -12,6 +11,7 @@ use crate::cli::args::BenchArgs;
 use crate::cli::error::CliError;
 use crate::cli::scene::{LoadedScene, SceneOrigin};
 use crate::cli::SceneLibrary;
+use crate::output::png::prepare_output;
 use crate::select::RendererOptions;
 
 /// The built-in scene set up like the hand-written baseline (camera, light, iterations, steps, epsilon).
@@ -19,23 +19,11 @@ pub const BASELINE_SCENE: &str = "mandelbulb";
 /// Timed frames when neither `--frames` nor `--seconds` is given.
 pub const DEFAULT_FRAMES: u32 = 10;
 
-fn check_writable(path: &Path) -> Result<(), CliError> {
-    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).map_err(|e| CliError::failure(format!("cannot write {}: {e}", path.display())))?;
-    }
-    OpenOptions::new()
-        .create(true)
-        .append(true)
-        .open(path)
-        .map(drop)
-        .map_err(|e| CliError::failure(format!("cannot write {}: {e}", path.display())))
-}
-
 pub fn bench(args: &BenchArgs, library: &SceneLibrary) -> Result<(), CliError> {
     let loaded = LoadedScene::load(&args.scene, library)?;
     let params = loaded.params(&args.render.params)?;
     for path in args.csv.iter().chain(&args.json) {
-        check_writable(path)?;
+        prepare_output(path)?;
     }
     let length = match (args.frames, args.seconds) {
         (Some(n), _) => BenchLength::Frames(n),

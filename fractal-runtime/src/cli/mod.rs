@@ -1,5 +1,6 @@
-//! The `fractal` command line: `render`, `bench`, `export` and `list`. The binary is a shim that passes in the
-//! built-in scene table ([`SceneLibrary`]), so the runtime does not depend on the scene library.
+//! The `fractal` command line: `render`, `bench`, `export`, `list` and `view` (the interactive viewer,
+//! [`crate::viewer`]). The binary is a shim that passes in the built-in scene table ([`SceneLibrary`]), so the runtime
+//! does not depend on the scene library.
 //!
 //! Errors print as one `error: …` line on stderr and exit with 2 for usage errors and 1 for failures
 //! ([`error::CliError`]); nothing a user types makes the program panic.
@@ -11,6 +12,7 @@ mod export;
 mod list;
 mod render;
 pub mod scene;
+mod view;
 
 use std::ffi::OsString;
 use std::process::ExitCode;
@@ -24,9 +26,9 @@ pub use error::CliError;
 
 /// The built-in scenes the program offers.
 #[derive(Clone, Copy)]
-pub struct SceneLibrary<'a> {
+pub struct SceneLibrary {
     /// Every built-in scene with its name.
-    pub scenes: &'a [(&'a str, &'a CompiledScene)],
+    pub scenes: &'static [(&'static str, &'static CompiledScene)],
     /// The `.fractal` source of a built-in scene by name (its leading comment describes it in `fractal list`).
     pub source_file: fn(&str) -> Option<&'static str>,
 }
@@ -73,5 +75,6 @@ fn run(command: Command, library: &SceneLibrary) -> Result<(), CliError> {
         Command::Bench(args) => bench::bench(&args, library),
         Command::Export(args) => export::export(&args, library),
         Command::List => list::list(library),
+        Command::View(args) => view::view(&args, library),
     }
 }

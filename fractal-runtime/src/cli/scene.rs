@@ -41,7 +41,7 @@ pub struct LoadedScene<'a> {
 
 impl<'a> LoadedScene<'a> {
     /// Resolves `arg` against `library`, then the file system.
-    pub fn load(arg: &str, library: &SceneLibrary<'a>) -> Result<LoadedScene<'a>, CliError> {
+    pub fn load(arg: &str, library: &SceneLibrary) -> Result<LoadedScene<'static>, CliError> {
         if let Some(&(name, compiled)) = library.scenes.iter().find(|(name, _)| *name == arg) {
             return Ok(LoadedScene {
                 name: name.to_string(),

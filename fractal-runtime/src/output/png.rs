@@ -74,6 +74,11 @@ pub fn prepare_output(path: &Path) -> Result<(), OutputError> {
         return Err(fail(io::Error::new(io::ErrorKind::IsADirectory, "it is a directory")));
     }
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        // create_dir_all says only "File exists" when a file stands where a directory should be; name it.
+        if let Some(file) = dir.ancestors().find(|a| a.is_file()) {
+            let message = format!("{} is a file, not a directory", file.display());
+            return Err(fail(io::Error::new(io::ErrorKind::NotADirectory, message)));
+        }
         fs::create_dir_all(dir).map_err(fail)?;
     }
     let probe = partial_path(path);

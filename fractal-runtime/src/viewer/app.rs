@@ -336,6 +336,8 @@ impl App {
             self.report(format!("cannot grab the mouse: {e}"));
         }
         window.set_cursor_visible(false);
+        // Without a window manager a click does not focus the window, and an unfocused window gets no keys.
+        window.focus_window();
         self.captured = true;
     }
 

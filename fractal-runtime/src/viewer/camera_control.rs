@@ -169,4 +169,23 @@ mod tests {
         assert!(text.contains("key(2.000, vec3(0.0000, 1.0000, -4.0000), vec3(0.0000, 1.0000, -3.0000))"), "{text}");
         assert!(text.contains("position = [0.0000, 1.0000, -4.0000]"), "{text}");
     }
+
+    #[test]
+    fn printed_keys_paste_into_scene_files_and_path_files() {
+        let a = Pose::look_at(DVec3::new(0.0, 1.0, -4.0), DVec3::ZERO, 45.0).unwrap();
+        let b = Pose::look_at(DVec3::new(4.0, 1.0, 0.0), DVec3::ZERO, 45.0).unwrap();
+        let line = |pose: &Pose, t: f64| describe_pose(pose, t).lines().nth(1).unwrap().trim().to_string();
+        let source = format!("scene(sphere(1.0)).camera(camera_path({}, {}))", line(&a, 0.0), line(&b, 2.0));
+        let scene = fractal_dsl::parse::parse_str(&source).unwrap_or_else(|e| panic!("{e}: {source}"));
+        let at_end = Pose::from_camera(&scene.camera, 2.0, &|p| p.default).unwrap();
+        assert!(at_end.position.distance(b.position) < 1e-9 && at_end.forward.distance(b.forward) < 1e-4);
+        let toml: String = [(&a, 0.0), (&b, 2.0)]
+            .iter()
+            .map(|(pose, t)| {
+                describe_pose(pose, *t).lines().skip(2).map(|l| l.trim().to_string() + "\n").collect::<String>()
+            })
+            .collect();
+        let file = super::super::path_file::parse_camera_path(&toml).unwrap_or_else(|e| panic!("{e}: {toml}"));
+        assert!(file.path.pose(0.0, 45.0).position.distance(a.position) < 1e-9);
+    }
 }

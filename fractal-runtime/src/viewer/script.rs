@@ -23,7 +23,8 @@ pub enum ScriptedStep {
         dx: f64,
         dy: f64,
     },
-    /// Save the next frame drawn, as presented in the window, to this PNG file.
+    /// Save the next frame drawn, as presented in the window, to this PNG file; the steps after it apply to the
+    /// frames after that one.
     Screenshot(PathBuf),
     /// Keep drawing frames for this long (at most [`super::MAX_IDLE`]), e.g. while another program looks at the
     /// window.
@@ -59,7 +60,8 @@ impl ScriptPlayer {
         let mut frame = ScriptFrame::default();
         loop {
             let Some(step) = self.steps.front_mut() else {
-                frame.finished = frame.screenshot.is_none();
+                // Steps gathered for this frame still get their frame; the script ends on the next call.
+                frame.finished = frame == ScriptFrame::default();
                 return frame;
             };
             match step {
@@ -83,11 +85,11 @@ impl ScriptPlayer {
                     frame.look.1 += *dy;
                 }
                 ScriptedStep::Screenshot(path) => {
-                    // Two screenshots in a row are two frames.
-                    if frame.screenshot.is_some() {
-                        return frame;
-                    }
+                    // The screenshot frame ends the frame's steps: what follows applies to later frames, so the
+                    // picture shows the state the steps before it set up.
                     frame.screenshot = Some(path.clone());
+                    self.steps.pop_front();
+                    return frame;
                 }
             }
             self.steps.pop_front();
@@ -135,5 +137,8 @@ mod tests {
         assert!(!p.next_frame(start + Duration::from_millis(10)).finished);
         assert!(p.next_frame(start + Duration::from_millis(60)).finished);
         assert!(ScriptPlayer::new(vec![]).next_frame(start).finished);
+        let mut last_trigger = ScriptPlayer::new(vec![ScriptedStep::Trigger(Action::PrintPose)]);
+        assert_eq!(last_trigger.next_frame(start).trigger, vec![Action::PrintPose], "a final trigger still runs");
+        assert!(last_trigger.next_frame(start).finished);
     }
 }

@@ -155,7 +155,7 @@ float blend_weight(float a, float b, float k) {
 
 const DE_MANDELBULB: &str = "\
 float2 de_mandelbulb(float3 p, float power, int iterations, float bailout) {
-    float escape = fmin(bailout, exp2(120.0f / power));
+    float escape = fmin(bailout, exp2(60.0f / power));
     float3 z = p;
     float dr = 1.0f;
     float r = length(z);
@@ -182,7 +182,7 @@ float2 de_mandelbulb(float3 p, float power, int iterations, float bailout) {
 
 const DE_MANDELBULB8: &str = "\
 float2 de_mandelbulb8(float3 p, int iterations, float bailout) {
-    float escape = fmin(bailout, exp2(120.0f / 8.0f));
+    float escape = fmin(bailout, exp2(60.0f / 8.0f));
     float3 z = p;
     float dr = 1.0f;
     float r = length(z);

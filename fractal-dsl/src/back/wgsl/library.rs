@@ -160,7 +160,7 @@ fn blend_weight(a: f32, b: f32, k: f32) -> f32 {
 
 const DE_MANDELBULB: &str = "\
 fn de_mandelbulb(p: vec3<f32>, power: f32, iterations: i32, bailout: f32) -> vec2<f32> {
-    let escape = min(bailout, exp2(120.0 / power));
+    let escape = min(bailout, exp2(60.0 / power));
     var z = p;
     var dr = 1.0;
     var r = length(z);
@@ -188,7 +188,7 @@ fn de_mandelbulb(p: vec3<f32>, power: f32, iterations: i32, bailout: f32) -> vec
 
 const DE_MANDELBULB8: &str = "\
 fn de_mandelbulb8(p: vec3<f32>, iterations: i32, bailout: f32) -> vec2<f32> {
-    let escape = min(bailout, exp2(120.0 / 8.0));
+    let escape = min(bailout, exp2(60.0 / 8.0));
     var z = p;
     var dr = 1.0;
     var r = length(z);

@@ -160,7 +160,7 @@ impl Timer for OpenClTimer {
         let mut event = Event::empty();
         // Safety: `out` holds one u32 per pixel; both kernels write only pixels inside (width, height).
         unsafe { kernel.cmd().enew(&mut event).enq() }.map_err(device_error)?;
-        event.wait_for().map_err(device_error)?;
+        event.wait_for().map_err(|e| device_error(e.into()))?;
         let mut pixels = vec![0u32; count];
         out.read(&mut pixels).enq().map_err(device_error)?;
         let frame_ms = millis(start.elapsed());

@@ -1,0 +1,444 @@
+//! The `fractal` program end to end, run as a user runs it: images, sequences that resume after an interruption,
+//! shards, video, export, bench records, and every kind of bad input (a clear one-line error and the documented exit
+//! status, never a panic). Sizes are tiny so the suite stays quick on CPU backends.
+//!
+//! GPU backends: the wgpu test skips with a note when no adapter opens, and fails instead when
+//! FRACTAL_REQUIRE_GPU_BACKENDS=1 (CI, where lavapipe is installed).
+
+use std::collections::BTreeSet;
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::time::SystemTime;
+
+use fractal_runtime::image::Image;
+use fractal_runtime::output::read_png;
+
+const FRACTAL: &str = env!("CARGO_BIN_EXE_fractal");
+
+/// An empty scratch directory for one test.
+fn scratch(test: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli").join(test);
+    let _ = fs::remove_dir_all(&dir);
+    fs::create_dir_all(&dir).expect("scratch directory");
+    dir
+}
+
+fn fixture(name: &str) -> String {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/cli").join(name).display().to_string()
+}
+
+/// Runs `fractal args` in `dir`.
+fn run_in(dir: &Path, args: &[&str]) -> Output {
+    Command::new(FRACTAL).args(args).current_dir(dir).output().expect("the fractal binary runs")
+}
+
+fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+fn stdout(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+#[track_caller]
+fn assert_ok(out: &Output) {
+    assert!(out.status.success(), "exit {:?}\nstderr:\n{}", out.status.code(), stderr(out));
+}
+
+fn backends_required() -> bool {
+    std::env::var("FRACTAL_REQUIRE_GPU_BACKENDS").is_ok_and(|v| v == "1")
+}
+
+fn files_in(dir: &Path) -> BTreeSet<String> {
+    fs::read_dir(dir)
+        .map(|entries| entries.filter_map(|e| e.ok()).map(|e| e.file_name().to_string_lossy().into_owned()).collect())
+        .unwrap_or_default()
+}
+
+fn modified(path: &Path) -> SystemTime {
+    fs::metadata(path).and_then(|m| m.modified()).expect("file exists")
+}
+
+/// Fraction of pixels that differ by more than `tolerance` levels in some channel.
+fn fraction_unlike(a: &Image, b: &Image, tolerance: u8) -> f64 {
+    assert_eq!((a.width, a.height), (b.width, b.height));
+    let unlike = a
+        .pixels
+        .iter()
+        .zip(&b.pixels)
+        .filter(|(p, q)| p.to_le_bytes().iter().zip(q.to_le_bytes()).any(|(x, y)| x.abs_diff(y) > tolerance))
+        .count();
+    unlike as f64 / a.pixels.len() as f64
+}
+
+#[test]
+fn help_lists_the_commands() {
+    let out = run_in(&scratch("help"), &["--help"]);
+    assert_ok(&out);
+    let text = stdout(&out);
+    for command in ["render", "bench", "export", "list"] {
+        assert!(text.contains(command), "--help does not mention {command}:\n{text}");
+    }
+}
+
+#[test]
+fn list_names_every_builtin_with_its_description() {
+    let out = run_in(&scratch("list"), &["list"]);
+    assert_ok(&out);
+    let text = stdout(&out);
+    for name in scenes::names() {
+        let line = text.lines().find(|l| l.starts_with(name)).unwrap_or_else(|| panic!("{name} missing:\n{text}"));
+        assert!(line.len() > name.len() + 10, "{name} has no description: {line:?}");
+    }
+    assert!(text.contains("One lit sphere"), "{text}");
+}
+
+#[test]
+fn render_writes_a_png_of_the_requested_size() {
+    let dir = scratch("render_png");
+    let out = run_in(&dir, &["render", "hello_world", "--size", "48x32", "--backend", "cpu", "-o", "sphere.png"]);
+    assert_ok(&out);
+    assert!(stderr(&out).contains("using cpu"), "the device is not named:\n{}", stderr(&out));
+    let image = read_png(&dir.join("sphere.png")).expect("a PNG");
+    assert_eq!((image.width, image.height), (48, 32));
+    assert!(!image.is_uniform(), "the image is one colour");
+    assert!(!dir.join("sphere.png.partial").exists());
+    // Without -o the file is named after the scene.
+    assert_ok(&run_in(&dir, &["render", "hello_world", "--size", "8x8", "--backend", "cpu"]));
+    assert!(dir.join("hello_world.png").is_file());
+}
+
+#[test]
+fn a_file_scene_takes_parameters_and_time() {
+    let dir = scratch("file_scene");
+    let scene = fixture("sphere_param.fractal");
+    let render = |name: &str, extra: &[&str]| {
+        let mut args = vec!["render", scene.as_str(), "--size", "32x32", "--backend", "cpu", "-o", name];
+        args.extend_from_slice(extra);
+        assert_ok(&run_in(&dir, &args));
+        read_png(&dir.join(name)).expect("a PNG")
+    };
+    let small = render("small.png", &[]);
+    let large = render("large.png", &["--param", "radius=1.2"]);
+    let background = small.rgba(0, 0).expect("corner");
+    let covered = |img: &Image| img.count_unlike(background, 2);
+    assert!(
+        covered(&large) > 2 * covered(&small),
+        "radius 1.2 covers {} pixels, 0.5 covers {}",
+        covered(&large),
+        covered(&small)
+    );
+    // --time advances the scene: the moving sphere is elsewhere at t = 2.
+    let moving = fixture("moving_sphere.fractal");
+    for (name, time) in [("t0.png", "0"), ("t2.png", "2")] {
+        assert_ok(&run_in(
+            &dir,
+            &["render", &moving, "--size", "32x32", "--backend", "cpu", "--time", time, "-o", name],
+        ));
+    }
+    let (t0, t2) = (read_png(&dir.join("t0.png")).unwrap(), read_png(&dir.join("t2.png")).unwrap());
+    assert!(fraction_unlike(&t0, &t2, 2) > 0.05, "the sphere did not move between t = 0 and t = 2");
+}
+
+#[test]
+fn view_without_a_display_says_how_to_render_instead() {
+    let dir = scratch("view");
+    let view = |scene: &str| {
+        Command::new(FRACTAL)
+            .args(["view", scene])
+            .current_dir(&dir)
+            .env_remove("DISPLAY")
+            .env_remove("WAYLAND_DISPLAY")
+            .output()
+            .unwrap()
+    };
+    let out = view("hello_world");
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("no display") && stderr(&out).contains("fractal render hello_world"),
+        "{}",
+        stderr(&out)
+    );
+    let out = view("no_such_scene");
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+}
+
+#[test]
+fn wgpu_renders_what_the_cpu_renders() {
+    let dir = scratch("wgpu");
+    let args = |backend: &'static str, name: &'static str| {
+        ["render", "mandelbulb", "--size", "40x32", "--backend", backend, "-o", name]
+    };
+    let gpu = run_in(&dir, &args("wgpu", "gpu.png"));
+    if !gpu.status.success() {
+        let message = stderr(&gpu);
+        assert!(!backends_required(), "wgpu is required (FRACTAL_REQUIRE_GPU_BACKENDS=1) but failed:\n{message}");
+        assert!(message.contains("no wgpu device"), "wgpu failed for another reason than a missing device:\n{message}");
+        eprintln!("note: skipping the wgpu render, no adapter: {message}");
+        return;
+    }
+    assert!(stderr(&gpu).contains("using wgpu on"), "{}", stderr(&gpu));
+    assert_ok(&run_in(&dir, &args("cpu", "cpu.png")));
+    let (a, b) = (read_png(&dir.join("gpu.png")).unwrap(), read_png(&dir.join("cpu.png")).unwrap());
+    assert!(!a.is_uniform());
+    let unlike = fraction_unlike(&a, &b, 8);
+    assert!(unlike < 0.03, "{:.1} % of pixels differ by more than 8 levels", unlike * 100.0);
+}
+
+/// `fractal bench --baseline` on a GPU backend: device timings of both kernels, their ratio, and both error figures.
+fn bench_against_the_baseline(backend: &str) {
+    let dir = scratch(&format!("bench_baseline_{backend}"));
+    let args = [
+        "bench",
+        "mandelbulb",
+        "--size",
+        "48x27",
+        "--frames",
+        "2",
+        "--backend",
+        backend,
+        "--baseline",
+        "--json",
+        "b.json",
+    ];
+    let out = run_in(&dir, &args);
+    if !out.status.success() {
+        let message = stderr(&out);
+        assert!(!backends_required(), "{backend} is required (FRACTAL_REQUIRE_GPU_BACKENDS=1) but failed:\n{message}");
+        assert!(message.contains(&format!("no {backend} device")), "{backend} failed for another reason:\n{message}");
+        eprintln!("note: skipping the {backend} bench, no device: {message}");
+        return;
+    }
+    let report = stdout(&out);
+    for word in
+        [&format!("device:  {backend} on"), "baseline kernel", "generated/baseline (median)", "baseline error vs f64"]
+    {
+        assert!(report.contains(word), "no `{word}` in the report:\n{report}");
+    }
+    assert!(report.contains("device time"), "{backend} kernel times do not come from the device:\n{report}");
+    let json = fs::read_to_string(dir.join("b.json")).unwrap();
+    assert!(json.contains("\"kernel_ratio\":") && json.contains("\"camera\":\"static\""), "{json}");
+}
+
+#[test]
+fn wgpu_bench_runs_the_baseline_on_the_same_device() {
+    bench_against_the_baseline("wgpu");
+}
+
+#[cfg(feature = "opencl")]
+#[test]
+fn opencl_bench_runs_the_baseline_on_the_same_device() {
+    bench_against_the_baseline("opencl");
+}
+
+#[test]
+fn an_interrupted_sequence_resumes_without_losing_or_rewriting_frames() {
+    let dir = scratch("resume");
+    let scene = fixture("moving_sphere.fractal");
+    let args = ["render", &scene, "--size", "32x32", "--backend", "cpu", "--frames", "0..6", "--fps", "3", "-o"];
+    let run = || run_in(&dir, &[&args[..], &["out/%05d.png"]].concat());
+    assert_ok(&run());
+    let all: BTreeSet<String> = (0..6).map(|f| format!("{f:05}.png")).collect();
+    assert_eq!(files_in(&dir.join("out")), all);
+    let frame = |f: u32| dir.join(format!("out/{f:05}.png"));
+    let first: Vec<Image> = (0..6).map(|f| read_png(&frame(f)).unwrap()).collect();
+    assert!(first[0] != first[5], "time does not advance the scene");
+
+    // A crashed run: frames 2 and 4 never finished, one of them left its partial file, and a stray partial of a
+    // finished frame (3) is lying around too.
+    fs::remove_file(frame(2)).unwrap();
+    fs::remove_file(frame(4)).unwrap();
+    fs::write(dir.join("out/00004.png.partial"), b"half a PNG").unwrap();
+    fs::write(dir.join("out/00003.png.partial"), b"stale").unwrap();
+    let kept = [0, 1, 3, 5].map(|f| (f, modified(&frame(f))));
+    std::thread::sleep(std::time::Duration::from_millis(20));
+
+    let out = run();
+    assert_ok(&out);
+    assert!(stderr(&out).contains("resuming: 4 of 6"), "{}", stderr(&out));
+    assert_eq!(files_in(&dir.join("out")), all, "missing frames or leftover partial files");
+    for (f, time) in kept {
+        assert_eq!(modified(&frame(f)), time, "complete frame {f} was rewritten");
+    }
+    for f in 0..6 {
+        assert!(read_png(&frame(f)).unwrap() == first[f as usize], "frame {f} differs after the resume");
+    }
+    // A third run has nothing left to do.
+    let out = run();
+    assert_ok(&out);
+    assert!(stderr(&out).contains("nothing to do"), "{}", stderr(&out));
+}
+
+#[test]
+fn shards_cover_every_frame_exactly_once() {
+    let dir = scratch("shards");
+    let shard = |i: &str, out: &str| {
+        let args = [
+            "render",
+            "hello_world",
+            "--size",
+            "16x16",
+            "--backend",
+            "cpu",
+            "--frames",
+            "3..10",
+            "--shard",
+            i,
+            "-o",
+            out,
+        ];
+        assert_ok(&run_in(&dir, &args));
+    };
+    shard("0/2", "a/%d.png");
+    shard("1/2", "b/%d.png");
+    let (a, b) = (files_in(&dir.join("a")), files_in(&dir.join("b")));
+    assert!(a.is_disjoint(&b), "{a:?} and {b:?} overlap");
+    let all: BTreeSet<String> = (3..10).map(|f| format!("{f}.png")).collect();
+    assert_eq!(a.union(&b).cloned().collect::<BTreeSet<_>>(), all);
+    assert_eq!(a, ["3.png", "5.png", "7.png", "9.png"].map(String::from).into());
+    // Shards may share one directory.
+    shard("1/2", "both/%d.png");
+    shard("0/2", "both/%d.png");
+    assert_eq!(files_in(&dir.join("both")), all);
+}
+
+#[test]
+fn video_goes_through_ffmpeg() {
+    let has_ffmpeg = Command::new("ffmpeg").arg("-version").output().is_ok_and(|o| o.status.success());
+    if !has_ffmpeg {
+        eprintln!("note: skipping, ffmpeg is not installed");
+        return;
+    }
+    let dir = scratch("video");
+    let out = run_in(
+        &dir,
+        &["render", "hello_world", "--size", "32x32", "--backend", "cpu", "--frames", "0..4", "-o", "clip.mp4"],
+    );
+    assert_ok(&out);
+    assert!(fs::metadata(dir.join("clip.mp4")).unwrap().len() > 100);
+    assert_eq!(files_in(&dir), ["clip.mp4".to_string()].into());
+}
+
+#[test]
+fn export_writes_every_target() {
+    let dir = scratch("export");
+    for target in ["opencl", "wgsl", "glsl", "hlsl", "msl", "spirv"] {
+        let file = format!("kernel.{target}");
+        assert_ok(&run_in(&dir, &["export", "sphere_box", "--target", target, "-o", &file]));
+        let bytes = fs::read(dir.join(&file)).unwrap();
+        assert!(bytes.len() > 200, "{target}: only {} bytes", bytes.len());
+        if target == "spirv" {
+            assert_eq!(bytes[..4], 0x0723_0203u32.to_le_bytes(), "not a SPIR-V module");
+        } else {
+            let text = String::from_utf8(bytes).expect("text");
+            assert!(text.contains("render") || text.contains("main"), "{target} has no entry point");
+        }
+    }
+    // Text to standard output when there is no -o; file scenes export too.
+    let out = run_in(&dir, &["export", &fixture("sphere_param.fractal"), "--target", "wgsl"]);
+    assert_ok(&out);
+    assert!(stdout(&out).contains("fn render"), "{}", stdout(&out));
+}
+
+#[test]
+fn bench_appends_a_csv_row_and_a_json_line() {
+    let dir = scratch("bench");
+    let args = [
+        "bench",
+        "hello_world",
+        "--size",
+        "32x32",
+        "--frames",
+        "2",
+        "--backend",
+        "cpu",
+        "--csv",
+        "b.csv",
+        "--json",
+        "b.json",
+    ];
+    for _ in 0..2 {
+        let out = run_in(&dir, &args);
+        assert_ok(&out);
+        let report = stdout(&out);
+        for word in ["median", "FPS", "error vs f64 interpreter", "hit/miss differs"] {
+            assert!(report.contains(word), "no `{word}` in the report:\n{report}");
+        }
+    }
+    let csv = fs::read_to_string(dir.join("b.csv")).unwrap();
+    let rows: Vec<&str> = csv.lines().collect();
+    assert_eq!(rows.len(), 3, "one header and two rows:\n{csv}");
+    assert!(rows[0].starts_with("timestamp,scene,width,height,backend"), "{}", rows[0]);
+    let header: Vec<&str> = rows[0].split(',').collect();
+    let column = |name: &str| header.iter().position(|h| *h == name).unwrap_or_else(|| panic!("no column {name}"));
+    for row in &rows[1..] {
+        // Device names hold commas inside quotes; the columns before them are plain.
+        let cells: Vec<&str> = row.split(',').collect();
+        assert_eq!(cells[column("scene")], "hello_world");
+        assert_eq!(cells[column("width")], "32");
+        assert_eq!(cells[column("backend")], "cpu");
+    }
+    let json = fs::read_to_string(dir.join("b.json")).unwrap();
+    let lines: Vec<&str> = json.lines().collect();
+    assert_eq!(lines.len(), 2, "{json}");
+    for line in lines {
+        assert!(line.starts_with('{') && line.ends_with('}'), "{line}");
+        for field in
+            ["\"scene\":\"hello_world\"", "\"backend\":\"cpu\"", "\"frames\":2", "\"max_steps\":", "\"hit_mismatch\":"]
+        {
+            assert!(line.contains(field), "no {field} in {line}");
+        }
+    }
+}
+
+#[test]
+fn bad_input_is_one_clear_line_and_the_right_exit_status() {
+    let dir = scratch("bad_input");
+    fs::write(dir.join("a-file"), b"not a directory").unwrap();
+    let broken = fixture("broken.fractal");
+    let empty_path = dir.join("no-programs");
+    fs::create_dir_all(&empty_path).unwrap();
+    let cases: Vec<(Vec<&str>, i32, String)> = vec![
+        (vec!["render", "missing.fractal"], 1, "cannot read scene file missing.fractal".into()),
+        (vec!["render", &broken], 1, format!("{broken}:4:10: `vec3` takes 3 arguments")),
+        (vec!["render", "no_such_scene"], 2, "unknown scene `no_such_scene`".into()),
+        (vec!["render", "no_such_scene"], 2, "hello_world, sphere_box, mandelbulb, sierpinski_collection".into()),
+        (vec!["render", "hello_world", "--size", "0x0"], 2, "image size 0x0 is invalid".into()),
+        (vec!["render", "hello_world", "--size", "100000x100000"], 2, "image size 100000x100000 is invalid".into()),
+        (vec!["render", "hello_world", "--size", "big"], 2, "expected WIDTHxHEIGHT".into()),
+        (vec!["render", "hello_world", "--backend", "vulkan"], 2, "unknown backend `vulkan`".into()),
+        (vec!["render", "hello_world", "-o", "a-file/out.png"], 1, "cannot write a-file/out.png".into()),
+        (vec!["render", "hello_world", "--frames", "10..2"], 2, "frame range `10..2` is empty".into()),
+        (vec!["render", "hello_world", "--frames", "0-9"], 2, "expected START..END".into()),
+        (vec!["render", "hello_world", "--frames", "0..9", "--shard", "3/3"], 2, "shard `3/3`".into()),
+        (vec!["render", "hello_world", "--frames", "0..9", "--shard", "1"], 2, "expected INDEX/COUNT".into()),
+        (vec!["render", "hello_world", "--frames", "0..9", "-o", "out.png"], 2, "a sequence needs a pattern".into()),
+        (vec!["render", "hello_world", "-o", "clip.mp4"], 2, "give the frames to encode with --frames".into()),
+        (vec!["render", "hello_world", "-o", "out.jpg"], 2, "images are written as .png".into()),
+        (vec!["render", "hello_world", "--param", "radius=2"], 2, "no parameter named `radius`".into()),
+        (vec!["render", "hello_world", "--time", "inf"], 2, "not finite".into()),
+        (vec!["bench", "hello_world", "--frames", "0"], 2, "invalid value '0'".into()),
+        (vec!["export", "hello_world", "--target", "dxil"], 2, "unknown export target `dxil`".into()),
+        (vec!["bench", "hello_world", "--csv", "a-file/b.csv"], 1, "cannot write a-file/b.csv".into()),
+    ];
+    for (args, code, message) in &cases {
+        let out = run_in(&dir, args);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(*code), "fractal {}: exit status\n{err}", args.join(" "));
+        assert!(err.contains(message.as_str()), "fractal {}: expected `{message}` in\n{err}", args.join(" "));
+        assert_eq!(err.trim().lines().count(), 1, "fractal {}: not one line:\n{err}", args.join(" "));
+        assert!(!err.contains("panicked"), "{err}");
+    }
+    // Missing ffmpeg: an empty PATH, so no ffmpeg can be found.
+    let out = Command::new(FRACTAL)
+        .args(["render", "hello_world", "--size", "16x16", "--backend", "cpu", "--frames", "0..2", "-o", "clip.mp4"])
+        .current_dir(&dir)
+        .env("PATH", &empty_path)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    assert!(stderr(&out).contains("ffmpeg was not found on PATH"), "{}", stderr(&out));
+    assert!(stderr(&out).contains("%05d.png"), "the error does not suggest a PNG sequence: {}", stderr(&out));
+    assert!(!dir.join("clip.mp4").exists() && !dir.join("clip.mp4.partial").exists());
+}
