@@ -67,7 +67,7 @@ impl Xvfb {
     fn start(program: &Path) -> Result<Xvfb, String> {
         for number in 99..160 {
             let socket = PathBuf::from(format!("/tmp/.X11-unix/X{number}"));
-            if socket.exists() || Path::new(&format!("/tmp/.X{number}-lock")).exists() {
+            if display_in_use(number) {
                 continue;
             }
             let display = format!(":{number}");
@@ -94,8 +94,32 @@ impl Xvfb {
     }
 }
 
+/// Whether an X server holds display `number`: its lock file names a live process. A lock left by a server that
+/// died is stale (Xvfb replaces it), so that number is free.
+fn display_in_use(number: u32) -> bool {
+    match std::fs::read_to_string(format!("/tmp/.X{number}-lock")) {
+        Ok(text) => match text.trim().parse::<u32>() {
+            Ok(pid) => Path::new(&format!("/proc/{pid}")).exists(),
+            Err(_) => true,
+        },
+        // No lock: free unless something else listens on the socket.
+        Err(_) => Path::new(&format!("/tmp/.X11-unix/X{number}")).exists(),
+    }
+}
+
 impl Drop for Xvfb {
+    /// Stops the server with SIGTERM, so it removes its lock file and socket; SIGKILL only if it does not stop.
     fn drop(&mut self) {
+        let terminated = Command::new("kill").args(["-TERM", &self.child.id().to_string()]).status();
+        if terminated.is_ok_and(|s| s.success()) {
+            let deadline = Instant::now() + Duration::from_secs(5);
+            while Instant::now() < deadline {
+                if let Ok(Some(_)) = self.child.try_wait() {
+                    return;
+                }
+                std::thread::sleep(Duration::from_millis(20));
+            }
+        }
         let _ = self.child.kill();
         let _ = self.child.wait();
     }
@@ -135,7 +159,7 @@ fn the_window_shows_the_offline_render_of_the_scripted_pose() {
     if xwd.is_none() {
         eprintln!("note: not comparing the X server's copy of the window (needs our own Xvfb and xwd)");
     }
-    for mode in ["auto", "cpu-softbuffer", "hot-reload"] {
+    for mode in ["auto", "cpu-softbuffer", "hot-reload", "animated"] {
         let dir = scratch_dir(mode);
         let exe = std::env::current_exe().expect("the test binary's path");
         let mut child = Command::new(exe)
@@ -187,6 +211,11 @@ fn the_window_shows_the_offline_render_of_the_scripted_pose() {
             let _ = std::fs::remove_dir_all(&dir);
             continue;
         }
+        if mode == "animated" {
+            assert!(stdout.contains("param radius = 0.9140"), "the param key was reported: {stdout}");
+            let _ = std::fs::remove_dir_all(&dir);
+            continue;
+        }
         assert!(stdout.contains(&format!("saved screenshot {}", last_shot.display())), "{stdout}");
         if xwd.is_some() {
             assert!(captured, "the last screenshot never appeared while the viewer ran");
@@ -212,8 +241,10 @@ fn viewer_child_process() {
         return;
     };
     let mode = std::env::var(MODE_ENV).unwrap_or_else(|_| "auto".to_string());
-    if mode == "hot-reload" {
-        return hot_reload_child(&dir);
+    match mode.as_str() {
+        "hot-reload" => return hot_reload_child(&dir),
+        "animated" => return animated_child(&dir),
+        _ => {}
     }
     let (backend, present) = match mode.as_str() {
         "cpu-softbuffer" => (BackendChoice::Only(Backend::Cpu), PresentMode::Softbuffer),
@@ -359,6 +390,51 @@ fn hot_reload_child(dir: &Path) {
     let offline = upscale(&render_file_scene(after), 160, 120);
     let (worst, _) = compare(&images[2], &offline);
     assert!(worst <= TOLERANCE, "the reloaded scene differs from its offline render by {worst}");
+}
+
+/// Views a scene whose geometry and light move with `t`, starting with a `param(..)` set by option and stepping it with
+/// its key: both frames must match offline renders at their own times and values, without recompiling.
+fn animated_child(dir: &Path) {
+    use fractal_dsl::builder::{camera, cos, param, point_light, rgb, scene, sin, sphere, time, vec3, ShapeExt};
+    let moving = scene(
+        sphere(param("radius", 0.8, 0.5..1.2))
+            .translate(vec3(sin(time()) * 0.6, 0.0, 0.0))
+            .material(rgb(0.9, 0.6, 0.2)),
+    )
+    .light(point_light(vec3(cos(time()) * 3.0, 2.0, -2.0), rgb(1.0, 1.0, 1.0)).intensity(12.0))
+    .camera(camera([0.0, 0.5, -4.0], [0.0, 0.0, 0.0]));
+    let script = vec![
+        ScriptedStep::Frames(2),
+        ScriptedStep::Screenshot(dir.join("early.png")),
+        ScriptedStep::Frames(20),
+        ScriptedStep::Trigger(Action::IncreaseParam),
+        ScriptedStep::Screenshot(dir.join("late.png")),
+    ];
+    let options = ViewerOptions {
+        window_size: (160, 120),
+        render_scale: RenderScale::Fixed(1.0),
+        fixed_time_step: Some(STEP),
+        params: vec![("radius".to_string(), 0.9)],
+        screenshot_dir: dir.to_path_buf(),
+        script: Some(script),
+        print_help: false,
+        ..ViewerOptions::default()
+    };
+    let summary = fractal_runtime::viewer::run(ViewerScene::built("moving", moving), options).expect("the viewer runs");
+    let [early, late] = summary.screenshots.as_slice() else {
+        panic!("expected two screenshots, got {}", summary.screenshots.len());
+    };
+    assert_eq!(early.params.get("radius"), Some(0.9), "the start value from the options");
+    let expected = 0.9 + (1.2 - 0.5) / 50.0;
+    assert!((late.params.get("radius").unwrap() - expected).abs() < 1e-12, "one step up the range");
+    assert_eq!(late.scene, early.scene, "a parameter change does not change (or recompile) the scene");
+    assert!((late.time - early.time - 21.0 * STEP).abs() < 1e-9, "t advanced one step per frame");
+    let images: Vec<Image> = [early, late].iter().map(|s| read_png(&s.path).expect("screenshot")).collect();
+    assert!(images[0] != images[1], "the scene moved");
+    for (shot, image) in [early, late].iter().zip(&images) {
+        let (worst, _) = compare(image, &render_file_scene(shot));
+        assert!(worst <= TOLERANCE, "{}: differs from its offline render by {worst}", shot.path.display());
+    }
 }
 
 /// Renders a screenshot of a runtime-loaded scene offline: its compiled kernels, or the interpreter on the CPU.

@@ -1,8 +1,13 @@
 //! Code writers, one module per target language, all of the same shape (naga's `back/` is the model):
-//! `back/<lang>/writer.rs` walks the lowered program ([`crate::lower`]) and spells it; `back/<lang>/library.rs`
-//! holds that language's spelling of each leaf function ([`Helper`]). What is shared lives here: the helper set and
-//! its dependencies, the uniform layout both GPU languages read, indentation and number formatting.
+//! `back/<lang>/writer.rs` spells the lowered program ([`crate::lower`]); `back/<lang>/library.rs` holds that
+//! language's spelling of each leaf function ([`Helper`]). What is shared lives here and in sibling modules: the
+//! helper set and its dependencies, the uniform layout both GPU languages read, indentation and number formatting
+//! (this file); the statement walker over lowered bodies ([`syntax`]); the whole GPU program — scene-function
+//! framing, normal, ambient occlusion, shadows and the `render` / `probe` kernels — written once against a per-language
+//! [`kernel::Dialect`], which is all the OpenCL C and WGSL writers implement ([`kernel`]); the render algorithm and
+//! its constants ([`render`]).
 
+pub mod kernel;
 pub mod opencl;
 pub mod render;
 pub mod rust;
@@ -161,7 +166,7 @@ pub fn f32_literal(v: f64) -> String {
 /// | 3 | camera forward (unit) | pixel footprint per unit distance: 2·tan(fov/2)/height |
 /// | 4 + 2i | light i: direction towards the light (directional, unit) or position (point) | 0 directional, 1 point |
 /// | 5 + 2i | light i: colour · intensity | unused |
-/// | 4 + 2L + j/4 | params[j] in component j % 4 | |
+/// | 4 + 2L + j/4 | `params[j]` in component j % 4 | |
 ///
 /// Pixel (x, y) looks along forward + u·right + v·up with u = (2(x + 0.5) − w)/h and v = −(2(y + 0.5) − h)/h.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

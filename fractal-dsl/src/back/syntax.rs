@@ -1,10 +1,12 @@
 //! What differs between the languages when spelling a lowered body — [`Syntax`] — and the one statement walker all
-//! writers share ([`write_body`]). A writer's own file then only holds its language's frame around the bodies.
+//! writers share ([`write_body`]), with the sample result's field names ([`sample_fields`]). The Rust writer frames
+//! the bodies itself; the GPU languages' framing is [`super::kernel`].
 
 use std::fmt::Write;
 
 use super::{Helper, Level};
 use crate::lower::code::{Arg, Body, MathFn, Op, Stmt, Ty, Val};
+use crate::lower::SampleVals;
 
 /// How one language spells values and statements.
 pub trait Syntax {
@@ -37,6 +39,18 @@ pub fn atom(body: &Body, syn: &dyn Syntax, v: Val) -> String {
         Some(op @ (Op::Lit(_) | Op::Time | Op::Param(_) | Op::Point | Op::Less(..))) => spell_op(body, syn, op),
         _ => name(v),
     }
+}
+
+/// The sample result's values by field name, in the field order of every language's `Sample`.
+pub fn sample_fields(r: &SampleVals) -> [(&'static str, Val); 6] {
+    [
+        ("distance", r.distance),
+        ("albedo", r.albedo),
+        ("ambient", r.ambient),
+        ("diffuse", r.diffuse),
+        ("specular", r.specular),
+        ("shininess", r.shininess),
+    ]
 }
 
 /// The Julia helper takes its constant as one 4-vector: `wrap` spells the vector from the four scalars.

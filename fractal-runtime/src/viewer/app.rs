@@ -68,7 +68,7 @@ pub fn run(scene: ViewerScene, options: ViewerOptions) -> Result<ViewerSummary, 
         println!("{note}");
     }
     let engine = engine?;
-    let mut app = App::new(scene, options, live, path_file, watch, chain, engine);
+    let mut app = App::new(scene, options, live, path_file, watch, chain, engine)?;
     event_loop.run_app(&mut app).map_err(|e| ViewerError::Window(e.to_string()))?;
     app.summary.device = Some(app.engine.device());
     app.summary.presenter = app.presenter.as_ref().map(Presenter::name);
@@ -175,9 +175,12 @@ impl App {
         watch: Option<FileWatch>,
         chain: EngineChain,
         engine: Engine,
-    ) -> App {
-        let params = ParamControl::new(&live.scene, None);
-        App {
+    ) -> Result<App, ViewerError> {
+        let mut params = ParamControl::new(&live.scene, None);
+        for (name, value) in &options.params {
+            params.set(name, *value)?;
+        }
+        Ok(App {
             source,
             params,
             last_good: None,
@@ -209,7 +212,7 @@ impl App {
             last_report: None,
             live,
             options,
-        }
+        })
     }
 
     fn open_window(&mut self, event_loop: &ActiveEventLoop) -> Result<(), ViewerError> {
@@ -531,9 +534,24 @@ impl App {
             let speed = self.move_speed * if self.sprint { SPRINT_FACTOR } else { 1.0 };
             fly.step(self.held.iter().copied(), speed, dt);
         }
-        let Some(window) = self.window.clone() else {
-            return;
-        };
+        if let Some(window) = self.window.clone() {
+            self.draw_frame(&window, event_loop);
+            if let Some(seconds) = measured {
+                self.scale.record(seconds);
+                if self.clock.record(seconds, now) {
+                    self.update_title(&window);
+                }
+            }
+        }
+        // Time moves on even when a frame could not be drawn, so a problem at one time (a camera or light that
+        // degenerates there) does not freeze the viewer at it.
+        if !self.paused {
+            self.time += dt;
+        }
+    }
+
+    /// Renders and presents the current state, saving a requested screenshot of it.
+    fn draw_frame(&mut self, window: &Window, event_loop: &ActiveEventLoop) {
         let size = window.inner_size();
         let window_size = (size.width, size.height);
         let Some(pose) = self.pose() else {
@@ -560,17 +578,8 @@ impl App {
                 if let Some(path) = self.screenshot_request.take() {
                     self.save_screenshot(path, shown, &pose, render_size, window_size);
                 }
-                if !self.paused {
-                    self.time += dt;
-                }
             }
             Err(e) => self.recover(e, event_loop),
-        }
-        if let Some(seconds) = measured {
-            self.scale.record(seconds);
-            if self.clock.record(seconds, now) {
-                self.update_title(&window);
-            }
         }
     }
 

@@ -94,7 +94,8 @@ pub fn describe_pose(pose: &Pose, time: f64) -> String {
     let p = pose.position;
     let t = pose.position + pose.forward.normalize_or(DVec3::Z);
     format!(
-        "camera at t = {time:.3}, fov {fov:.2}°:\n  key({time:.3}, vec3({:.4}, {:.4}, {:.4}), vec3({:.4}, {:.4}, {:.4}))\n  \
+        "camera at t = {time:.3}, fov {fov:.2}°:\n  \
+         key({time:.3}, vec3({:.4}, {:.4}, {:.4}), vec3({:.4}, {:.4}, {:.4}))\n  \
          [[key]]\n  time = {time:.3}\n  position = [{:.4}, {:.4}, {:.4}]\n  target = [{:.4}, {:.4}, {:.4}]",
         p.x,
         p.y,

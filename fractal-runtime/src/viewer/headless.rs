@@ -29,7 +29,10 @@ pub fn display_available() -> Result<(), String> {
 /// Renders the first frame the viewer would show to `png` (no window); returns the device that drew it.
 pub fn render_png(scene: &ViewerScene, options: &ViewerOptions, png: &Path) -> Result<DeviceInfo, ViewerError> {
     let live = LiveScene::load(scene).map_err(ViewerError::Scene)?;
-    let params = ParamValues::defaults(&live.scene);
+    let mut params = ParamValues::defaults(&live.scene);
+    for (name, value) in &options.params {
+        params.set(name, *value)?;
+    }
     let time = options.start_time;
     let pose = match &options.camera_path {
         Some(file) => {

@@ -2,10 +2,11 @@
 //! with whichever backend was selected, lets the user fly the camera, toggle effects, change `param(..)` values and
 //! take screenshots, and reloads a `.fractal` file whenever it is saved.
 //!
-//! The game loop ([`app`]) runs once per frame: poll input → update time, camera and parameters → render → present.
+//! The game loop (module `app`) runs once per frame: poll input → update time, camera and parameters → render →
+//! present.
 //! - Rendering: wgpu frames are computed into a storage buffer and drawn to a wgpu surface by a small full-screen pass
-//!   that also upscales them ([`present`]); CPU and OpenCL frames, and wgpu frames when no surface can be had (it says
-//!   so on stderr), are read back and presented through softbuffer.
+//!   that also upscales them (module `present`); CPU and OpenCL frames, and wgpu frames when no surface can be had
+//!   (it says so on stderr), are read back and presented through softbuffer.
 //! - The render size is a fraction of the window ([`RenderScale`]); by default the fraction adapts to hold a target
 //!   frame rate, and the image is upscaled to the window (nearest pixel).
 //! - Effects (shadows, ambient occlusion, glow, fog) are compiled into the kernels, so a toggle recompiles them with
@@ -128,6 +129,8 @@ pub struct ViewerOptions {
     pub mouse_sensitivity: f64,
     /// A TOML camera path to play instead of the scene's camera (see [`path_file`]).
     pub camera_path: Option<PathBuf>,
+    /// Start values of `param(..)`s by name (the others start at their defaults); each must lie in its range.
+    pub params: Vec<(String, f64)>,
     /// Scene time at start, in seconds.
     pub start_time: f64,
     /// Start with time paused.
@@ -157,6 +160,7 @@ impl Default for ViewerOptions {
             move_speed: 1.0,
             mouse_sensitivity: 0.003,
             camera_path: None,
+            params: Vec::new(),
             start_time: 0.0,
             paused: false,
             fixed_time_step: None,

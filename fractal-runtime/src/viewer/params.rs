@@ -3,6 +3,7 @@
 
 use fractal_dsl::Scene;
 
+use crate::error::FrameError;
 use crate::frame::ParamValues;
 
 /// Steps per range for ↑/↓; Shift steps five at a time.
@@ -33,6 +34,11 @@ impl ParamControl {
             }
         }
         ParamControl { values, selected }
+    }
+
+    /// Sets a parameter by name; unknown names and values outside the range are errors.
+    pub fn set(&mut self, name: &str, value: f64) -> Result<(), FrameError> {
+        self.values.set(name, value)
     }
 
     pub fn values(&self) -> &ParamValues {

@@ -21,6 +21,8 @@ impl Default for RenderScale {
 const SETTLE_FRAMES: u32 = 4;
 /// Weight of the newest frame in the smoothed frame time.
 const SMOOTHING: f64 = 0.3;
+/// Below this ratio of target to measured frame time the scale drops without waiting for [`SETTLE_FRAMES`].
+const URGENT: f64 = 0.5;
 /// No adjustment while the frame time is within this band around the target.
 const DEAD_BAND: (f64, f64) = (0.85, 1.15);
 /// Largest change of the scale in one adjustment.
@@ -68,10 +70,11 @@ impl ScaleController {
         };
         self.smoothed = Some(smoothed);
         self.frames_since_change += 1;
-        if self.frames_since_change < SETTLE_FRAMES {
+        let ratio = (1.0 / target_fps) / smoothed;
+        // Far too slow (a CPU backend at a large size): step down every frame rather than wait seconds per step.
+        if self.frames_since_change < SETTLE_FRAMES && ratio > URGENT {
             return;
         }
-        let ratio = (1.0 / target_fps) / smoothed;
         if ratio > DEAD_BAND.0 && ratio < DEAD_BAND.1 {
             return;
         }
@@ -128,6 +131,11 @@ mod tests {
         assert!((fps / 30.0 - 1.0).abs() < 0.2, "scale {s} gives {fps} FPS");
         assert_eq!(converge(0.001, 30.0), 1.0, "fast scenes render at full size");
         assert_eq!(converge(100.0, 30.0), 0.1, "slow scenes stop at the minimum");
+        // A very slow first frame (one second for a 30 FPS target) brings the scale down on the next frame.
+        let mut c = ScaleController::new(RenderScale::Adaptive { target_fps: 30.0, min: 0.1, max: 1.0 });
+        let first = c.scale();
+        c.record(1.0);
+        assert!(c.scale() < first, "no wait when far too slow");
     }
 
     #[test]

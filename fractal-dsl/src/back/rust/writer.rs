@@ -105,14 +105,7 @@ pub fn write(program: &Program, krate: &str) -> String {
     syntax::write_body(&mut out, &program.sample, &RustSyntax, Level(1));
     let r = program.sample_result;
     let _ = writeln!(out, "    {krate}::eval::Sample {{");
-    for (field, v) in [
-        ("distance", r.distance),
-        ("albedo", r.albedo),
-        ("ambient", r.ambient),
-        ("diffuse", r.diffuse),
-        ("specular", r.specular),
-        ("shininess", r.shininess),
-    ] {
+    for (field, v) in syntax::sample_fields(&r) {
         let _ = writeln!(out, "        {field}: {},", syntax::atom(&program.sample, &RustSyntax, v));
     }
     out.push_str("    }\n}\n");
