@@ -88,7 +88,7 @@ fn test(extra: &[String]) {
     ]));
     // The GPU-language tests fail rather than skip when their runtime is missing: this command asked for them.
     run(Command::new("cargo")
-        .args(["test", "--workspace", "--features", "opencl"])
+        .args(["test", "--workspace", "--features", "opencl", "--no-fail-fast"])
         .args(extra)
         .env("FRACTAL_REQUIRE_GPU_BACKENDS", "1"));
 }
