@@ -7,8 +7,9 @@ use crate::math::*;
 /// Smallest divisor used where a formula divides by a user value that may be zero (smooth blend k, capsule length).
 pub const TINY: f64 = 1e-30;
 /// Derivative cap for escape-time fractals: past it the estimate is 0 to within float precision anyway, and stopping
-/// keeps f32 from overflowing to Inf (and Inf/Inf to NaN) at high powers.
-pub const DR_MAX: f64 = 1e30;
+/// keeps f32 from overflowing to Inf (and Inf/Inf to NaN): power · r^(power−1) · dr stays below 2^128 up to power 64
+/// with r ≤ 2^(60/power).
+pub const DR_MAX: f64 = 1e17;
 /// Largest log2 of |z|^power an iteration may produce: `length` squares |z|, so 2^60 keeps |z|² (2^120) finite in
 /// f32 (max ~2^128).
 pub const POW_LOG2_MAX: f64 = 60.0;
@@ -181,7 +182,9 @@ pub fn de_mandelbulb8<F: Real>(p: V3<F>, iterations: u32, bailout: F) -> [F; 2] 
         let cos_part =
             a2 * a2 - c::<F>(28.0) * a2 * a * b + c::<F>(70.0) * a2 * b2 - c::<F>(28.0) * a * b2 * b + b2 * b2;
         let sin_part = c::<F>(8.0) * z.z * (a2 * a - c::<F>(7.0) * a2 * b + c::<F>(7.0) * a * b2 - b2 * b);
-        let inv_rho = if b > F::zero() { F::one() / b.sqrt() } else { F::zero() };
+        // On the polar axis ρ = 0 and the azimuth is undefined; the map sends x and y to 0 there. The threshold is
+        // TINY, not 0: fast-math GPU code flushes subnormal b to 0 inside sqrt, and 1/sqrt(0) would be Inf.
+        let inv_rho = if b > c(TINY) { F::one() / b.sqrt() } else { F::zero() };
         let ux = z.x * inv_rho;
         let uy = z.y * inv_rho;
         let u2x = ux * ux - uy * uy;

@@ -40,11 +40,24 @@ pub struct Row {
     pub params: Option<Vec<f32>>,
     /// Hand-picked points, evaluated before the random ones.
     pub extra: Vec<[f32; 3]>,
+    /// For a smooth blend of materials: the blend radius k and the largest difference between blended material
+    /// values (see [`Row::blends`]).
+    pub blend: Option<(f64, f64)>,
 }
 
 impl Row {
     pub fn new(name: &'static str, family: Family, compiled: &'static CompiledScene) -> Row {
-        Row { name, family, compiled, center: [0.0; 3], half: 2.0, time: 0.0, params: None, extra: Vec::new() }
+        Row {
+            name,
+            family,
+            compiled,
+            center: [0.0; 3],
+            half: 2.0,
+            time: 0.0,
+            params: None,
+            extra: Vec::new(),
+            blend: None,
+        }
     }
     pub fn within(mut self, half: f32) -> Row {
         self.half = half;
@@ -65,6 +78,14 @@ impl Row {
     }
     pub fn with_points(mut self, points: &[[f32; 3]]) -> Row {
         self.extra.extend_from_slice(points);
+        self
+    }
+    /// Declares that the row's materials are mixed by a smooth blend of radius `k` between values at most `span`
+    /// apart. The blend weight w = clamp(½ + ½(a − b)/k) moves by (δa + δb)/(2k) when the two distances err by δa
+    /// and δb, so each material channel may err by span · δ/k on top of its own rounding, δ being the distance
+    /// tolerance.
+    pub fn blends(mut self, k: f64, span: f64) -> Row {
+        self.blend = Some((k, span));
         self
     }
     pub fn scene(&self) -> &Scene {
@@ -274,8 +295,9 @@ fn neighbours(p: V3<f64>, step: f64) -> impl Iterator<Item = V3<f64>> {
     })
 }
 
-fn material_matches(a: &Answer, b: &Answer, tol: Tol) -> bool {
-    (1..8).all(|i| (a[i] - b[i]).abs() <= tol.of(b[i].abs().max(1.0)))
+/// Whether every material channel of `a` is within `tol` (of max(1, |v|)) plus `slack` of `b`'s.
+fn material_matches(a: &Answer, b: &Answer, tol: Tol, slack: f64) -> bool {
+    (1..8).all(|i| (a[i] - b[i]).abs() <= tol.of(b[i].abs().max(1.0)) + slack)
 }
 
 /// Compares a subject's answers on a row with the reference's; at most a few failures are described per row.
@@ -326,7 +348,8 @@ pub fn compare(row: &Row, reference: &Reference, points: &[V3<f32>], got: &[Answ
             );
         }
         let material_diff = (1..8).map(|i| (answer[i] - want[i]).abs()).fold(0.0, f64::max);
-        if material_matches(answer, &want, mtol) {
+        let slack = row.blend.map_or(0.0, |(k, span)| span * allowed / k);
+        if material_matches(answer, &want, mtol, slack) {
             o.max_material = o.max_material.max(material_diff);
             continue;
         }
@@ -339,7 +362,8 @@ pub fn compare(row: &Row, reference: &Reference, points: &[V3<f32>], got: &[Answ
             let within = (1..8).all(|i| {
                 let lo = around.iter().fold(want[i], |m, a| m.min(a[i]));
                 let hi = around.iter().fold(want[i], |m, a| m.max(a[i]));
-                answer[i] >= lo - mtol.of(lo.abs().max(1.0)) && answer[i] <= hi + mtol.of(hi.abs().max(1.0))
+                answer[i] >= lo - mtol.of(lo.abs().max(1.0)) - slack
+                    && answer[i] <= hi + mtol.of(hi.abs().max(1.0)) + slack
             });
             if within {
                 o.steep += 1;
@@ -349,7 +373,7 @@ pub fn compare(row: &Row, reference: &Reference, points: &[V3<f32>], got: &[Answ
             // Otherwise it must be the whole material of a point MATERIAL_NEIGHBOUR_STEP (relative) away: p lies on
             // a boundary between materials (two children nearly equidistant) and rounding picked the other side.
             let step = MATERIAL_NEIGHBOUR_STEP * scale_of(p, 0.0);
-            if neighbours(p, step).any(|q| material_matches(answer, &reference.answer(q), mtol)) {
+            if neighbours(p, step).any(|q| material_matches(answer, &reference.answer(q), mtol, slack)) {
                 o.boundary += 1;
                 continue;
             }
@@ -358,7 +382,10 @@ pub fn compare(row: &Row, reference: &Reference, points: &[V3<f32>], got: &[Answ
         let i = worst.unwrap_or(1);
         fail(
             &mut o,
-            format!("material {} = {:e}, reference {:e} (no nearby point has it) {at}", CHANNELS[i], answer[i], want[i]),
+            format!(
+                "material {} = {:e}, reference {:e} (no nearby point has it) {at}",
+                CHANNELS[i], answer[i], want[i]
+            ),
         );
     }
     o
@@ -407,6 +434,10 @@ pub fn run(subject: &mut dyn Subject, rows: &[Row]) -> Column {
 /// One evaluator's table: per row, the largest differences and how much of the tolerance they used.
 pub fn column_table(c: &Column) -> String {
     let mut s = String::new();
+    if let Some(why) = c.outcomes.first().and_then(|o| o.skipped.as_ref()) {
+        let _ = writeln!(s, "\n== {}: skipped ({why}) ==", c.subject);
+        return s;
+    }
     let _ = writeln!(s, "\n== {} ({:?} tolerances, {:.1} s) ==", c.subject, c.class, c.seconds);
     let _ = writeln!(
         s,
@@ -414,10 +445,6 @@ pub fn column_table(c: &Column) -> String {
         "row", "pts", "max|Δd|", "|Δd|/s/u", "of tol", "max|Δmat|", "steep", "bndry", "fails"
     );
     for o in &c.outcomes {
-        if let Some(why) = &o.skipped {
-            let _ = writeln!(s, "{:<56} skipped: {why}", o.row);
-            continue;
-        }
         let _ = writeln!(
             s,
             "{:<56} {:>5} {:>10.2e} {:>9.1} {:>7.0}% {:>10.2e} {:>5} {:>5} {:>5}  {}",
@@ -439,29 +466,40 @@ pub fn column_table(c: &Column) -> String {
     s
 }
 
-/// Rows × evaluators: the largest distance difference each evaluator showed on each row.
+/// How a summary table writes one outcome.
+type Cell = fn(&Outcome) -> String;
+
+/// Rows × evaluators: the largest distance difference each evaluator showed on each row (absolute, and in units of
+/// u·max(1, |p|, |d|)), then the largest material difference.
 pub fn summary_table(columns: &[Column]) -> String {
     let mut s = String::new();
-    let _ = writeln!(s, "\n== largest |d − d_f64 interpreter| per row and evaluator ==");
-    let _ = write!(s, "{:<56}", "row");
-    for c in columns {
-        let _ = write!(s, " {:>14}", c.subject);
-    }
-    let _ = writeln!(s);
-    let Some(first) = columns.first() else { return s };
-    for (i, o) in first.outcomes.iter().enumerate() {
-        let _ = write!(s, "{:<56}", o.row);
+    let tables: [(&str, Cell); 2] = [
+        ("largest |d − d_ref| per row and evaluator (in parentheses: / (u·s))", |o| {
+            format!("{:.2e} ({:.1})", o.max_distance, o.max_distance_u)
+        }),
+        ("largest material difference per row and evaluator (boundary points excluded)", |o| {
+            format!("{:.2e}", o.max_material)
+        }),
+    ];
+    for (title, cell) in tables {
+        let _ = writeln!(s, "\n== {title} ==");
+        let _ = write!(s, "{:<56}", "row");
         for c in columns {
-            match c.outcomes.get(i) {
-                Some(o) if o.skipped.is_none() => {
-                    let _ = write!(s, " {:>14.2e}", o.max_distance);
-                }
-                _ => {
-                    let _ = write!(s, " {:>14}", "—");
-                }
-            }
+            let _ = write!(s, " {:>18}", c.subject);
         }
         let _ = writeln!(s);
+        let Some(first) = columns.first() else { return s };
+        for (i, o) in first.outcomes.iter().enumerate() {
+            let _ = write!(s, "{:<56}", o.row);
+            for c in columns {
+                let text = match c.outcomes.get(i) {
+                    Some(o) if o.skipped.is_none() => cell(o),
+                    _ => "—".to_string(),
+                };
+                let _ = write!(s, " {text:>18}");
+            }
+            let _ = writeln!(s);
+        }
     }
     s
 }

@@ -16,6 +16,11 @@ macro_rules! row {
     };
 }
 
+/// A 9 × 9 grid of points on the plane x = `x`, spaced 0.25.
+fn grid_on_plane_x(x: f32) -> Vec<[f32; 3]> {
+    (-4..=4).flat_map(|i| (-4..=4).map(move |j| [x, 0.25 * i as f32, 0.25 * j as f32])).collect()
+}
+
 /// Every vocabulary item.
 pub fn vocabulary() -> Vec<Row> {
     use Family::*;
@@ -55,7 +60,11 @@ pub fn vocabulary() -> Vec<Row> {
             )
         }),
         row!("intersect", Exact, {
-            intersect(sphere(1.0).material(rgb(0.9, 0.2, 0.1)), box3(vec3(0.8, 0.8, 0.8)).material(rgb(0.1, 0.8, 0.3)))
+            intersect(
+                sphere(1.0).material(rgb(0.9, 0.2, 0.1)),
+                box3(vec3(0.8, 0.8, 0.8)).material(rgb(0.1, 0.8, 0.3)),
+                cylinder(0.85, 0.7).material(rgb(0.2, 0.3, 0.9)),
+            )
         }),
         row!("subtract", Exact, {
             subtract(box3(vec3(0.8, 0.8, 0.8)).material(rgb(0.9, 0.2, 0.1)), sphere(0.95).material(rgb(0.1, 0.8, 0.3)))
@@ -66,14 +75,16 @@ pub fn vocabulary() -> Vec<Row> {
                 box3(vec3(0.45, 0.45, 0.45)).translate(vec3(0.6, 0.25, 0.0)).material(rgb(0.1, 0.8, 0.3)),
                 0.3,
             )
-        }),
+        })
+        .blends(0.3, 0.8),
         row!("smooth_intersect", Exact, {
             smooth_intersect(
                 sphere(1.0).material(rgb(0.9, 0.2, 0.1)),
                 box3(vec3(0.75, 0.75, 0.75)).material(rgb(0.1, 0.8, 0.3)),
                 0.2,
             )
-        }),
+        })
+        .blends(0.2, 0.8),
         row!("smooth_subtract", Exact, {
             smooth_subtract(
                 box3(vec3(0.8, 0.8, 0.8)).material(rgb(0.9, 0.2, 0.1)),
@@ -123,14 +134,17 @@ pub fn vocabulary() -> Vec<Row> {
                 sphere(0.8).material(phong(rgb(0.9, 0.2, 0.1), 0.1, 0.9, 0.0, 8.0)),
                 sphere(0.8).translate(vec3(0.9, 0.0, 0.0)).material(phong(rgb(0.1, 0.8, 0.3), 0.3, 0.6, 0.5, 64.0)),
             )
-        }),
+        })
+        // On the bisector x = 0.45 (not an f32 number) the two distances differ by rounding only: either material.
+        .with_points(&grid_on_plane_x(0.45)),
         row!("material: smooth_union blends every term", Exact, {
             smooth_union(
                 sphere(0.8).material(phong(rgb(0.9, 0.2, 0.1), 0.1, 0.9, 0.0, 8.0)),
                 sphere(0.8).translate(vec3(0.9, 0.0, 0.0)).material(phong(rgb(0.1, 0.8, 0.3), 0.3, 0.6, 0.5, 64.0)),
                 0.5,
             )
-        }),
+        })
+        .blends(0.5, 56.0),
         row!("material: the innermost wins", Exact, {
             union(sphere(0.8).material(rgb(0.9, 0.2, 0.1)), sphere(0.8).translate(vec3(0.9, 0.0, 0.0)))
                 .material(rgb(0.1, 0.8, 0.3))
@@ -173,16 +187,19 @@ pub fn vocabulary() -> Vec<Row> {
 /// each row; the random ones follow.
 pub fn hard_cases() -> Vec<Row> {
     use Family::*;
-    // The polar axis of the Mandelbulb here is z (θ = acos(z/r)); x = y = 0 is the pole, and 1e-7, 1e-30 off it.
+    // The polar axis of the Mandelbulb here is z (θ = acos(z/r)): x = y = 0 is the pole, and 1e-7, 1e-30 off it. The
+    // design notes' x = z = 0 (the y axis, on the equator here, where φ = atan2(y, 0)) gets the same offsets.
     let mut pole = Vec::new();
+    let offsets = [(0.0, 0.0), (1e-7, 0.0), (0.0, 1e-7), (-1e-7, 1e-7), (1e-30, 0.0), (1e-30, 1e-30), (0.0, -1e-30)];
     for i in 0..=24 {
-        let z = -1.5 + 0.125 * i as f32;
-        for (x, y) in [(0.0, 0.0), (1e-7, 0.0), (0.0, 1e-7), (-1e-7, 1e-7), (1e-30, 0.0), (1e-30, 1e-30), (0.0, -1e-30)]
-        {
-            pole.push([x, y, z]);
+        let along = -1.5 + 0.125 * i as f32;
+        for (a, b) in offsets {
+            pole.push([a, b, along]);
+            pole.push([a, along, b]);
         }
     }
-    // p = 0 exactly and points whose orbits never escape (deep inside the bulb).
+    // p = 0 exactly, points whose orbits never escape (deep inside the bulb), and a point whose squared coordinates
+    // (1e-40) are below f32's smallest normal number: denormal, and flushed to zero under fast math.
     let bounded = vec![
         [0.0, 0.0, 0.0],
         [-0.0, 0.0, -0.0],
@@ -208,10 +225,15 @@ pub fn hard_cases() -> Vec<Row> {
     for p in [[100.0, 0.3, 0.2], [-70.0, 70.0, 10.0], [0.0, 0.0, 100.0], [1.0 / 3.0, 100.0, 1.0 / 9.0]] {
         planes.push(p);
     }
+    // The plane x = 0.25 is exactly equidistant from two spheres centred at x = 0 and x = 0.5, in every precision:
+    // the blend weight there is exactly ½ (and with k = 0 the step of the weight sits on it).
+    let bisector = grid_on_plane_x(0.25);
     vec![
         row!("hard: mandelbulb(8) pole axis", Mandelbulb, { mandelbulb(8) }).within(1.5).with_points(&pole),
+        // The same power through a parameter takes the trigonometric form; the range starts at 8 so the step factor
+        // (which follows the lowest power an expression can take) is the literal's.
         row!("hard: mandelbulb(power 8 by param, trig path) pole axis", Mandelbulb, {
-            mandelbulb(param("power", 8.0, 2.0..16.0))
+            mandelbulb(param("power", 8.0, 8.0..16.0))
         })
         .within(1.5)
         .with_params(&[8.0])
@@ -235,25 +257,29 @@ pub fn hard_cases() -> Vec<Row> {
         row!("hard: smooth_union k = 0 (param)", Exact, {
             smooth_union(
                 sphere(0.5).material(rgb(0.9, 0.2, 0.1)),
-                sphere(0.5).translate(vec3(0.6, 0.0, 0.0)).material(rgb(0.1, 0.8, 0.3)),
+                sphere(0.5).translate(vec3(0.5, 0.0, 0.0)).material(rgb(0.1, 0.8, 0.3)),
                 param("k", 0.5, 0.0..4.0),
             )
         })
-        .with_params(&[0.0]),
+        .with_params(&[0.0])
+        .with_points(&bisector),
         row!("hard: smooth_union k = 0 (literal)", Exact, {
             smooth_union(
                 sphere(0.5).material(rgb(0.9, 0.2, 0.1)),
-                sphere(0.5).translate(vec3(0.6, 0.0, 0.0)).material(rgb(0.1, 0.8, 0.3)),
+                sphere(0.5).translate(vec3(0.5, 0.0, 0.0)).material(rgb(0.1, 0.8, 0.3)),
                 0.0,
             )
-        }),
+        })
+        .with_points(&bisector),
         row!("hard: smooth_union k larger than both shapes", Exact, {
             smooth_union(
                 sphere(0.5).material(rgb(0.9, 0.2, 0.1)),
-                sphere(0.5).translate(vec3(0.6, 0.0, 0.0)).material(rgb(0.1, 0.8, 0.3)),
+                sphere(0.5).translate(vec3(0.5, 0.0, 0.0)).material(rgb(0.1, 0.8, 0.3)),
                 3.0,
             )
-        }),
+        })
+        .blends(3.0, 0.8)
+        .with_points(&bisector),
         row!("hard: unit sphere 1e5 away", Exact, { sphere(1.0).translate(vec3(100000.0, 0.0, 0.0)) })
             .around([100000.0, 0.0, 0.0], 2.0),
     ]

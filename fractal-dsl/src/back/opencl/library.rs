@@ -1,6 +1,6 @@
 //! The OpenCL C spelling of each leaf function ([`Helper`]): the formulas of [`crate::sdf`] in `float`, `float2`,
 //! `float3` and `float4`, operation for operation, with the same guards and constants (`TINY` = 1e-30,
-//! `DR_MAX` = 1e30, `POW_LOG2_MAX` = 120). Escape-time fractals return `(float2)(distance, trap)`.
+//! `DR_MAX` = 1e17, `POW_LOG2_MAX` = 60). Escape-time fractals return `(float2)(distance, trap)`.
 //!
 //! Each text is one function ending in a newline; a kernel holds the helpers it uses and their dependencies
 //! ([`crate::back::with_dependencies`]) in [`Helper`] order, so a function only calls helpers that come before it.
@@ -161,7 +161,7 @@ float2 de_mandelbulb(float3 p, float power, int iterations, float bailout) {
     float r = length(z);
     float trap = r;
     for (int i = 0; i < iterations; i++) {
-        if (r > escape || dr > 1e30f) {
+        if (r > escape || dr > 1e17f) {
             break;
         }
         float theta = acos(clamp(z.z / fmax(r, 1e-30f), -1.0f, 1.0f)) * power;
@@ -188,7 +188,7 @@ float2 de_mandelbulb8(float3 p, int iterations, float bailout) {
     float r = length(z);
     float trap = r;
     for (int i = 0; i < iterations; i++) {
-        if (r > escape || dr > 1e30f) {
+        if (r > escape || dr > 1e17f) {
             break;
         }
         float x2 = z.x * z.x;
@@ -201,7 +201,7 @@ float2 de_mandelbulb8(float3 p, int iterations, float bailout) {
         float b2 = b * b;
         float cos_part = a2 * a2 - 28.0f * a2 * a * b + 70.0f * a2 * b2 - 28.0f * a * b2 * b + b2 * b2;
         float sin_part = 8.0f * z.z * (a2 * a - 7.0f * a2 * b + 7.0f * a * b2 - b2 * b);
-        float inv_rho = b > 0.0f ? 1.0f / sqrt(b) : 0.0f;
+        float inv_rho = b > 1e-30f ? 1.0f / sqrt(b) : 0.0f;
         float ux = z.x * inv_rho;
         float uy = z.y * inv_rho;
         float u2x = ux * ux - uy * uy;
@@ -270,7 +270,7 @@ float2 de_julia(float3 p, float4 c, int iterations, float bailout) {
     float trap = m;
     float escape2 = bailout * bailout;
     for (int i = 0; i < iterations; i++) {
-        if (m > escape2 || dot(dz, dz) > 1e30f) {
+        if (m > escape2 || dot(dz, dz) > 1e17f) {
             break;
         }
         dz = 2.0f * (float4)(

@@ -1,6 +1,6 @@
 //! The WGSL spelling of each leaf function ([`Helper`]): the formulas of [`crate::sdf`] in `f32`, `vec2<f32>`,
 //! `vec3<f32>` and `vec4<f32>`, operation for operation, with the same guards and constants (`TINY` = 1e-30,
-//! `DR_MAX` = 1e30, `POW_LOG2_MAX` = 120). Escape-time fractals return `vec2<f32>(distance, trap)`; counts are `i32`.
+//! `DR_MAX` = 1e17, `POW_LOG2_MAX` = 60). Escape-time fractals return `vec2<f32>(distance, trap)`; counts are `i32`.
 //!
 //! Each text is one function ending in a newline; a kernel holds the helpers it uses and their dependencies
 //! ([`crate::back::with_dependencies`]) in [`Helper`] order. WGSL's `%` truncates, so the floored modulo of
@@ -166,7 +166,7 @@ fn de_mandelbulb(p: vec3<f32>, power: f32, iterations: i32, bailout: f32) -> vec
     var r = length(z);
     var trap = r;
     for (var i = 0; i < iterations; i++) {
-        if r > escape || dr > 1e30 {
+        if r > escape || dr > 1e17 {
             break;
         }
         let cos_theta = clamp(z.z / max(r, 1e-30), -1.0, 1.0);
@@ -194,7 +194,7 @@ fn de_mandelbulb8(p: vec3<f32>, iterations: i32, bailout: f32) -> vec2<f32> {
     var r = length(z);
     var trap = r;
     for (var i = 0; i < iterations; i++) {
-        if r > escape || dr > 1e30 {
+        if r > escape || dr > 1e17 {
             break;
         }
         let x2 = z.x * z.x;
@@ -207,7 +207,7 @@ fn de_mandelbulb8(p: vec3<f32>, iterations: i32, bailout: f32) -> vec2<f32> {
         let b2 = b * b;
         let cos_part = a2 * a2 - 28.0 * a2 * a * b + 70.0 * a2 * b2 - 28.0 * a * b2 * b + b2 * b2;
         let sin_part = 8.0 * z.z * (a2 * a - 7.0 * a2 * b + 7.0 * a * b2 - b2 * b);
-        let inv_rho = select(0.0, 1.0 / sqrt(b), b > 0.0);
+        let inv_rho = select(0.0, 1.0 / sqrt(b), b > 1e-30);
         let ux = z.x * inv_rho;
         let uy = z.y * inv_rho;
         let u2x = ux * ux - uy * uy;
@@ -276,7 +276,7 @@ fn de_julia(p: vec3<f32>, c: vec4<f32>, iterations: i32, bailout: f32) -> vec2<f
     var trap = m;
     let escape2 = bailout * bailout;
     for (var i = 0; i < iterations; i++) {
-        if m > escape2 || dot(dz, dz) > 1e30 {
+        if m > escape2 || dot(dz, dz) > 1e17 {
             break;
         }
         dz = 2.0 * vec4<f32>(
