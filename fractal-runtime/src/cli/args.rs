@@ -173,6 +173,9 @@ pub struct ViewArgs {
     /// Start with time paused
     #[arg(long)]
     pub paused: bool,
+    /// Start a scene parameter at this value (repeatable; change it live with Tab and the arrow keys)
+    #[arg(long = "param", value_name = "NAME=VALUE", value_parser = parse_param)]
+    pub params: Vec<(String, f64)>,
     /// Play this TOML camera path instead of the scene's camera
     #[arg(long, value_name = "PATH")]
     pub camera_path: Option<PathBuf>,

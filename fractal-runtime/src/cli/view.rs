@@ -12,6 +12,8 @@ use crate::viewer::{run, ViewerError, ViewerOptions, ViewerScene};
 pub fn view(args: &ViewArgs, library: &SceneLibrary) -> Result<(), CliError> {
     // Loading first reports an unknown scene or a broken file the same way the other commands do.
     let loaded = LoadedScene::load(&args.scene, library)?;
+    // Unknown names and out-of-range values are refused here, as `render` refuses them.
+    loaded.params(&args.params)?;
     let scene = match &loaded.origin {
         SceneOrigin::File(path) => ViewerScene::file(path),
         SceneOrigin::BuiltIn => match library.scenes.iter().find(|(name, _)| *name == loaded.name) {
@@ -28,6 +30,7 @@ pub fn view(args: &ViewArgs, library: &SceneLibrary) -> Result<(), CliError> {
         paused: args.paused,
         move_speed: args.move_speed,
         mouse_sensitivity: args.mouse_sensitivity,
+        params: args.params.clone(),
         ..ViewerOptions::default()
     };
     match run(scene, options) {
