@@ -33,17 +33,17 @@ fn no_device(reason: impl ToString) -> RenderError {
     RenderError::NoDevice { backend: Backend::OpenCl, reason: reason.to_string() }
 }
 
-fn device_error(e: ocl::Error) -> RenderError {
+pub(crate) fn device_error(e: ocl::Error) -> RenderError {
     RenderError::Device { backend: Backend::OpenCl, message: brief(&e) }
 }
 
-fn rejected(e: ocl::Error) -> RenderError {
+pub(crate) fn rejected(e: ocl::Error) -> RenderError {
     RenderError::KernelRejected { backend: Backend::OpenCl, log: brief(&e) }
 }
 
 /// An ocl error without its banners: an API failure in one line ("clGetDeviceIDs: CL_DEVICE_NOT_FOUND (-1)"), a
 /// build failure as the build log.
-fn brief(e: &ocl::Error) -> String {
+pub(crate) fn brief(e: &ocl::Error) -> String {
     let text = e.to_string();
     let field = |label: &str| text.lines().find_map(|l| l.trim().strip_prefix(label)).map(|v| v.trim().to_string());
     match (field("Error executing function:"), field("Status error code:")) {
@@ -93,6 +93,11 @@ impl OpenClRenderer {
         Ok(OpenClRenderer { device, context, queue, precise, programs: Vec::new(), info })
     }
 
+    /// The renderer's queue (created with profiling enabled), for dispatchers that share its device.
+    pub(crate) fn queue(&self) -> &Queue {
+        &self.queue
+    }
+
     pub fn precise(&self) -> bool {
         self.precise
     }
@@ -133,7 +138,8 @@ impl OpenClRenderer {
         Ok(program)
     }
 
-    fn frame_buffer(&self, frame: &Frame) -> Result<Buffer<f32>, RenderError> {
+    /// The frame's uniform slots in a read-only buffer on the renderer's queue.
+    pub(crate) fn frame_buffer(&self, frame: &Frame) -> Result<Buffer<f32>, RenderError> {
         let floats: &[f32] = bytemuck::cast_slice(frame.slots());
         Buffer::<f32>::builder()
             .queue(self.queue.clone())

@@ -64,6 +64,12 @@ impl WgpuRenderer {
 
     /// Opens the preferred adapter among `backends`.
     pub fn with_backends(backends: wgpu::Backends) -> Result<WgpuRenderer, RenderError> {
+        WgpuRenderer::with_features(backends, wgpu::Features::empty())
+    }
+
+    /// Opens the preferred adapter among `backends` and asks for those of `wanted` features the adapter has (the
+    /// bench wants timestamp queries where they exist).
+    pub(crate) fn with_features(backends: wgpu::Backends, wanted: wgpu::Features) -> Result<WgpuRenderer, RenderError> {
         let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
         desc.backends = backends.with_env();
         // Release-build flags in every build: validation layers would make debug builds measure something else.
@@ -79,6 +85,7 @@ impl WgpuRenderer {
         let info = adapter.get_info();
         let descriptor = wgpu::DeviceDescriptor {
             label: Some("fractal"),
+            required_features: adapter.features() & wanted,
             // The adapter's own limits, so large images are limited by the device rather than by WebGPU defaults.
             required_limits: adapter.limits(),
             memory_hints: wgpu::MemoryHints::Performance,
@@ -193,7 +200,7 @@ impl WgpuRenderer {
             });
         }
         let pipeline = self.pipeline(Entry::Probe, source)?;
-        let (readback, error) = capture(&self.device, || {
+        let (buffers, error) = capture(&self.device, || {
             let uniform = self.uniform_buffer(frame);
             let input = self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("probe points"),
@@ -211,11 +218,11 @@ impl WgpuRenderer {
                     wgpu::BindGroupEntry { binding: 2, resource: input.as_entire_binding() },
                 ],
             });
-            self.dispatch(&pipeline, &bind_group, (groups as u32, 1), &out, &readback, out_bytes);
-            readback
+            self.dispatch(&pipeline, &bind_group, (groups as u32, 1));
+            (out, readback)
         });
         self.check(error)?;
-        let floats: Vec<f32> = self.read(&readback, out_bytes)?.into_iter().map(f32::from_bits).collect();
+        let floats: Vec<f32> = self.read(&buffers.0, &buffers.1, out_bytes)?.into_iter().map(f32::from_bits).collect();
         Ok(floats.chunks_exact(8).map(|c| std::array::from_fn(|i| c[i])).collect())
     }
 
@@ -245,16 +252,8 @@ impl WgpuRenderer {
         })
     }
 
-    /// Records and submits one dispatch followed by the copy of `out` into `readback`.
-    fn dispatch(
-        &self,
-        pipeline: &wgpu::ComputePipeline,
-        bind_group: &wgpu::BindGroup,
-        groups: (u32, u32),
-        out: &wgpu::Buffer,
-        readback: &wgpu::Buffer,
-        bytes: u64,
-    ) {
+    /// Records and submits one dispatch.
+    fn dispatch(&self, pipeline: &wgpu::ComputePipeline, bind_group: &wgpu::BindGroup, groups: (u32, u32)) {
         let mut encoder =
             self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("fractal") });
         {
@@ -264,30 +263,18 @@ impl WgpuRenderer {
             pass.set_bind_group(0, bind_group, &[]);
             pass.dispatch_workgroups(groups.0, groups.1, 1);
         }
-        encoder.copy_buffer_to_buffer(out, 0, readback, 0, bytes);
         self.queue.submit([encoder.finish()]);
     }
 
-    /// Waits for the GPU and reads `bytes` of `readback` as u32 words.
-    fn read(&self, readback: &wgpu::Buffer, bytes: u64) -> Result<Vec<u32>, RenderError> {
-        let slice = readback.slice(..bytes);
-        let (sender, receiver) = mpsc::channel();
-        slice.map_async(wgpu::MapMode::Read, move |result| {
-            let _ = sender.send(result);
-        });
-        self.device.poll(wgpu::PollType::wait_indefinitely()).map_err(device_error)?;
-        receiver.recv().map_err(device_error)?.map_err(device_error)?;
-        let words = {
-            let view = slice.get_mapped_range().map_err(device_error)?;
-            view.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect()
-        };
-        readback.unmap();
-        self.check(None)?;
-        Ok(words)
+    /// Copies `bytes` of `out` into `readback`, waits for the GPU and returns them as u32 words.
+    fn read(&self, out: &wgpu::Buffer, readback: &wgpu::Buffer, bytes: u64) -> Result<Vec<u32>, RenderError> {
+        let (words, error) = capture(&self.device, || read_back(&self.device, &self.queue, out, readback, bytes));
+        self.check(error)?;
+        words.map_err(device_error)
     }
 
     /// Turns a scoped error, or any error that escaped the scopes, into a device error.
-    fn check(&self, scoped: Option<wgpu::Error>) -> Result<(), RenderError> {
+    pub(crate) fn check(&self, scoped: Option<wgpu::Error>) -> Result<(), RenderError> {
         let mut messages: Vec<String> = scoped.into_iter().map(|e| e.to_string()).collect();
         if let Ok(mut escaped) = self.uncaptured.lock() {
             messages.append(&mut escaped);
@@ -300,8 +287,39 @@ impl WgpuRenderer {
     }
 }
 
-/// Runs `f` inside validation, out-of-memory and internal error scopes and returns the first error they caught.
-fn capture<T>(device: &wgpu::Device, f: impl FnOnce() -> T) -> (T, Option<wgpu::Error>) {
+/// Copies `bytes` of `source` into `readback` (a MAP_READ | COPY_DST buffer of at least `bytes`), waits for the device
+/// and returns them as u32 words.
+pub(crate) fn read_back(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    source: &wgpu::Buffer,
+    readback: &wgpu::Buffer,
+    bytes: u64,
+) -> Result<Vec<u32>, String> {
+    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("readback") });
+    encoder.copy_buffer_to_buffer(source, 0, readback, 0, bytes);
+    queue.submit([encoder.finish()]);
+    let data = map_read(device, readback, bytes)?;
+    Ok(data.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect())
+}
+
+/// Waits for the device and returns the first `bytes` of a MAP_READ buffer, which is unmapped again afterwards.
+pub(crate) fn map_read(device: &wgpu::Device, buffer: &wgpu::Buffer, bytes: u64) -> Result<Vec<u8>, String> {
+    let slice = buffer.slice(..bytes);
+    let (sender, receiver) = mpsc::channel();
+    slice.map_async(wgpu::MapMode::Read, move |result| {
+        let _ = sender.send(result);
+    });
+    device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| e.to_string())?;
+    receiver.recv().map_err(|e| e.to_string())?.map_err(|e| e.to_string())?;
+    let data = slice.get_mapped_range().map_err(|e| e.to_string())?.to_vec();
+    buffer.unmap();
+    Ok(data)
+}
+
+/// Runs `f` inside validation, out-of-memory and internal error scopes and returns the first error they caught, so a
+/// kernel, buffer or surface the driver refuses is an error value rather than a panic.
+pub(crate) fn capture<T>(device: &wgpu::Device, f: impl FnOnce() -> T) -> (T, Option<wgpu::Error>) {
     let internal = device.push_error_scope(wgpu::ErrorFilter::Internal);
     let memory = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
     let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
@@ -382,10 +400,10 @@ impl Renderer for WgpuRenderer {
                     wgpu::BindGroupEntry { binding: 1, resource: uniform.as_entire_binding() },
                 ],
             });
-            self.dispatch(&pipeline, &bind_group, groups, &targets.out, &targets.readback, bytes);
+            self.dispatch(&pipeline, &bind_group, groups);
         });
         self.check(error)?;
-        let pixels = self.read(&targets.readback, bytes)?;
+        let pixels = self.read(&targets.out, &targets.readback, bytes)?;
         Ok(Image { width, height, pixels })
     }
 

@@ -9,14 +9,14 @@
 //! pixel whose area contains the window pixel's centre, so the two presenters show identical pixels.
 
 use std::num::NonZeroU32;
-use std::sync::{mpsc, Arc};
+use std::sync::Arc;
 
 use fractal_dsl::back::Entry;
 use rayon::prelude::*;
 use wgpu::util::DeviceExt;
 use winit::window::Window;
 
-use crate::backend::wgpu::{WgpuRenderer, RENDER_WORKGROUP};
+use crate::backend::wgpu::{capture, map_read, read_back, WgpuRenderer, RENDER_WORKGROUP};
 use crate::error::RenderError;
 use crate::frame::Frame;
 use crate::image::Image;
@@ -410,7 +410,7 @@ impl GpuPresenter {
         window: (u32, u32),
         row_bytes: u32,
     ) -> Result<Image, String> {
-        let bytes = map_read(device, buffer)?;
+        let bytes = map_read(device, buffer, buffer.size())?;
         let bgra = matches!(self.config.format, wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb);
         let mut pixels = Vec::with_capacity(window.0 as usize * window.1 as usize);
         for row in bytes.chunks_exact(row_bytes as usize).take(window.1 as usize) {
@@ -452,7 +452,7 @@ fn blit_pipeline(device: &wgpu::Device, format: wgpu::TextureFormat) -> wgpu::Re
     })
 }
 
-/// Copies `bytes` of `source` to a mappable buffer and reads them as u32 words.
+/// Copies `bytes` of `source` to a new mappable buffer and reads them as u32 words.
 fn read_buffer(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
@@ -465,36 +465,7 @@ fn read_buffer(
         usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
         mapped_at_creation: false,
     });
-    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("readback") });
-    encoder.copy_buffer_to_buffer(source, 0, &readback, 0, bytes);
-    queue.submit([encoder.finish()]);
-    let data = map_read(device, &readback)?;
-    Ok(data.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect())
-}
-
-/// Waits for the device and returns the contents of a MAP_READ buffer.
-fn map_read(device: &wgpu::Device, buffer: &wgpu::Buffer) -> Result<Vec<u8>, String> {
-    let slice = buffer.slice(..);
-    let (sender, receiver) = mpsc::channel();
-    slice.map_async(wgpu::MapMode::Read, move |result| {
-        let _ = sender.send(result);
-    });
-    device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| e.to_string())?;
-    receiver.recv().map_err(|e| e.to_string())?.map_err(|e| e.to_string())?;
-    let data = slice.get_mapped_range().map_err(|e| e.to_string())?.to_vec();
-    buffer.unmap();
-    Ok(data)
-}
-
-/// Runs `f` inside validation, out-of-memory and internal error scopes and returns the first error they caught, so a
-/// surface or pipeline the driver refuses is an error value rather than a panic.
-fn capture<T>(device: &wgpu::Device, f: impl FnOnce() -> T) -> (T, Option<wgpu::Error>) {
-    let internal = device.push_error_scope(wgpu::ErrorFilter::Internal);
-    let memory = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
-    let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
-    let value = f();
-    let errors = [validation.pop(), memory.pop(), internal.pop()].map(pollster::block_on);
-    (value, errors.into_iter().flatten().next())
+    read_back(device, queue, source, &readback, bytes)
 }
 
 #[cfg(test)]

@@ -1,87 +1,29 @@
-//! The OpenCL dispatcher (cargo feature `opencl`): opens the device [`crate::OpenClRenderer`] would open, on a queue
-//! with profiling, builds programs with the same options (`-cl-fast-relaxed-math` unless precise; the baseline gets
-//! the same options as the generated kernel), and reads each kernel's time from its profiling event.
+//! The OpenCL dispatcher (cargo feature `opencl`): runs on the device and profiling queue of a
+//! [`crate::OpenClRenderer`], builds programs through the renderer's cache with its options (`-cl-fast-relaxed-math`
+//! unless precise; the baseline gets the same options as the generated kernel), and reads each kernel's time from its
+//! profiling event.
 
 use std::time::Instant;
 
-use ocl::enums::{DeviceInfo as ClDeviceInfo, DeviceInfoResult, ProfilingInfo};
-use ocl::{flags, Buffer, Context, Device, Event, Kernel, Platform, Program, Queue};
+use ocl::enums::ProfilingInfo;
+use ocl::{flags, Buffer, Event, Kernel};
 
 use super::{millis, KernelClock, Timed, Timer, Work};
-use crate::backend::opencl::FAST_MATH;
+use crate::backend::opencl::{brief, device_error, rejected, OpenClRenderer};
 use crate::bench::BASELINE_OPENCL;
 use crate::error::RenderError;
 use crate::image::Image;
-use crate::renderer::{Backend, DeviceInfo};
-
-/// An ocl error in one line where it has one (the API call and status), else its text without banner lines.
-fn brief(e: &ocl::Error) -> String {
-    let text = e.to_string();
-    let lines: Vec<&str> = text.lines().map(str::trim).filter(|l| !l.is_empty() && !l.starts_with("####")).collect();
-    lines.join("\n")
-}
-
-fn no_device(what: &str, e: ocl::Error) -> RenderError {
-    RenderError::NoDevice { backend: Backend::OpenCl, reason: format!("{what}: {}", brief(&e)) }
-}
-
-fn device_error(e: ocl::Error) -> RenderError {
-    RenderError::Device { backend: Backend::OpenCl, message: brief(&e) }
-}
-
-fn rejected(e: ocl::Error) -> RenderError {
-    RenderError::KernelRejected { backend: Backend::OpenCl, log: brief(&e) }
-}
+use crate::renderer::{Backend, DeviceInfo, Renderer};
 
 pub(crate) struct OpenClTimer {
-    device: Device,
-    context: Context,
-    queue: Queue,
-    precise: bool,
-    programs: Vec<(String, Program)>,
+    /// Owns the device, context, profiling queue and program cache.
+    renderer: OpenClRenderer,
     out: Option<(usize, Buffer<u32>)>,
-    info: DeviceInfo,
 }
 
 impl OpenClTimer {
     pub fn new(precise: bool) -> Result<OpenClTimer, RenderError> {
-        let platform = Platform::first().map_err(|e| no_device("listing platforms", e))?;
-        let device = Device::first(platform).map_err(|e| no_device("listing devices", e))?;
-        let context = Context::builder()
-            .platform(platform)
-            .devices(device)
-            .build()
-            .map_err(|e| no_device("creating a context", e))?;
-        let queue = Queue::new(&context, device, Some(flags::QUEUE_PROFILING_ENABLE))
-            .map_err(|e| no_device("creating a profiling queue", e))?;
-        let text = |r: ocl::Result<String>| r.unwrap_or_else(|e| format!("unknown ({e})"));
-        let info_text = |kind| match device.info(kind) {
-            Ok(DeviceInfoResult::Type(t)) => format!("{t:?}"),
-            Ok(other) => other.to_string(),
-            Err(e) => format!("unknown ({e})"),
-        };
-        let info = DeviceInfo {
-            backend: Backend::OpenCl,
-            api: text(platform.version()),
-            name: text(device.name()),
-            driver: format!("{} {}", text(platform.name()), info_text(ClDeviceInfo::DriverVersion)),
-            device_type: info_text(ClDeviceInfo::Type),
-        };
-        Ok(OpenClTimer { device, context, queue, precise, programs: Vec::new(), out: None, info })
-    }
-
-    fn program(&mut self, source: &str) -> Result<Program, RenderError> {
-        if let Some((_, p)) = self.programs.iter().find(|(s, _)| s == source) {
-            return Ok(p.clone());
-        }
-        let mut builder = Program::builder();
-        builder.src(source).devices(self.device);
-        if !self.precise {
-            builder.cmplr_opt(FAST_MATH);
-        }
-        let program = builder.build(&self.context).map_err(rejected)?;
-        self.programs.push((source.to_string(), program.clone()));
-        Ok(program)
+        Ok(OpenClTimer { renderer: OpenClRenderer::new(precise)?, out: None })
     }
 
     fn out(&mut self, count: usize, width: u32, height: u32) -> Result<Buffer<u32>, RenderError> {
@@ -92,7 +34,7 @@ impl OpenClTimer {
         }
         self.out = None;
         let buffer = Buffer::<u32>::builder()
-            .queue(self.queue.clone())
+            .queue(self.renderer.queue().clone())
             .flags(flags::MEM_WRITE_ONLY)
             .len(count)
             .build()
@@ -112,7 +54,7 @@ fn nanos(event: &Event, which: ProfilingInfo) -> Result<u64, RenderError> {
 
 impl Timer for OpenClTimer {
     fn device(&self) -> DeviceInfo {
-        self.info.clone()
+        Renderer::device(&self.renderer)
     }
 
     fn clock(&self) -> KernelClock {
@@ -131,27 +73,17 @@ impl Timer for OpenClTimer {
                 .ok_or(RenderError::MissingKernel { backend: Backend::OpenCl, what: "OpenCL kernel" })?,
             Work::Baseline { .. } => BASELINE_OPENCL,
         };
-        let program = self.program(source)?;
+        let program = self.renderer.program(source)?;
         let count = width as usize * height as usize;
         let out = self.out(count, width, height)?;
 
         let start = Instant::now();
         let frame_buffer = match work {
-            Work::Generated(job) => {
-                let floats: &[f32] = bytemuck::cast_slice(job.frame.slots());
-                let buffer = Buffer::<f32>::builder()
-                    .queue(self.queue.clone())
-                    .flags(flags::MEM_READ_ONLY)
-                    .len(floats.len())
-                    .copy_host_slice(floats)
-                    .build()
-                    .map_err(device_error)?;
-                Some(buffer)
-            }
+            Work::Generated(job) => Some(self.renderer.frame_buffer(job.frame)?),
             Work::Baseline { .. } => None,
         };
         let mut builder = Kernel::builder();
-        builder.program(&program).name("render").queue(self.queue.clone()).global_work_size((width, height));
+        builder.program(&program).name("render").queue(self.renderer.queue().clone()).global_work_size((width, height));
         match &frame_buffer {
             Some(frame) => builder.arg(&out).arg(frame),
             None => builder.arg(&out).arg(width as i32).arg(height as i32),

@@ -1,19 +1,19 @@
-//! The wgpu dispatcher: opens the adapter [`crate::WgpuRenderer`] would open, with timestamp queries when the adapter
+//! The wgpu dispatcher: runs on the device of a [`crate::WgpuRenderer`] opened with timestamp queries when the adapter
 //! has them, and runs a WGSL compute kernel the way the renderer does (uniform upload, 8×8 workgroups, copy to a
 //! read-back buffer, map). Both the generated kernel (`render`, binding 1 = frame uniforms) and the baseline (`main`,
 //! binding 1 = `{w, h}`) write packed pixels to binding 0, so one path serves both; bind group layouts come from the
 //! shaders themselves.
 
-use std::sync::{mpsc, Arc, Mutex};
 use std::time::Instant;
 
 use wgpu::util::DeviceExt;
 
 use super::{millis, KernelClock, Timed, Timer, Work};
+use crate::backend::wgpu::{capture, read_back, WgpuRenderer};
 use crate::bench::BASELINE_WGSL;
 use crate::error::RenderError;
 use crate::image::Image;
-use crate::renderer::{Backend, DeviceInfo};
+use crate::renderer::{Backend, DeviceInfo, Renderer};
 
 const WORKGROUP: u32 = 8;
 
@@ -35,47 +35,18 @@ struct Targets {
 }
 
 pub(crate) struct WgpuTimer {
-    device: wgpu::Device,
-    queue: wgpu::Queue,
-    info: wgpu::AdapterInfo,
+    /// Owns the device, queue and error sink; its own pipelines and buffers are not used.
+    renderer: WgpuRenderer,
     timestamps: Option<Timestamps>,
     pipelines: Vec<(String, &'static str, wgpu::ComputePipeline)>,
     targets: Option<Targets>,
-    uncaptured: Arc<Mutex<Vec<String>>>,
 }
 
 impl WgpuTimer {
     pub fn new() -> Result<WgpuTimer, RenderError> {
-        let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
-        desc.backends = wgpu::Backends::all().with_env();
-        desc.flags = wgpu::InstanceFlags::VALIDATION_INDIRECT_CALL.with_env();
-        let instance = wgpu::Instance::new(desc);
-        let options = wgpu::RequestAdapterOptions {
-            power_preference: wgpu::PowerPreference::HighPerformance,
-            ..Default::default()
-        };
-        let adapter = pollster::block_on(instance.request_adapter(&options))
-            .map_err(|e| RenderError::NoDevice { backend: Backend::Wgpu, reason: e.to_string() })?;
-        let info = adapter.get_info();
-        let features = adapter.features() & wgpu::Features::TIMESTAMP_QUERY;
-        let descriptor = wgpu::DeviceDescriptor {
-            label: Some("fractal bench"),
-            required_features: features,
-            required_limits: adapter.limits(),
-            memory_hints: wgpu::MemoryHints::Performance,
-            ..Default::default()
-        };
-        let (device, queue) = pollster::block_on(adapter.request_device(&descriptor)).map_err(|e| {
-            RenderError::NoDevice { backend: Backend::Wgpu, reason: format!("{} ({}): {e}", info.name, info.backend) }
-        })?;
-        let uncaptured = Arc::new(Mutex::new(Vec::new()));
-        let sink = Arc::clone(&uncaptured);
-        device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
-            if let Ok(mut errors) = sink.lock() {
-                errors.push(e.to_string());
-            }
-        }));
-        let timestamps = features.contains(wgpu::Features::TIMESTAMP_QUERY).then(|| Timestamps {
+        let renderer = WgpuRenderer::with_features(wgpu::Backends::all(), wgpu::Features::TIMESTAMP_QUERY)?;
+        let (device, queue) = (renderer.wgpu_device(), renderer.queue());
+        let timestamps = device.features().contains(wgpu::Features::TIMESTAMP_QUERY).then(|| Timestamps {
             set: device.create_query_set(&wgpu::QuerySetDescriptor {
                 label: Some("kernel time"),
                 ty: wgpu::QueryType::Timestamp,
@@ -95,19 +66,24 @@ impl WgpuTimer {
             }),
             period_ns: queue.get_timestamp_period() as f64,
         });
-        Ok(WgpuTimer { device, queue, info, timestamps, pipelines: Vec::new(), targets: None, uncaptured })
+        Ok(WgpuTimer { renderer, timestamps, pipelines: Vec::new(), targets: None })
+    }
+
+    fn device(&self) -> &wgpu::Device {
+        self.renderer.wgpu_device()
     }
 
     fn pipeline(&mut self, source: &str, entry: &'static str) -> Result<wgpu::ComputePipeline, RenderError> {
         if let Some((_, _, p)) = self.pipelines.iter().find(|(s, e, _)| s == source && *e == entry) {
             return Ok(p.clone());
         }
-        let (pipeline, error) = capture(&self.device, || {
-            let module = self.device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        let device = self.device();
+        let (pipeline, error) = capture(device, || {
+            let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
                 label: Some(entry),
                 source: wgpu::ShaderSource::Wgsl(source.into()),
             });
-            self.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                 label: Some(entry),
                 layout: None,
                 module: &module,
@@ -125,7 +101,7 @@ impl WgpuTimer {
 
     fn targets(&mut self, width: u32, height: u32) -> Result<(), RenderError> {
         let bytes = width as u64 * height as u64 * 4;
-        let limits = self.device.limits();
+        let limits = self.device().limits();
         let max_bytes = limits.max_storage_buffer_binding_size.min(limits.max_buffer_size);
         let max_groups = limits.max_compute_workgroups_per_dimension;
         if bytes > max_bytes || width.div_ceil(WORKGROUP) > max_groups || height.div_ceil(WORKGROUP) > max_groups {
@@ -139,85 +115,33 @@ impl WgpuTimer {
             return Ok(());
         }
         self.targets = None;
+        let device = self.device();
         let buffer = |label, usage| {
-            self.device.create_buffer(&wgpu::BufferDescriptor {
+            device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
                 size: bytes,
                 usage,
                 mapped_at_creation: false,
             })
         };
-        let (targets, error) = capture(&self.device, || Targets {
+        let (targets, error) = capture(device, || Targets {
             bytes,
             out: buffer("pixels", wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC),
             readback: buffer("readback", wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST),
         });
-        self.check(error)?;
+        self.renderer.check(error)?;
         self.targets = Some(targets);
         Ok(())
     }
 
-    fn check(&self, scoped: Option<wgpu::Error>) -> Result<(), RenderError> {
-        let mut messages: Vec<String> = scoped.into_iter().map(|e| e.to_string()).collect();
-        if let Ok(mut escaped) = self.uncaptured.lock() {
-            messages.append(&mut escaped);
-        }
-        if messages.is_empty() {
-            Ok(())
-        } else {
-            Err(device_error(messages.join("\n")))
-        }
-    }
-
     fn wait(&self) -> Result<(), RenderError> {
-        self.device.poll(wgpu::PollType::wait_indefinitely()).map(|_| ()).map_err(device_error)
+        self.device().poll(wgpu::PollType::wait_indefinitely()).map(|_| ()).map_err(device_error)
     }
-}
-
-/// Reads a mapped-for-reading buffer as u32 or u64 words after the wait, then unmaps it.
-fn map(buffer: &wgpu::Buffer, bytes: u64) -> mpsc::Receiver<Result<(), wgpu::BufferAsyncError>> {
-    let (sender, receiver) = mpsc::channel();
-    buffer.slice(..bytes).map_async(wgpu::MapMode::Read, move |result| {
-        let _ = sender.send(result);
-    });
-    receiver
-}
-
-fn read_mapped(
-    buffer: &wgpu::Buffer,
-    bytes: u64,
-    mapped: mpsc::Receiver<Result<(), wgpu::BufferAsyncError>>,
-) -> Result<Vec<u8>, RenderError> {
-    mapped.recv().map_err(device_error)?.map_err(device_error)?;
-    let data = buffer.slice(..bytes).get_mapped_range().map_err(device_error)?.to_vec();
-    buffer.unmap();
-    Ok(data)
-}
-
-/// Runs `f` inside validation, out-of-memory and internal error scopes and returns the first error they caught.
-fn capture<T>(device: &wgpu::Device, f: impl FnOnce() -> T) -> (T, Option<wgpu::Error>) {
-    let internal = device.push_error_scope(wgpu::ErrorFilter::Internal);
-    let memory = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
-    let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
-    let value = f();
-    let errors = [validation.pop(), memory.pop(), internal.pop()].map(pollster::block_on);
-    (value, errors.into_iter().flatten().next())
 }
 
 impl Timer for WgpuTimer {
     fn device(&self) -> DeviceInfo {
-        let driver = match (self.info.driver.is_empty(), self.info.driver_info.is_empty()) {
-            (false, false) => format!("{} {}", self.info.driver, self.info.driver_info),
-            (false, true) => self.info.driver.clone(),
-            (true, _) => self.info.driver_info.clone(),
-        };
-        DeviceInfo {
-            backend: Backend::Wgpu,
-            api: format!("{:?}", self.info.backend),
-            name: self.info.name.clone(),
-            driver,
-            device_type: format!("{:?}", self.info.device_type),
-        }
+        Renderer::device(&self.renderer)
     }
 
     fn clock(&self) -> KernelClock {
@@ -250,14 +174,16 @@ impl Timer for WgpuTimer {
         };
         let bytes = targets.bytes;
 
+        let (device, queue) = (self.renderer.wgpu_device(), self.renderer.queue());
+
         let start = Instant::now();
-        let (encoder, error) = capture(&self.device, || {
-            let uniform = self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        let (encoder, error) = capture(device, || {
+            let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("uniforms"),
                 contents: &uniform,
                 usage: wgpu::BufferUsages::UNIFORM,
             });
-            let bind_group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some(entry),
                 layout: &pipeline.get_bind_group_layout(0),
                 entries: &[
@@ -265,8 +191,7 @@ impl Timer for WgpuTimer {
                     wgpu::BindGroupEntry { binding: 1, resource: uniform.as_entire_binding() },
                 ],
             });
-            let mut encoder =
-                self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(entry) });
+            let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(entry) });
             {
                 let timestamp_writes = ts.map(|t| wgpu::ComputePassTimestampWrites {
                     query_set: &t.set,
@@ -284,30 +209,20 @@ impl Timer for WgpuTimer {
             }
             encoder.finish()
         });
-        self.check(error)?;
+        self.renderer.check(error)?;
         let submitted = Instant::now();
-        self.queue.submit([encoder]);
+        queue.submit([encoder]);
         self.wait()?;
         let kernel_wall = millis(submitted.elapsed());
 
-        let mut copy = self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("readback") });
-        copy.copy_buffer_to_buffer(&targets.out, 0, &targets.readback, 0, bytes);
-        if let Some(t) = ts {
-            copy.copy_buffer_to_buffer(&t.resolve, 0, &t.read, 0, 16);
-        }
-        self.queue.submit([copy.finish()]);
-        let pixels_mapped = map(&targets.readback, bytes);
-        let ticks_mapped = ts.map(|t| map(&t.read, 16));
-        self.wait()?;
-        let raw = read_mapped(&targets.readback, bytes, pixels_mapped)?;
-        let pixels: Vec<u32> = raw.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
+        let pixels = read_back(device, queue, &targets.out, &targets.readback, bytes).map_err(device_error)?;
         let frame_ms = millis(start.elapsed());
-        self.check(None)?;
+        self.renderer.check(None)?;
 
-        let kernel_ms = match (ts, ticks_mapped) {
-            (Some(t), Some(mapped)) => {
-                let raw = read_mapped(&t.read, 16, mapped)?;
-                let tick = |i: usize| u64::from_le_bytes(raw[8 * i..8 * i + 8].try_into().unwrap_or([0; 8]));
+        let kernel_ms = match ts {
+            Some(t) => {
+                let words = read_back(device, queue, &t.resolve, &t.read, 16).map_err(device_error)?;
+                let tick = |i: usize| u64::from(words[2 * i]) | u64::from(words[2 * i + 1]) << 32;
                 let (begin, end) = (tick(0), tick(1));
                 // A device that wrote no usable timestamps (reordered or zero) still gets the wall time.
                 if end > begin {
@@ -316,7 +231,7 @@ impl Timer for WgpuTimer {
                     kernel_wall
                 }
             }
-            _ => kernel_wall,
+            None => kernel_wall,
         };
         Ok(Timed { image: Image { width, height, pixels }, kernel_ms, frame_ms })
     }
