@@ -13,21 +13,12 @@ use fractal_dsl::math::v3;
 use fractal_dsl::*;
 use proptest::prelude::*;
 
+mod common;
+use common::{exact_bounded_primitive, unit_axis, vec3_in, Rng};
+
 // ---- sampling -------------------------------------------------------------------------------------------------------
 
-/// A small deterministic generator for the dense point sets (proptest drives the shapes).
-struct Rng(u64);
-
 impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-    fn unit(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
     fn between(&mut self, lo: f64, hi: f64) -> f64 {
         lo + (hi - lo) * self.unit()
     }
@@ -59,17 +50,6 @@ fn distance(interp: &Interpreter, p: [f64; 3], time: f64, params: &[f64]) -> f64
 
 // ---- random trees -----------------------------------------------------------------------------------------------------
 
-fn vec3_in(lo: f64, hi: f64) -> impl Strategy<Value = [f64; 3]> {
-    [lo..hi, lo..hi, lo..hi]
-}
-
-fn unit_axis() -> impl Strategy<Value = [f64; 3]> {
-    vec3_in(-1.0, 1.0).prop_filter_map("a usable axis", |a| {
-        let l = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
-        (l > 0.2).then(|| a.map(|c| c / l))
-    })
-}
-
 fn primitive() -> impl Strategy<Value = Node> {
     prop_oneof![
         (0.1..1.5f64).prop_map(sphere),
@@ -83,18 +63,6 @@ fn primitive() -> impl Strategy<Value = Node> {
         (0.1..1.5f64).prop_map(octahedron),
         vec3_in(0.1, 1.2).prop_map(ellipsoid),
         (unit_axis(), -1.0..1.0f64).prop_map(|(n, o)| plane(n, o)),
-    ]
-}
-
-/// Primitives whose leaf function is the exact distance (no plane: it would make the child unbounded and unguarded).
-fn exact_primitive() -> impl Strategy<Value = Node> {
-    prop_oneof![
-        (0.1..1.5f64).prop_map(sphere),
-        vec3_in(0.05, 1.2).prop_map(box3),
-        (0.2..1.2f64, 0.05..0.5f64).prop_map(|(a, b)| torus(a, b)),
-        (vec3_in(-1.0, 1.0), vec3_in(-1.0, 1.0), 0.05..0.6f64).prop_map(|(a, b, r)| capsule(a, b, r)),
-        (0.1..1.0f64, 0.0..1.0f64, 0.0..1.0f64).prop_map(|(h, a, b)| cone(h, a, b)),
-        (0.1..1.5f64).prop_map(octahedron),
     ]
 }
 
@@ -223,8 +191,8 @@ fn exact_guarded_child() -> impl Strategy<Value = Node> {
     let sponge = (1u32..4).prop_map(|n| Node::from(menger(n)));
     let body = prop_oneof![
         sponge.clone(),
-        (sponge.clone(), exact_primitive()).prop_map(|(a, b)| union(a, b)),
-        (sponge.clone(), exact_primitive(), 0.0..0.8f64).prop_map(|(a, b, k)| smooth_union(a, b, k)),
+        (sponge.clone(), exact_bounded_primitive()).prop_map(|(a, b)| union(a, b)),
+        (sponge.clone(), exact_bounded_primitive(), 0.0..0.8f64).prop_map(|(a, b, k)| smooth_union(a, b, k)),
         (sponge, primitive()).prop_map(|(a, b)| subtract(a, b)),
     ];
     body.prop_recursive(2, 6, 1, |inner| {

@@ -4,32 +4,18 @@
 
 use fractal_dsl::builder::*;
 use fractal_dsl::eval::interp::Interpreter;
-use fractal_dsl::eval::Env;
-use fractal_dsl::math::v3;
 use fractal_dsl::sdf;
 use fractal_dsl::*;
 use proptest::prelude::*;
 
-fn f64_at(i: &Interpreter, p: [f64; 3]) -> f64 {
-    i.distance_in(v3(p[0], p[1], p[2]), &Env::<f64>::still())
-}
+mod common;
+use common::{d64, unit_axis, vec3_in, Rng};
 
 fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
     ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
 
 // ---- random trees of exact shapes ---------------------------------------------------------------------------------
-
-fn vec3_in(lo: f64, hi: f64) -> impl Strategy<Value = [f64; 3]> {
-    [lo..hi, lo..hi, lo..hi]
-}
-
-fn unit_axis() -> impl Strategy<Value = [f64; 3]> {
-    vec3_in(-1.0, 1.0).prop_filter_map("a usable axis", |a| {
-        let l = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
-        (l > 0.2).then(|| a.map(|c| c / l))
-    })
-}
 
 /// Primitives whose leaf function is the exact Euclidean distance (the ellipsoid is only a bound, so it is left out).
 fn exact_primitive() -> impl Strategy<Value = Node> {
@@ -85,7 +71,7 @@ proptest! {
     fn exact_trees_are_1_lipschitz(tree in exact_tree(), pairs in prop::collection::vec(pair(), 64)) {
         let interp = Interpreter::new(&scene(tree.clone()));
         for (p, q) in pairs {
-            let (fp, fq) = (f64_at(&interp, p), f64_at(&interp, q));
+            let (fp, fq) = (d64(&interp, p), d64(&interp, q));
             let d = dist(p, q);
             prop_assert!(
                 (fp - fq).abs() <= d * (1.0 + 1e-9) + 1e-12,
@@ -98,19 +84,7 @@ proptest! {
 
 // ---- fractal estimators ---------------------------------------------------------------------------------------------
 
-/// A small deterministic generator, so the measured figures are reproducible run to run.
-struct Rng(u64);
-
 impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-    fn unit(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
     fn in_cube(&mut self, half: f64) -> [f64; 3] {
         [0, 1, 2].map(|_| (self.unit() * 2.0 - 1.0) * half)
     }
@@ -180,7 +154,7 @@ fn measured_ratio(fractal: Fractal, half: f64, exterior: &dyn Fn([f64; 3]) -> bo
     while found < pairs && tries < 60 * pairs {
         tries += 1;
         let p = rng.in_cube(half);
-        let fp = f64_at(&interp, p);
+        let fp = d64(&interp, p);
         if !(fp > 0.0 && fp < 0.1 * half * step && exterior(p)) {
             continue;
         }
@@ -190,7 +164,7 @@ fn measured_ratio(fractal: Fractal, half: f64, exterior: &dyn Fn([f64; 3]) -> bo
             continue;
         }
         found += 1;
-        worst = worst.max((fp - f64_at(&interp, q)).abs() / h);
+        worst = worst.max((fp - d64(&interp, q)).abs() / h);
     }
     assert!(found == pairs, "only {found} of {pairs} near-surface pairs found");
     worst
@@ -310,7 +284,7 @@ fn menger_and_sierpinski_estimators_are_1_lipschitz() {
             let d = rng.direction();
             let len = 10f64.powf(rng.unit() * 4.0 - 4.0);
             let q = [0, 1, 2].map(|i| p[i] + d[i] * len);
-            let ratio = (f64_at(&interp, p) - f64_at(&interp, q)).abs() / dist(p, q);
+            let ratio = (d64(&interp, p) - d64(&interp, q)).abs() / dist(p, q);
             worst = worst.max(ratio);
         }
         eprintln!("{name}: largest Lipschitz ratio {worst:.6}");

@@ -22,6 +22,18 @@ fn error(src: &str) -> String {
     }
 }
 
+/// Checks every `(source, expected error)` pair and reports all mismatches at once.
+fn assert_errors(cases: &[(&str, &str)]) {
+    let mut failures = Vec::new();
+    for (src, expected) in cases {
+        let got = error(src);
+        if got != *expected {
+            failures.push(format!("{src}\n  expected {expected}\n  got      {got}"));
+        }
+    }
+    assert!(failures.is_empty(), "\n{}", failures.join("\n"));
+}
+
 fn unit_box() -> Node {
     box3(vec3(1.0, 1.0, 1.0))
 }
@@ -382,14 +394,7 @@ fn errors_name_the_problem_at_line_and_column() {
         ("sphere(1.0) +", "1:14: unexpected end of input, expected an expression"),
         ("sphere(1.0) sphere(2.0)", "1:13: unexpected token"),
     ];
-    let mut failures = Vec::new();
-    for (src, expected) in cases {
-        let got = error(src);
-        if got != *expected {
-            failures.push(format!("{src}\n  expected {expected}\n  got      {got}"));
-        }
-    }
-    assert!(failures.is_empty(), "\n{}", failures.join("\n"));
+    assert_errors(cases);
 }
 
 #[test]
@@ -480,14 +485,7 @@ fn validation_errors_point_at_the_argument() {
             "1:56: param \"x\" is declared twice with different values: default 0 in -1..1 and default 0.5 in -1..1",
         ),
     ];
-    let mut failures = Vec::new();
-    for (src, expected) in cases {
-        let got = error(src);
-        if got != *expected {
-            failures.push(format!("{src}\n  expected {expected}\n  got      {got}"));
-        }
-    }
-    assert!(failures.is_empty(), "\n{}", failures.join("\n"));
+    assert_errors(cases);
 }
 
 #[test]
