@@ -4,7 +4,7 @@
 use std::process::{exit, Command};
 
 /// Debian packages the tests use: OpenCL on pocl, Vulkan on lavapipe (for wgpu), an X server for the viewer tests,
-/// the SPIR-V and GLSL validators for the export tests.
+/// the SPIR-V and GLSL validators for the export tests, ffmpeg for video output.
 const PACKAGES: &[&str] = &[
     "pocl-opencl-icd",
     "ocl-icd-libopencl1",
@@ -16,6 +16,7 @@ const PACKAGES: &[&str] = &[
     "x11-apps",
     "spirv-tools",
     "glslang-tools",
+    "ffmpeg",
 ];
 
 fn main() {
