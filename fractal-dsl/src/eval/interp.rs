@@ -60,17 +60,7 @@ impl Num {
                 for (slot, a) in v.iter_mut().zip(args.iter()) {
                     *slot = a.eval(env);
                 }
-                match f {
-                    Func::Sin => v[0].sin(),
-                    Func::Cos => v[0].cos(),
-                    Func::Abs => v[0].abs(),
-                    Func::Sqrt => v[0].sqrt(),
-                    Func::Min => v[0].min(v[1]),
-                    Func::Max => v[0].max(v[1]),
-                    Func::Pow => v[0].powf(v[1]),
-                    Func::Clamp => clamp(v[0], v[1], v[2]),
-                    Func::Mix => mix(v[0], v[1], v[2]),
-                }
+                f.apply(&v)
             }
         }
     }

@@ -155,8 +155,9 @@ impl BinOp {
 }
 
 impl Func {
-    /// Applies the function in f64; the semantics every backend must reproduce.
-    pub fn apply(self, v: &[f64]) -> f64 {
+    /// Applies the function: the semantics every backend must reproduce, in f64 for folding and host-side values and
+    /// in f32 or f64 for the interpreter.
+    pub fn apply<F: crate::math::Real>(self, v: &[F]) -> F {
         match self {
             Func::Sin => v[0].sin(),
             Func::Cos => v[0].cos(),
@@ -165,8 +166,8 @@ impl Func {
             Func::Min => v[0].min(v[1]),
             Func::Max => v[0].max(v[1]),
             Func::Pow => v[0].powf(v[1]),
-            Func::Clamp => v[0].max(v[1]).min(v[2]),
-            Func::Mix => v[0] + (v[1] - v[0]) * v[2],
+            Func::Clamp => crate::math::clamp(v[0], v[1], v[2]),
+            Func::Mix => crate::math::mix(v[0], v[1], v[2]),
         }
     }
 }

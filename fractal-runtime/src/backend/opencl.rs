@@ -202,16 +202,7 @@ impl Renderer for OpenClRenderer {
         let (width, height) = (job.width(), job.height());
         let count = width as usize * height as usize;
         let program = self.program(source)?;
-        let out = Buffer::<u32>::builder()
-            .queue(self.queue.clone())
-            .flags(flags::MEM_WRITE_ONLY)
-            .len(count)
-            .build()
-            .map_err(|e| RenderError::TooLarge {
-                backend: Backend::OpenCl,
-                what: format!("a {width}x{height} image"),
-                detail: brief(&e),
-            })?;
+        let out = image_buffer(&self.queue, width, height)?;
         let frame_buffer = self.frame_buffer(job.frame)?;
         let kernel = Kernel::builder()
             .program(&program)
@@ -242,4 +233,18 @@ pub fn probe_opencl(
     precise: bool,
 ) -> Result<Vec<ProbeSample>, RenderError> {
     OpenClRenderer::new(precise)?.probe(source, frame, points)
+}
+
+/// A write-only buffer for a packed RGBA8 image of `width`×`height`; too large for the device is [`RenderError::TooLarge`].
+pub(crate) fn image_buffer(queue: &Queue, width: u32, height: u32) -> Result<Buffer<u32>, RenderError> {
+    Buffer::<u32>::builder()
+        .queue(queue.clone())
+        .flags(flags::MEM_WRITE_ONLY)
+        .len(width as usize * height as usize)
+        .build()
+        .map_err(|e| RenderError::TooLarge {
+            backend: Backend::OpenCl,
+            what: format!("a {width}x{height} image"),
+            detail: brief(&e),
+        })
 }

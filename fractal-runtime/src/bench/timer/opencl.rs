@@ -6,10 +6,10 @@
 use std::time::Instant;
 
 use ocl::enums::ProfilingInfo;
-use ocl::{flags, Buffer, Event, Kernel};
+use ocl::{Buffer, Event, Kernel};
 
 use super::{millis, KernelClock, Timed, Timer, Work};
-use crate::backend::opencl::{brief, device_error, rejected, OpenClRenderer};
+use crate::backend::opencl::{device_error, image_buffer, rejected, OpenClRenderer};
 use crate::bench::BASELINE_OPENCL;
 use crate::error::RenderError;
 use crate::image::Image;
@@ -33,16 +33,7 @@ impl OpenClTimer {
             }
         }
         self.out = None;
-        let buffer = Buffer::<u32>::builder()
-            .queue(self.renderer.queue().clone())
-            .flags(flags::MEM_WRITE_ONLY)
-            .len(count)
-            .build()
-            .map_err(|e| RenderError::TooLarge {
-                backend: Backend::OpenCl,
-                what: format!("a {width}x{height} image"),
-                detail: brief(&e),
-            })?;
+        let buffer = image_buffer(self.renderer.queue(), width, height)?;
         self.out = Some((count, buffer.clone()));
         Ok(buffer)
     }
