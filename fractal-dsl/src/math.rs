@@ -1,13 +1,17 @@
-//! Scalar and vector arithmetic shared by the interpreter and the generated native evaluator.
+//! Vectors over any [`Num`] and the host's float types.
 //!
-//! Both evaluators are generic over [`Real`] (f32 or f64) so the f64 instance is the accuracy reference for the f32
-//! one. Names mirror the shading languages (`length`, `dot`, `mix`) so generated Rust reads like the kernels.
+//! [`V3`] is plain data: three numbers, no SIMD inside, so f32 and f64 evaluate the same operations in the same order
+//! and a traced vector is three recorded scalars. Names mirror the shading languages (`length`, `dot`, `mix`) so
+//! formulas and generated Rust read like the kernels. [`Real`] is the host-side float (f32 or f64) that evaluators,
+//! renderers and references run in: a [`Num`] with plain `bool` masks plus `num_traits::Float`.
 
 use core::ops::{Add, Div, Mul, Neg, Sub};
 use num_traits::Float;
 
-/// A floating-point type an evaluator runs in.
-pub trait Real: Float + core::fmt::Debug + Send + Sync + 'static {
+pub use crate::num::*;
+
+/// A floating-point type an evaluator runs in on the host.
+pub trait Real: Float + Num<Mask = bool, Count = u32> + Send + Sync {
     /// Converts an f64 constant (a folded literal) into this type, rounding to nearest.
     fn c(v: f64) -> Self;
     /// Widens to f64 for comparisons and reporting.
@@ -40,13 +44,7 @@ impl Real for f64 {
     const EPS: Self = f64::EPSILON;
 }
 
-/// Shorthand for [`Real::c`], used by generated code for literals.
-#[inline(always)]
-pub fn c<F: Real>(v: f64) -> F {
-    F::c(v)
-}
-
-/// A 3-vector of a [`Real`]; plain data, no SIMD, so f32 and f64 evaluate the same operations in the same order.
+/// A 3-vector of a [`Num`].
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct V3<F> {
     pub x: F,
@@ -60,7 +58,18 @@ pub fn v3<F>(x: F, y: F, z: F) -> V3<F> {
     V3 { x, y, z }
 }
 
-impl<F: Real> V3<F> {
+impl<F: Num> Carry<F> for V3<F> {
+    #[inline(always)]
+    fn map_nums(self, f: &mut impl FnMut(F) -> F) -> Self {
+        v3(f(self.x), f(self.y), f(self.z))
+    }
+    #[inline(always)]
+    fn zip_nums(self, o: Self, f: &mut impl FnMut(F, F) -> F) -> Self {
+        v3(f(self.x, o.x), f(self.y, o.y), f(self.z, o.z))
+    }
+}
+
+impl<F: Copy> V3<F> {
     #[inline(always)]
     pub fn splat(v: F) -> Self {
         v3(v, v, v)
@@ -73,14 +82,20 @@ impl<F: Real> V3<F> {
     pub fn zip(self, o: Self, f: impl Fn(F, F) -> F) -> Self {
         v3(f(self.x, o.x), f(self.y, o.y), f(self.z, o.z))
     }
+}
+
+impl<F: Num> V3<F> {
     #[inline(always)]
     pub fn max_element(self) -> F {
-        self.x.max(self.y).max(self.z)
+        max(max(self.x, self.y), self.z)
     }
     #[inline(always)]
     pub fn min_element(self) -> F {
-        self.x.min(self.y).min(self.z)
+        min(min(self.x, self.y), self.z)
     }
+}
+
+impl<F: Real> V3<F> {
     /// Converts between precisions (f64 reference points into an f32 evaluator).
     #[inline(always)]
     pub fn cast<G: Real>(self) -> V3<G> {
@@ -111,12 +126,12 @@ impl From<V3<f64>> for glam::DVec3 {
 
 macro_rules! vec_ops {
     ($($tr:ident $f:ident $op:tt),*) => {$(
-        impl<F: Real> $tr for V3<F> {
+        impl<F: Num> $tr for V3<F> {
             type Output = V3<F>;
             #[inline(always)]
             fn $f(self, o: V3<F>) -> V3<F> { v3(self.x $op o.x, self.y $op o.y, self.z $op o.z) }
         }
-        impl<F: Real> $tr<F> for V3<F> {
+        impl<F: Num> $tr<F> for V3<F> {
             type Output = V3<F>;
             #[inline(always)]
             fn $f(self, o: F) -> V3<F> { v3(self.x $op o, self.y $op o, self.z $op o) }
@@ -125,7 +140,7 @@ macro_rules! vec_ops {
 }
 vec_ops!(Add add +, Sub sub -, Mul mul *, Div div /);
 
-impl<F: Real> Neg for V3<F> {
+impl<F: Num> Neg for V3<F> {
     type Output = V3<F>;
     #[inline(always)]
     fn neg(self) -> V3<F> {
@@ -145,56 +160,34 @@ macro_rules! scalar_lhs {
 scalar_lhs!(f32, f64);
 
 #[inline(always)]
-pub fn dot<F: Real>(a: V3<F>, b: V3<F>) -> F {
+pub fn dot<F: Num>(a: V3<F>, b: V3<F>) -> F {
     a.x * b.x + a.y * b.y + a.z * b.z
 }
 #[inline(always)]
-pub fn length<F: Real>(a: V3<F>) -> F {
-    dot(a, a).sqrt()
+pub fn length<F: Num>(a: V3<F>) -> F {
+    sqrt(dot(a, a))
 }
 #[inline(always)]
-pub fn normalize<F: Real>(a: V3<F>) -> V3<F> {
+pub fn normalize<F: Num>(a: V3<F>) -> V3<F> {
     a / length(a)
 }
 #[inline(always)]
-pub fn cross<F: Real>(a: V3<F>, b: V3<F>) -> V3<F> {
+pub fn cross<F: Num>(a: V3<F>, b: V3<F>) -> V3<F> {
     v3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x)
 }
 #[inline(always)]
-pub fn abs3<F: Real>(a: V3<F>) -> V3<F> {
-    a.map(F::abs)
+pub fn abs3<F: Num>(a: V3<F>) -> V3<F> {
+    a.map(abs)
 }
 #[inline(always)]
-pub fn max3<F: Real>(a: V3<F>, b: F) -> V3<F> {
-    a.map(|v| v.max(b))
+pub fn max3<F: Num>(a: V3<F>, b: F) -> V3<F> {
+    a.map(|v| max(v, b))
 }
 #[inline(always)]
-pub fn min3<F: Real>(a: V3<F>, b: F) -> V3<F> {
-    a.map(|v| v.min(b))
+pub fn min3<F: Num>(a: V3<F>, b: F) -> V3<F> {
+    a.map(|v| min(v, b))
 }
 #[inline(always)]
-pub fn clamp<F: Real>(v: F, lo: F, hi: F) -> F {
-    v.max(lo).min(hi)
-}
-#[inline(always)]
-pub fn mix<F: Real>(a: F, b: F, t: F) -> F {
-    a + (b - a) * t
-}
-#[inline(always)]
-pub fn mix3<F: Real>(a: V3<F>, b: V3<F>, t: F) -> V3<F> {
-    a + (b - a) * t
-}
-/// Floored modulo as GLSL's `mod` (not Rust's `%`, which truncates): the result has the sign of `m`.
-#[inline(always)]
-pub fn fmod_floor<F: Real>(x: F, m: F) -> F {
-    x - m * (x / m).floor()
-}
-/// `x` if `cond`, else `y`: the shading languages' `select`, spelled once for the generated code.
-#[inline(always)]
-pub fn select<T>(cond: bool, x: T, y: T) -> T {
-    if cond {
-        x
-    } else {
-        y
-    }
+pub fn mix3<F: Num>(a: V3<F>, b: V3<F>, t: F) -> V3<F> {
+    v3(mix(a.x, b.x, t), mix(a.y, b.y, t), mix(a.z, b.z, t))
 }

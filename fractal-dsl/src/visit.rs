@@ -1,6 +1,7 @@
-//! Walks over every expression of a scene, for analyses that only care about the numbers (params, time, size).
+//! Walks over every expression of a scene, for analyses that only care about the numbers, and the facts they give:
+//! the scene's parameters ([`Scene::params`]) and whether it reads the time ([`Scene::uses_time`]).
 
-use crate::ir::{Albedo, CameraPlacement, Expr, FractalKind, LightKind, Material, Node, Prim, Scene};
+use crate::ir::{Albedo, CameraPlacement, Expr, FractalKind, LightKind, Material, Node, ParamDecl, Prim, Scene};
 
 /// Calls `f` on every expression in the distance tree (geometry and materials), in tree order.
 pub fn visit_node_exprs<'a>(node: &'a Node, f: &mut dyn FnMut(&'a Expr)) {
@@ -94,5 +95,26 @@ pub fn visit_exprs<'a>(scene: &'a Scene, f: &mut dyn FnMut(&'a Expr)) {
     }
     if let CameraPlacement::LookAt { position, target } = &scene.camera.placement {
         position.0.iter().chain(target.0.iter()).for_each(&mut *f);
+    }
+}
+
+impl Scene {
+    /// The scene's parameters in order of first appearance (geometry, then materials, then lights);
+    /// index i is uniform slot i.
+    pub fn params(&self) -> Vec<ParamDecl> {
+        let mut out: Vec<ParamDecl> = Vec::new();
+        let mut add = |p: &ParamDecl| {
+            if !out.iter().any(|q| q.name == p.name) {
+                out.push(p.clone());
+            }
+        };
+        visit_exprs(self, &mut |e| e.visit_params(&mut add));
+        out
+    }
+    /// Whether anything in the kernel reads `t`.
+    pub fn uses_time(&self) -> bool {
+        let mut used = false;
+        visit_node_exprs(&self.root, &mut |e| used |= e.uses_time());
+        used
     }
 }

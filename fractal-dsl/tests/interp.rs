@@ -188,7 +188,7 @@ fn fractal_leaves_call_the_leaf_functions_times_the_step_factor() {
         (mandelbulb(7).iterations(5).bailout(4.0), sdf::de_mandelbulb(p, 7.0, 5, 4.0)[0]),
         (menger(3), sdf::de_menger(p, 3)[0]),
         (sierpinski_tetrahedron(5), sdf::de_sierpinski(p, 5)[0]),
-        (julia([-0.2, 0.6, 0.2, 0.0]), sdf::de_julia(p, [-0.2, 0.6, 0.2, 0.0], 11, 4.0)[0]),
+        (julia([-0.2, 0.6, 0.2, 0.0]), sdf::de_julia(p, -0.2, 0.6, 0.2, 0.0, 11, 4.0)[0]),
         (mandelbox(-1.5).min_radius(0.4).fold_limit(1.2), sdf::de_mandelbox(p, -1.5, 12, 0.4, 1.2)[0]),
     ];
     for (f, raw) in cases {
@@ -543,7 +543,7 @@ fn smooth_union_at_zero_and_huge_blend_radius() {
 #[test]
 fn julia_at_its_critical_point_is_finite() {
     for c in [[0.0; 4], [0.3, 0.0, 0.0, 0.0]] {
-        let d = sdf::de_julia(v3(0.0f64, 0.0, 0.0), c, 11, 4.0)[0];
+        let d = sdf::de_julia(v3(0.0f64, 0.0, 0.0), c[0], c[1], c[2], c[3], 11, 4.0)[0];
         assert!(d.is_finite(), "c = {c:?}: {d}");
     }
 }

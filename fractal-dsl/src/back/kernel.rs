@@ -7,10 +7,11 @@
 use std::fmt::Write;
 
 use super::render::*;
-use super::syntax::{self, group_julia, Syntax};
-use super::{Entry, FrameLayout, Helper, Level};
+use super::syntax::{self, Syntax};
+use super::{Entry, FrameLayout, Level};
 use crate::ir::{HitEpsilon, Shadows};
 use crate::lower::code::{MathFn, Ty};
+use crate::lower::trace::Function;
 use crate::lower::{LightShape, Program};
 
 /// Vector component names, by index.
@@ -22,8 +23,6 @@ pub trait Dialect {
     fn language(&self) -> &'static str;
     /// Type definitions and resource bindings, written before the helpers.
     fn declarations(&self, out: &mut String, layout: FrameLayout, entry: Entry);
-    /// The language's spelling of `used` and their dependencies ([`super::with_dependencies`]).
-    fn helpers_source(&self, used: &[Helper]) -> String;
 
     fn type_name(&self, ty: Ty) -> &'static str;
     fn vec4_type(&self) -> &'static str;
@@ -39,8 +38,10 @@ pub trait Dialect {
     /// A scalar passed where a built-in takes a vector of the other operand's size (`clamp`'s bounds).
     fn vector_operand(&self, scalar: &str) -> String;
     /// The name of a math built-in.
-    fn math_name(&self, f: MathFn) -> &'static str {
-        common_math_name(f)
+    fn math_name(&self, f: MathFn) -> &'static str;
+    /// A call of a math function in lowered code: the built-in, or the language's polyfill for it.
+    fn math_call(&self, f: MathFn, args: &[String]) -> String {
+        format!("{}({})", self.math_name(f), args.join(", "))
     }
     /// The conditional expression on a scalar condition.
     fn select(&self, cond: &str, if_true: &str, if_false: &str) -> String;
@@ -57,6 +58,8 @@ pub trait Dialect {
     fn uninitialised(&self, name: &str, ty: &str) -> String;
     /// The opening line of `for` over `i` from 0 while `i < {bound}` (the bound may carry `&& …`).
     fn counted_loop(&self, bound: &str) -> String;
+    /// The opening line of `for` over the unsigned `index` from 0 while `index < count`.
+    fn counted_loop_over(&self, index: &str, count: &str) -> String;
 
     /// The type of the frame where functions take it as their last argument `frame`; `None` where they read the
     /// frame as a global.
@@ -78,22 +81,6 @@ pub trait Dialect {
     fn probe_output(&self) -> &'static str;
 }
 
-/// A math built-in's name where the languages agree.
-pub fn common_math_name(f: MathFn) -> &'static str {
-    match f {
-        MathFn::Sin => "sin",
-        MathFn::Cos => "cos",
-        MathFn::Abs => "abs",
-        MathFn::Sqrt => "sqrt",
-        MathFn::Floor => "floor",
-        MathFn::Min => "min",
-        MathFn::Max => "max",
-        MathFn::Pow => "pow",
-        MathFn::Clamp => "clamp",
-        MathFn::Mix => "mix",
-    }
-}
-
 /// The [`Syntax`] of the lowered bodies in a GPU language.
 struct GpuSyntax<'a, D>(&'a D);
 
@@ -107,8 +94,11 @@ impl<D: Dialect> Syntax for GpuSyntax<'_, D> {
     fn lit(&self, v: f64) -> String {
         self.0.lit(v)
     }
+    fn bool_lit(&self, v: bool) -> String {
+        self.0.bool_lit(v).to_string()
+    }
     fn int(&self, v: u32) -> String {
-        v.to_string()
+        self.0.index_lit(v)
     }
     fn time(&self) -> String {
         self.0.frame_field("origin.w")
@@ -120,32 +110,44 @@ impl<D: Dialect> Syntax for GpuSyntax<'_, D> {
         let components = if x == y && y == z { x.to_string() } else { format!("{x}, {y}, {z}") };
         self.0.construct(self.0.type_name(Ty::V3), &components)
     }
+    fn make_pair(&self, distance: &str, trap: &str) -> String {
+        self.0.construct(self.0.type_name(Ty::Pair), &format!("{distance}, {trap}"))
+    }
     fn comp(&self, v: &str, _ty: Ty, i: u8) -> String {
         format!("{v}.{}", COMPONENTS[i as usize])
     }
+    fn math_name(&self, f: MathFn) -> &'static str {
+        self.0.math_name(f)
+    }
     fn math(&self, f: MathFn, args: &[String]) -> String {
-        format!("{}({})", self.0.math_name(f), args.join(", "))
-    }
-    fn length(&self, v: &str) -> String {
-        format!("length({v})")
-    }
-    fn call(&self, h: Helper, args: &[String]) -> String {
-        let args = if h == Helper::DeJulia {
-            group_julia(args, |c| self.0.construct(self.0.vec4_type(), &c.join(", ")))
-        } else {
-            args.to_vec()
-        };
-        format!("{}({})", h.name(), args.join(", "))
+        self.0.math_call(f, args)
     }
     fn select(&self, cond: &str, if_true: &str, if_false: &str) -> String {
         self.0.select(cond, if_true, if_false)
     }
-    fn less(&self, a: &str, b: &str) -> String {
-        format!("({a} < {b})")
-    }
     fn if_open(&self, cond: &str) -> String {
-        format!("if {cond} {{")
+        format!("if {} {{", parenthesized(cond))
     }
+    fn break_if(&self, cond: &str) -> String {
+        format!("if {} {{ break; }}", parenthesized(cond))
+    }
+    fn loop_open(&self, count: &str, depth: usize) -> String {
+        self.0.counted_loop_over(&format!("i{depth}"), count)
+    }
+}
+
+/// Writes traced leaf functions in `dialect`, each followed by a blank line.
+pub fn write_functions<D: Dialect>(functions: &[Function], dialect: &D) -> String {
+    let syn = GpuSyntax(dialect);
+    let mut out = String::new();
+    for f in functions {
+        let params: Vec<(&str, &str)> = f.params.iter().map(|&(name, ty)| (name, dialect.type_name(ty))).collect();
+        let _ = writeln!(out, "{}", dialect.function_open(dialect.type_name(f.returns), f.name(), &params));
+        syntax::write_body(&mut out, &f.body, &syn, Level(1));
+        let _ = writeln!(out, "{}return {};", Level(1), syntax::atom(&f.body, &syn, f.result));
+        out.push_str("}\n\n");
+    }
+    out
 }
 
 /// Writes the complete GPU program for `entry` in `dialect`.
@@ -161,7 +163,7 @@ pub fn write<D: Dialect>(program: &Program, entry: Entry, dialect: &D) -> String
         dialect.language()
     );
     dialect.declarations(&mut k.out, program.layout(), entry);
-    k.out.push_str(&dialect.helpers_source(&program.helpers));
+    k.leaf_functions();
     k.scene_functions();
     match entry {
         Entry::Render => {
@@ -177,6 +179,20 @@ pub fn write<D: Dialect>(program: &Program, entry: Entry, dialect: &D) -> String
         Entry::Probe => k.probe(),
     }
     k.out
+}
+
+/// A condition as C-like `if`s need it: in parentheses (a comparison spelled in place already is).
+fn parenthesized(cond: &str) -> String {
+    if cond.starts_with('(') && cond.ends_with(')') {
+        cond.to_string()
+    } else {
+        format!("({cond})")
+    }
+}
+
+/// A call of a built-in every GPU language spells alike (`clamp`, `mix`).
+fn builtin(name: &str, args: &[&str]) -> String {
+    format!("{name}({})", args.join(", "))
 }
 
 struct Kernel<'a, D> {
@@ -231,6 +247,11 @@ impl<D: Dialect> Kernel<'_, D> {
     }
     fn function_close(&mut self) {
         self.out.push_str("}\n\n");
+    }
+
+    /// The traced leaf functions the scene calls, each once.
+    fn leaf_functions(&mut self) {
+        self.out.push_str(&write_functions(&self.p.functions, self.d));
     }
 
     fn scene_functions(&mut self) {
@@ -290,7 +311,7 @@ impl<D: Dialect> Kernel<'_, D> {
         self.line(l2, &format!("weight *= {};", self.lit(0.95)));
         self.line(l1, "}");
         let occlusion = format!("{} - {} * occ", self.lit(1.0), self.lit(3.0 * strength));
-        let clamped = self.math(MathFn::Clamp, &[&occlusion, &self.lit(0.0), &self.lit(1.0)]);
+        let clamped = builtin("clamp", &[&occlusion, &self.lit(0.0), &self.lit(1.0)]);
         self.line(l1, &format!("return {clamped};"));
         self.function_close();
     }
@@ -462,7 +483,7 @@ impl<D: Dialect> Kernel<'_, D> {
         }
         if let Some(fog) = &s.fog {
             let attenuation = format!("{one} - exp({} * t)", self.lit(-fog.density));
-            let fogged = self.math(MathFn::Mix, &["col", &self.vec3_lit(fog.color), &attenuation]);
+            let fogged = builtin("mix", &["col", &self.vec3_lit(fog.color), &attenuation]);
             self.line(l2, &format!("col = {fogged};"));
         }
 
@@ -478,7 +499,7 @@ impl<D: Dialect> Kernel<'_, D> {
         }
 
         // 7. Output.
-        let clamped = self.math(MathFn::Clamp, &["col", &d.vector_operand(&zero), &d.vector_operand(&one)]);
+        let clamped = builtin("clamp", &["col", &d.vector_operand(&zero), &d.vector_operand(&one)]);
         self.line(l1, &format!("col = {clamped};"));
         if s.gamma == 2.0 {
             self.line(l1, &format!("col = {};", self.math(MathFn::Sqrt, &["col"])));

@@ -1,11 +1,10 @@
 //! Code writers, one module per target language, all of the same shape (naga's `back/` is the model):
-//! `back/<lang>/writer.rs` spells the lowered program ([`crate::lower`]); `back/<lang>/library.rs` holds that
-//! language's spelling of each leaf function ([`Helper`]). What is shared lives here and in sibling modules: the
-//! helper set and its dependencies, the uniform layout both GPU languages read, indentation and number formatting
-//! (this file); the statement walker over lowered bodies ([`syntax`]); the whole GPU program — scene-function
-//! framing, normal, ambient occlusion, shadows and the `render` / `probe` kernels — written once against a per-language
-//! [`kernel::Dialect`], which is all the OpenCL C and WGSL writers implement ([`kernel`]); the render algorithm and
-//! its constants ([`render`]).
+//! `back/<lang>/writer.rs` spells the lowered program ([`crate::lower`]) — the traced leaf functions and the scene
+//! functions alike; no formula is written here. What is shared lives here and in sibling modules: the uniform layout
+//! both GPU languages read, indentation and number formatting (this file); the statement walker over lowered bodies
+//! ([`syntax`]); the whole GPU program — function framing, normal, ambient occlusion, shadows and the `render` /
+//! `probe` kernels — written once against a per-language [`kernel::Dialect`], which is all the OpenCL C and WGSL
+//! writers implement ([`kernel`]); the render algorithm and its constants ([`render`]).
 
 pub mod kernel;
 pub mod opencl;
@@ -16,113 +15,7 @@ pub mod wgsl;
 
 use std::fmt;
 
-/// A leaf function a kernel may call. A kernel contains exactly the helpers its scene uses (and their dependencies),
-/// in this enum's order. Each corresponds to the function of the same name in [`crate::sdf`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub enum Helper {
-    SdSphere,
-    SdBox,
-    SdRoundBox,
-    SdTorus,
-    SdCapsule,
-    SdCylinder,
-    SdCone,
-    SdPlane,
-    SdOctahedron,
-    SdEllipsoid,
-    SmoothMin,
-    SmoothMax,
-    BlendWeight,
-    DeMandelbulb,
-    DeMandelbulb8,
-    DeMenger,
-    DeSierpinski,
-    DeJulia,
-    DeMandelbox,
-}
-
-impl Helper {
-    pub const ALL: [Helper; 19] = [
-        Helper::SdSphere,
-        Helper::SdBox,
-        Helper::SdRoundBox,
-        Helper::SdTorus,
-        Helper::SdCapsule,
-        Helper::SdCylinder,
-        Helper::SdCone,
-        Helper::SdPlane,
-        Helper::SdOctahedron,
-        Helper::SdEllipsoid,
-        Helper::SmoothMin,
-        Helper::SmoothMax,
-        Helper::BlendWeight,
-        Helper::DeMandelbulb,
-        Helper::DeMandelbulb8,
-        Helper::DeMenger,
-        Helper::DeSierpinski,
-        Helper::DeJulia,
-        Helper::DeMandelbox,
-    ];
-
-    /// The function's name, the same in every language (and in [`crate::sdf`]).
-    pub fn name(self) -> &'static str {
-        match self {
-            Helper::SdSphere => "sd_sphere",
-            Helper::SdBox => "sd_box",
-            Helper::SdRoundBox => "sd_round_box",
-            Helper::SdTorus => "sd_torus",
-            Helper::SdCapsule => "sd_capsule",
-            Helper::SdCylinder => "sd_cylinder",
-            Helper::SdCone => "sd_cone",
-            Helper::SdPlane => "sd_plane",
-            Helper::SdOctahedron => "sd_octahedron",
-            Helper::SdEllipsoid => "sd_ellipsoid",
-            Helper::SmoothMin => "smooth_min",
-            Helper::SmoothMax => "smooth_max",
-            Helper::BlendWeight => "blend_weight",
-            Helper::DeMandelbulb => "de_mandelbulb",
-            Helper::DeMandelbulb8 => "de_mandelbulb8",
-            Helper::DeMenger => "de_menger",
-            Helper::DeSierpinski => "de_sierpinski",
-            Helper::DeJulia => "de_julia",
-            Helper::DeMandelbox => "de_mandelbox",
-        }
-    }
-
-    /// Helpers this one calls.
-    pub fn deps(self) -> &'static [Helper] {
-        match self {
-            Helper::SdRoundBox | Helper::DeMenger => &[Helper::SdBox],
-            Helper::SmoothMax => &[Helper::SmoothMin],
-            _ => &[],
-        }
-    }
-
-    /// Whether it returns a pair (distance, orbit trap) rather than a distance.
-    pub fn returns_pair(self) -> bool {
-        matches!(
-            self,
-            Helper::DeMandelbulb
-                | Helper::DeMandelbulb8
-                | Helper::DeMenger
-                | Helper::DeSierpinski
-                | Helper::DeJulia
-                | Helper::DeMandelbox
-        )
-    }
-}
-
-/// The helpers in `used` plus everything they depend on, in emission order.
-pub fn with_dependencies(used: impl IntoIterator<Item = Helper>) -> Vec<Helper> {
-    let mut all = std::collections::BTreeSet::new();
-    let mut stack: Vec<Helper> = used.into_iter().collect();
-    while let Some(h) = stack.pop() {
-        if all.insert(h) {
-            stack.extend_from_slice(h.deps());
-        }
-    }
-    all.into_iter().collect()
-}
+use crate::lower::Program;
 
 /// Indentation level; `Display` writes four spaces per level (naga's `back::Level`).
 #[derive(Clone, Copy, Debug, Default)]
@@ -209,4 +102,10 @@ pub enum Entry {
     /// uint n)`. WGSL: `@compute @workgroup_size(64) fn probe`, binding 0 = out `array<vec4<f32>>`, binding 1 = frame,
     /// binding 2 = points `array<vec4<f32>>` (read-only storage); n = arrayLength(points).
     Probe,
+}
+
+impl Program {
+    pub fn layout(&self) -> FrameLayout {
+        FrameLayout { lights: self.lights.len(), params: self.params.len() }
+    }
 }

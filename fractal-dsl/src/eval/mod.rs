@@ -1,7 +1,9 @@
-//! Evaluating a scene on the CPU: the [`Evaluator`] interface shared by the interpreter (runtime scenes, the f64
-//! accuracy reference) and the native evaluator the `scene!` macro generates.
+//! Evaluating a scene: the [`plan`] (a scene prepared for evaluation), the [`walk`]er that gives every node its
+//! meaning in any [`Num`] — run by the interpreter in f32/f64 and traced by the lowering into the kernels — and the
+//! [`Evaluator`] interface shared by the interpreter (runtime scenes, the f64 accuracy reference) and the native
+//! evaluator the `scene!` macro generates.
 //!
-//! Semantics every evaluator and kernel follows (the lowering in [`crate::lower`] spells the same rules):
+//! Semantics every evaluator and kernel follows (written once, in [`walk`]):
 //! - union: children in [`crate::analyse::union_order`] order; the nearest child's material wins (first on ties);
 //!   a child containing a fractal with a finite bound is skipped while the point is at least as far from its bound as
 //!   the nearest distance so far (its distance cannot be nearer);
@@ -12,8 +14,10 @@
 //! - the innermost `.material(..)` wins; geometry under none gets [`crate::Material::default_surface`].
 
 pub mod interp;
+pub mod plan;
+pub mod walk;
 
-use crate::math::{Real, V3};
+use crate::math::{Num, Real, V3};
 
 /// What an expression may read besides literals: the time and the parameter values (in [`crate::Scene::params`]
 /// order).
@@ -23,10 +27,10 @@ pub struct Env<'a, F> {
     pub params: &'a [F],
 }
 
-impl<F: Real> Env<'_, F> {
+impl<F: Num> Env<'_, F> {
     /// Time 0 and no parameters.
     pub fn still() -> Env<'static, F> {
-        Env { time: F::zero(), params: &[] }
+        Env { time: F::lit(0.0), params: &[] }
     }
 }
 

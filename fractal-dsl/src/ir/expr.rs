@@ -136,7 +136,8 @@ impl Expr {
 }
 
 impl BinOp {
-    pub fn apply(self, a: f64, b: f64) -> f64 {
+    /// Applies the operator in any [`crate::num::Num`] (f64 for folding).
+    pub fn apply<F: crate::num::Num>(self, a: F, b: F) -> F {
         match self {
             BinOp::Add => a + b,
             BinOp::Sub => a - b,
@@ -157,17 +158,18 @@ impl BinOp {
 impl Func {
     /// Applies the function: the semantics every backend must reproduce, in f64 for folding and host-side values and
     /// in f32 or f64 for the interpreter.
-    pub fn apply<F: crate::math::Real>(self, v: &[F]) -> F {
+    pub fn apply<F: crate::num::Num>(self, v: &[F]) -> F {
+        use crate::num::*;
         match self {
-            Func::Sin => v[0].sin(),
-            Func::Cos => v[0].cos(),
-            Func::Abs => v[0].abs(),
-            Func::Sqrt => v[0].sqrt(),
-            Func::Min => v[0].min(v[1]),
-            Func::Max => v[0].max(v[1]),
-            Func::Pow => v[0].powf(v[1]),
-            Func::Clamp => crate::math::clamp(v[0], v[1], v[2]),
-            Func::Mix => crate::math::mix(v[0], v[1], v[2]),
+            Func::Sin => sin(v[0]),
+            Func::Cos => cos(v[0]),
+            Func::Abs => abs(v[0]),
+            Func::Sqrt => sqrt(v[0]),
+            Func::Min => min(v[0], v[1]),
+            Func::Max => max(v[0], v[1]),
+            Func::Pow => pow(v[0], v[1]),
+            Func::Clamp => clamp(v[0], v[1], v[2]),
+            Func::Mix => mix(v[0], v[1], v[2]),
         }
     }
 }

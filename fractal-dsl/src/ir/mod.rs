@@ -61,7 +61,7 @@ pub enum Prim {
 }
 
 /// The fractal families. Their distance estimators are not exactly 1-Lipschitz, so each carries a measured step
-/// factor ([`FractalKind::step_factor`]).
+/// factor ([`FractalKind::step_factor`], set by `analyse`).
 #[derive(Clone, Debug, PartialEq)]
 pub enum FractalKind {
     /// Power-`power` Mandelbulb, polar axis z (theta = acos(z/r), phi = atan2(y, x)).
@@ -97,36 +97,6 @@ impl FractalKind {
             FractalKind::Sierpinski => "sierpinski_tetrahedron",
             FractalKind::Julia { .. } => "julia",
             FractalKind::Mandelbox { .. } => "mandelbox",
-        }
-    }
-    /// Factor applied to the estimator so a step never overshoots the surface: the inverse of the largest
-    /// |f(p) − f(q)| / |p − q| measured by the Lipschitz tests (`fractal-dsl/tests/lipschitz.rs`), rounded down to 0.05.
-    ///
-    /// Pairs lie outside the set (both orbits escape), near the surface (estimate below 10% of the bound's half
-    /// extent) and 1% of the bound's half extent apart: at smaller separations the escape-time estimators have ever
-    /// finer detail and the largest ratio keeps growing with the sample count, and inside the set their values are not
-    /// distances. Largest ratios over 20 million pairs per variant: Mandelbulb power 8 at 4–16 iterations and bailout 2
-    /// or 256, 1.28 → 0.75; quaternion Julia with connected sets (c = (−0.2, 0.6, 0.2, 0), (−0.4, 0.6, 0, 0)), 1.15 →
-    /// 0.85; Mandelbox at scales −2, −1.5, 2, 3, 1.30 → 0.75. Menger and Sierpinski are 1-Lipschitz: 1.
-    ///
-    /// The Mandelbulb's ratio depends on the power (measured: power 3 → 2.7, 4 → 1.4, 5.5 → 1.5, 8 → 1.28,
-    /// 16 → 0.93), so its factor follows the lowest power the expression can take.
-    pub fn step_factor(&self) -> f64 {
-        match self {
-            FractalKind::Mandelbulb { power } => {
-                let lowest = crate::analyse::interval::range(power).lo;
-                if lowest >= 8.0 {
-                    0.75
-                } else if lowest >= 4.0 {
-                    0.65
-                } else {
-                    0.35
-                }
-            }
-            FractalKind::Menger => 1.0,
-            FractalKind::Sierpinski => 1.0,
-            FractalKind::Julia { .. } => 0.85,
-            FractalKind::Mandelbox { .. } => 0.75,
         }
     }
     pub fn default_iterations(&self) -> u32 {
@@ -419,25 +389,4 @@ pub struct Scene {
     pub lights: Vec<Light>,
     pub camera: Camera,
     pub settings: RenderSettings,
-}
-
-impl Scene {
-    /// The scene's parameters in order of first appearance (geometry, then materials, then lights);
-    /// index i is uniform slot i.
-    pub fn params(&self) -> Vec<ParamDecl> {
-        let mut out: Vec<ParamDecl> = Vec::new();
-        let mut add = |p: &ParamDecl| {
-            if !out.iter().any(|q| q.name == p.name) {
-                out.push(p.clone());
-            }
-        };
-        crate::visit::visit_exprs(self, &mut |e| e.visit_params(&mut add));
-        out
-    }
-    /// Whether anything in the kernel reads `t`.
-    pub fn uses_time(&self) -> bool {
-        let mut used = false;
-        crate::visit::visit_node_exprs(&self.root, &mut |e| used |= e.uses_time());
-        used
-    }
 }

@@ -1,10 +1,11 @@
-//! The lowered form every writer spells: straight-line typed values with a little control flow, built with constant
-//! folding, algebraic identities and common-subexpression reuse so the kernels carry only work that matters.
+//! The lowered form every writer spells: typed SSA values in statement blocks with a little control flow (`if`,
+//! counted loops with an early exit), built with constant folding, algebraic identities and common-subexpression
+//! reuse so the kernels carry only work that matters. The tracer ([`super::trace`]) records into a [`Builder`].
 
 use std::collections::HashMap;
 
-use crate::back::Helper;
 use crate::ir::BinOp;
+use crate::leaf::Leaf;
 
 /// The type of a value.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -14,6 +15,8 @@ pub enum Ty {
     /// A fractal's (distance, orbit trap).
     Pair,
     Bool,
+    /// A loop count.
+    Int,
 }
 
 /// A value: an SSA name, or a mutable variable (see [`Stmt::Var`]).
@@ -25,21 +28,61 @@ pub struct Val(pub u32);
 pub enum MathFn {
     Sin,
     Cos,
+    Acos,
+    /// `atan2(y, x)`.
+    Atan2,
     Abs,
     Sqrt,
     Floor,
+    Exp2,
+    /// Natural logarithm.
+    Ln,
     Min,
     Max,
     Pow,
-    Clamp,
-    Mix,
 }
 
-/// An argument of a helper call: a value or an integer immediate (iterations, levels).
+impl MathFn {
+    /// The value for constant arguments (f64; the kernels see it rounded to f32).
+    pub fn fold(self, a: &[f64]) -> f64 {
+        match self {
+            MathFn::Sin => a[0].sin(),
+            MathFn::Cos => a[0].cos(),
+            MathFn::Acos => a[0].acos(),
+            MathFn::Atan2 => a[0].atan2(a[1]),
+            MathFn::Abs => a[0].abs(),
+            MathFn::Sqrt => a[0].sqrt(),
+            MathFn::Floor => a[0].floor(),
+            MathFn::Exp2 => a[0].exp2(),
+            MathFn::Ln => a[0].ln(),
+            MathFn::Min => a[0].min(a[1]),
+            MathFn::Max => a[0].max(a[1]),
+            MathFn::Pow => a[0].powf(a[1]),
+        }
+    }
+}
+
+/// Comparisons (on F), giving a Bool.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Arg {
-    Val(Val),
-    Int(u32),
+pub enum CmpOp {
+    Lt,
+    Le,
+}
+
+impl CmpOp {
+    pub fn symbol(self) -> &'static str {
+        match self {
+            CmpOp::Lt => "<",
+            CmpOp::Le => "<=",
+        }
+    }
+}
+
+/// Logical operators on Bool.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum LogicOp {
+    And,
+    Or,
 }
 
 /// Floats are compared by bits so literals can key the reuse table.
@@ -49,20 +92,25 @@ pub struct Bits(pub u64);
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub enum Op {
     Lit(Bits),
+    BoolLit(bool),
+    IntLit(u32),
     Time,
     Param(usize),
-    /// The function's input point.
-    Point,
+    /// A parameter of the function being built, by name.
+    Arg(&'static str),
     MakeV3(Val, Val, Val),
+    /// A fractal's (distance, orbit trap).
+    MakePair(Val, Val),
     /// Component 0..3 of a V3 or 0..2 of a Pair.
     Comp(Val, u8),
     Neg(Val),
-    /// F∘F, V3∘V3, V3∘F (F∘V3 is never built: scalars go on the right).
+    /// F∘F.
     Bin(BinOp, Val, Val),
     Math(MathFn, Vec<Val>),
-    Length(Val),
-    Call(Helper, Vec<Arg>),
-    Less(Val, Val),
+    Call(Leaf, Vec<Val>),
+    Cmp(CmpOp, Val, Val),
+    Logic(LogicOp, Val, Val),
+    Not(Val),
     Select(Val, Val, Val),
     /// The current value of a variable.
     Load(Val),
@@ -70,31 +118,72 @@ pub enum Op {
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum Stmt {
-    Let { val: Val, ty: Ty, op: Op },
-    Var { var: Val, ty: Ty, init: Val },
-    Assign { var: Val, value: Val },
-    If { cond: Val, body: Vec<Stmt> },
+    Let {
+        val: Val,
+        ty: Ty,
+        op: Op,
+    },
+    Var {
+        var: Val,
+        ty: Ty,
+        init: Val,
+    },
+    Assign {
+        var: Val,
+        value: Val,
+    },
+    If {
+        cond: Val,
+        body: Vec<Stmt>,
+    },
+    /// Runs `body` `count` times (an Int value); [`Stmt::BreakIf`] leaves it early.
+    Loop {
+        count: Val,
+        body: Vec<Stmt>,
+    },
+    /// Leaves the innermost loop when `cond` holds.
+    BreakIf {
+        cond: Val,
+    },
 }
 
-/// Values a writer spells in place rather than naming: literals, time, params, the input point.
+/// Values a writer spells in place rather than naming: literals, time, params, arguments, components and
+/// comparisons (whose operands are immutable values, so spelling them where used reads the same numbers).
 pub fn is_inline(op: &Op) -> bool {
-    matches!(op, Op::Lit(_) | Op::Time | Op::Param(_) | Op::Point | Op::Less(..))
+    matches!(
+        op,
+        Op::Lit(_) | Op::BoolLit(_) | Op::IntLit(_) | Op::Time | Op::Param(_) | Op::Arg(_) | Op::Comp(..) | Op::Cmp(..)
+    )
+}
+
+/// What kind of block is open.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Block {
+    Top,
+    If,
+    Loop,
 }
 
 /// Builds one function body.
-#[derive(Debug, Default)]
+#[derive(Debug)]
 pub struct Builder {
     /// Type and defining op of every value (variables: their initial op is None).
     defs: Vec<(Ty, Option<Op>)>,
-    /// Statement blocks under construction; the last is the innermost open `if`.
-    blocks: Vec<Vec<Stmt>>,
-    /// Reuse tables, one per open block (a value defined inside an `if` is not visible after it).
+    /// Statement blocks under construction; the last is the innermost open block.
+    blocks: Vec<(Block, Vec<Stmt>)>,
+    /// Reuse tables, one per open block (a value defined inside a block is not visible after it).
     reuse: Vec<HashMap<Op, Val>>,
+}
+
+impl Default for Builder {
+    fn default() -> Self {
+        Builder::new()
+    }
 }
 
 impl Builder {
     pub fn new() -> Builder {
-        Builder { defs: Vec::new(), blocks: vec![Vec::new()], reuse: vec![HashMap::new()] }
+        Builder { defs: Vec::new(), blocks: vec![(Block::Top, Vec::new())], reuse: vec![HashMap::new()] }
     }
 
     pub fn ty(&self, v: Val) -> Ty {
@@ -110,9 +199,15 @@ impl Builder {
             _ => None,
         }
     }
+    pub fn bool_value(&self, v: Val) -> Option<bool> {
+        match self.op(v) {
+            Some(Op::BoolLit(b)) => Some(*b),
+            _ => None,
+        }
+    }
 
     fn push(&mut self, stmt: Stmt) {
-        self.blocks.last_mut().expect("a block is always open").push(stmt);
+        self.blocks.last_mut().expect("a block is always open").1.push(stmt);
     }
 
     fn emit(&mut self, ty: Ty, op: Op) -> Val {
@@ -139,14 +234,21 @@ impl Builder {
         let v = if v == 0.0 { 0.0 } else { v };
         self.emit(Ty::F, Op::Lit(Bits(v.to_bits())))
     }
+    pub fn bool_lit(&mut self, v: bool) -> Val {
+        self.emit(Ty::Bool, Op::BoolLit(v))
+    }
+    pub fn int(&mut self, v: u32) -> Val {
+        self.emit(Ty::Int, Op::IntLit(v))
+    }
     pub fn time(&mut self) -> Val {
         self.emit(Ty::F, Op::Time)
     }
     pub fn param(&mut self, i: usize) -> Val {
         self.emit(Ty::F, Op::Param(i))
     }
-    pub fn point(&mut self) -> Val {
-        self.emit(Ty::V3, Op::Point)
+    /// A parameter of the function being built.
+    pub fn arg(&mut self, name: &'static str, ty: Ty) -> Val {
+        self.emit(ty, Op::Arg(name))
     }
     pub fn v3(&mut self, x: Val, y: Val, z: Val) -> Val {
         if let (Some(Op::Comp(a, 0)), Some(Op::Comp(b, 1)), Some(Op::Comp(c, 2))) = (self.op(x), self.op(y), self.op(z))
@@ -157,13 +259,14 @@ impl Builder {
         }
         self.emit(Ty::V3, Op::MakeV3(x, y, z))
     }
-    pub fn v3_lits(&mut self, c: [f64; 3]) -> Val {
-        let [x, y, z] = c.map(|v| self.lit(v));
-        self.v3(x, y, z)
+    pub fn pair(&mut self, distance: Val, trap: Val) -> Val {
+        self.emit(Ty::Pair, Op::MakePair(distance, trap))
     }
     pub fn comp(&mut self, v: Val, i: u8) -> Val {
-        if let Some(Op::MakeV3(x, y, z)) = self.op(v) {
-            return [*x, *y, *z][i as usize];
+        match self.op(v) {
+            Some(Op::MakeV3(x, y, z)) => return [*x, *y, *z][i as usize],
+            Some(Op::MakePair(d, t)) => return [*d, *t][i as usize],
+            _ => {}
         }
         self.emit(Ty::F, Op::Comp(v, i))
     }
@@ -174,98 +277,81 @@ impl Builder {
         if let Some(Op::Neg(inner)) = self.op(a) {
             return *inner;
         }
-        let ty = self.ty(a);
-        self.emit(ty, Op::Neg(a))
+        self.emit(Ty::F, Op::Neg(a))
     }
 
-    /// Arithmetic with folding (two literals), identities (x+0, x·1, x/1, x·0 for scalars) and scalar-right order.
+    /// Scalar arithmetic with folding (two literals) and identities (x+0, x−0, 0−x, x·1, x/1, x·−1, x·0).
     pub fn bin(&mut self, op: BinOp, a: Val, b: Val) -> Val {
-        let (ta, tb) = (self.ty(a), self.ty(b));
-        if ta == Ty::F && tb == Ty::V3 {
-            return match op {
-                BinOp::Mul | BinOp::Add => self.bin(op, b, a),
-                _ => {
-                    let sa = self.splat(a);
-                    self.bin(op, sa, b)
-                }
-            };
-        }
         let (la, lb) = (self.lit_value(a), self.lit_value(b));
         if let (Some(x), Some(y)) = (la, lb) {
             return self.lit(op.apply(x, y));
         }
-        let ty = if ta == Ty::V3 || tb == Ty::V3 { Ty::V3 } else { Ty::F };
         match (op, la, lb) {
-            (BinOp::Add, Some(0.0), _) if tb == ty => return b,
+            (BinOp::Add, Some(0.0), _) => return b,
             (BinOp::Add | BinOp::Sub, _, Some(0.0)) => return a,
-            (BinOp::Sub, Some(0.0), _) if tb == ty => return self.neg(b),
-            (BinOp::Mul, Some(1.0), _) if tb == ty => return b,
+            (BinOp::Sub, Some(0.0), _) => return self.neg(b),
+            (BinOp::Mul, Some(1.0), _) => return b,
             (BinOp::Mul | BinOp::Div, _, Some(1.0)) => return a,
             (BinOp::Mul, _, Some(-1.0)) => return self.neg(a),
-            (BinOp::Mul, Some(0.0), _) | (BinOp::Mul, _, Some(0.0)) if ty == Ty::F => return self.lit(0.0),
+            (BinOp::Mul, Some(-1.0), _) => return self.neg(b),
+            (BinOp::Mul, Some(0.0), _) | (BinOp::Mul, _, Some(0.0)) => return self.lit(0.0),
             _ => {}
         }
-        self.emit(ty, Op::Bin(op, a, b))
-    }
-    pub fn add(&mut self, a: Val, b: Val) -> Val {
-        self.bin(BinOp::Add, a, b)
-    }
-    pub fn sub(&mut self, a: Val, b: Val) -> Val {
-        self.bin(BinOp::Sub, a, b)
-    }
-    pub fn mul(&mut self, a: Val, b: Val) -> Val {
-        self.bin(BinOp::Mul, a, b)
-    }
-    pub fn div(&mut self, a: Val, b: Val) -> Val {
-        self.bin(BinOp::Div, a, b)
-    }
-    pub fn splat(&mut self, a: Val) -> Val {
-        self.emit(Ty::V3, Op::MakeV3(a, a, a))
+        self.emit(Ty::F, Op::Bin(op, a, b))
     }
 
     pub fn math(&mut self, f: MathFn, args: Vec<Val>) -> Val {
         if let Some(lits) = args.iter().map(|a| self.lit_value(*a)).collect::<Option<Vec<f64>>>() {
-            let v = match f {
-                MathFn::Sin => lits[0].sin(),
-                MathFn::Cos => lits[0].cos(),
-                MathFn::Abs => lits[0].abs(),
-                MathFn::Sqrt => lits[0].sqrt(),
-                MathFn::Floor => lits[0].floor(),
-                MathFn::Min => lits[0].min(lits[1]),
-                MathFn::Max => lits[0].max(lits[1]),
-                MathFn::Pow => lits[0].powf(lits[1]),
-                MathFn::Clamp => lits[0].max(lits[1]).min(lits[2]),
-                MathFn::Mix => lits[0] + (lits[1] - lits[0]) * lits[2],
-            };
-            return self.lit(v);
+            return self.lit(f.fold(&lits));
+        }
+        if matches!(f, MathFn::Min | MathFn::Max) && args[0] == args[1] {
+            return args[0];
         }
         self.emit(Ty::F, Op::Math(f, args))
     }
-    pub fn min(&mut self, a: Val, b: Val) -> Val {
-        if a == b {
-            return a;
+    pub fn call(&mut self, leaf: Leaf, args: Vec<Val>) -> Val {
+        let ty = match leaf.returns() {
+            crate::leaf::RetKind::F => Ty::F,
+            crate::leaf::RetKind::Pair => Ty::Pair,
+        };
+        self.emit(ty, Op::Call(leaf, args))
+    }
+    pub fn cmp(&mut self, op: CmpOp, a: Val, b: Val) -> Val {
+        if let (Some(x), Some(y)) = (self.lit_value(a), self.lit_value(b)) {
+            return self.bool_lit(match op {
+                CmpOp::Lt => x < y,
+                CmpOp::Le => x <= y,
+            });
         }
-        self.math(MathFn::Min, vec![a, b])
+        self.emit(Ty::Bool, Op::Cmp(op, a, b))
     }
-    pub fn max(&mut self, a: Val, b: Val) -> Val {
-        if a == b {
-            return a;
+    pub fn logic(&mut self, op: LogicOp, a: Val, b: Val) -> Val {
+        match (op, self.bool_value(a), self.bool_value(b)) {
+            (LogicOp::And, Some(true), _) | (LogicOp::Or, Some(false), _) => b,
+            (LogicOp::And, _, Some(true)) | (LogicOp::Or, _, Some(false)) => a,
+            (LogicOp::And, Some(false), _) | (LogicOp::And, _, Some(false)) => self.bool_lit(false),
+            (LogicOp::Or, Some(true), _) | (LogicOp::Or, _, Some(true)) => self.bool_lit(true),
+            _ if a == b => a,
+            _ => self.emit(Ty::Bool, Op::Logic(op, a, b)),
         }
-        self.math(MathFn::Max, vec![a, b])
     }
-    pub fn length(&mut self, v: Val) -> Val {
-        self.emit(Ty::F, Op::Length(v))
-    }
-    pub fn call(&mut self, h: Helper, args: Vec<Arg>) -> Val {
-        let ty = if h.returns_pair() { Ty::Pair } else { Ty::F };
-        self.emit(ty, Op::Call(h, args))
-    }
-    pub fn less(&mut self, a: Val, b: Val) -> Val {
-        self.emit(Ty::Bool, Op::Less(a, b))
+    pub fn not(&mut self, a: Val) -> Val {
+        if let Some(v) = self.bool_value(a) {
+            return self.bool_lit(!v);
+        }
+        if let Some(Op::Not(inner)) = self.op(a) {
+            return *inner;
+        }
+        self.emit(Ty::Bool, Op::Not(a))
     }
     pub fn select(&mut self, cond: Val, a: Val, b: Val) -> Val {
         if a == b {
             return a;
+        }
+        match self.bool_value(cond) {
+            Some(true) => return a,
+            Some(false) => return b,
+            None => {}
         }
         let ty = self.ty(a);
         self.emit(ty, Op::Select(cond, a, b))
@@ -286,21 +372,45 @@ impl Builder {
         let ty = self.ty(var);
         self.emit(ty, Op::Load(var))
     }
-    /// Opens `if (cond) { … }`; statements go inside until [`Builder::end_if`].
-    pub fn begin_if(&mut self) {
-        self.blocks.push(Vec::new());
+
+    fn open(&mut self, kind: Block) {
+        self.blocks.push((kind, Vec::new()));
         self.reuse.push(HashMap::new());
     }
-    pub fn end_if(&mut self, cond: Val) {
-        let body = self.blocks.pop().expect("begin_if opened a block");
+    fn close(&mut self, kind: Block) -> Vec<Stmt> {
+        let (open, body) = self.blocks.pop().expect("a block was opened");
+        assert_eq!(open, kind, "blocks close in the order they opened");
         self.reuse.pop();
+        body
+    }
+    /// Opens `if (cond) { … }`; statements go inside until [`Builder::end_if`].
+    pub fn begin_if(&mut self) {
+        self.open(Block::If);
+    }
+    pub fn end_if(&mut self, cond: Val) {
+        let body = self.close(Block::If);
         self.push(Stmt::If { cond, body });
+    }
+    /// Opens a counted loop; statements go inside until [`Builder::end_loop`].
+    pub fn begin_loop(&mut self) {
+        self.open(Block::Loop);
+    }
+    /// Leaves the innermost loop unless `cond` holds (nothing is written when `cond` is the constant true).
+    pub fn break_unless(&mut self, cond: Val) {
+        let stop = self.not(cond);
+        if self.bool_value(stop) != Some(false) {
+            self.push(Stmt::BreakIf { cond: stop });
+        }
+    }
+    pub fn end_loop(&mut self, count: Val) {
+        let body = self.close(Block::Loop);
+        self.push(Stmt::Loop { count, body });
     }
 
     /// Finishes the body: its statements and the type/op table the writers read.
     pub fn finish(mut self) -> Body {
-        assert_eq!(self.blocks.len(), 1, "every begin_if has its end_if");
-        Body { stmts: self.blocks.pop().unwrap_or_default(), defs: self.defs }
+        assert_eq!(self.blocks.len(), 1, "every block opened was closed");
+        Body { stmts: self.blocks.pop().map(|(_, s)| s).unwrap_or_default(), defs: self.defs }
     }
 }
 
@@ -321,5 +431,111 @@ impl Body {
     /// Whether `v` is a mutable variable rather than an SSA value.
     pub fn is_var(&self, v: Val) -> bool {
         self.defs[v.0 as usize].1.is_none()
+    }
+
+    /// The body without the values nothing reads: tracing records everything a formula computes (a fractal's orbit
+    /// trap where only its distance is wanted, say); only what reaches `results` or a statement stays.
+    pub fn pruned(mut self, results: &[Val]) -> Body {
+        let mut live = vec![false; self.defs.len()];
+        loop {
+            let before = live.iter().filter(|l| **l).count();
+            for &v in results {
+                self.mark(v, &mut live);
+            }
+            self.mark_stmts(&self.stmts, &mut live);
+            if live.iter().filter(|l| **l).count() == before {
+                break;
+            }
+        }
+        fn keep(stmts: Vec<Stmt>, live: &[bool]) -> Vec<Stmt> {
+            stmts
+                .into_iter()
+                .filter_map(|s| match s {
+                    Stmt::Let { val, .. } if !live[val.0 as usize] => None,
+                    Stmt::If { cond, body } => Some(Stmt::If { cond, body: keep(body, live) }),
+                    Stmt::Loop { count, body } => Some(Stmt::Loop { count, body: keep(body, live) }),
+                    s => Some(s),
+                })
+                .collect()
+        }
+        self.stmts = keep(std::mem::take(&mut self.stmts), &live);
+        self
+    }
+
+    /// Marks `v` live, with the operands of an inline value (spelled where it is used).
+    fn mark(&self, v: Val, live: &mut [bool]) {
+        live[v.0 as usize] = true;
+        if let Some(op) = self.op(v).filter(|op| is_inline(op)) {
+            for w in operands(op) {
+                self.mark(w, live);
+            }
+        }
+    }
+
+    fn mark_stmts(&self, stmts: &[Stmt], live: &mut [bool]) {
+        for s in stmts {
+            match s {
+                Stmt::Let { val, op, .. } => {
+                    if live[val.0 as usize] {
+                        for w in operands(op) {
+                            self.mark(w, live);
+                        }
+                    }
+                }
+                Stmt::Var { init: v, .. } | Stmt::Assign { value: v, .. } | Stmt::BreakIf { cond: v } => {
+                    self.mark(*v, live)
+                }
+                Stmt::If { cond: v, body } | Stmt::Loop { count: v, body } => {
+                    self.mark(*v, live);
+                    self.mark_stmts(body, live);
+                }
+            }
+        }
+    }
+}
+
+/// The values an op reads.
+pub fn operands(op: &Op) -> Vec<Val> {
+    match op {
+        Op::Lit(_) | Op::BoolLit(_) | Op::IntLit(_) | Op::Time | Op::Param(_) | Op::Arg(_) => vec![],
+        Op::MakeV3(a, b, c) | Op::Select(a, b, c) => vec![*a, *b, *c],
+        Op::Comp(a, _) | Op::Neg(a) | Op::Not(a) | Op::Load(a) => vec![*a],
+        Op::Bin(_, a, b) | Op::Cmp(_, a, b) | Op::Logic(_, a, b) | Op::MakePair(a, b) => vec![*a, *b],
+        Op::Math(_, args) | Op::Call(_, args) => args.clone(),
+    }
+}
+
+/// Calls `f` on the op of every statement and on every inline value statements read, recursively through blocks.
+pub fn visit_ops(body: &Body, f: &mut dyn FnMut(&Op)) {
+    visit_stmts(body, &body.stmts, f)
+}
+
+fn visit_stmts(body: &Body, stmts: &[Stmt], f: &mut dyn FnMut(&Op)) {
+    let inline = |v: Val, f: &mut dyn FnMut(&Op)| {
+        if let Some(op) = body.op(v) {
+            if is_inline(op) {
+                f(op);
+                for w in operands(op) {
+                    if let Some(inner) = body.op(w).filter(|o| is_inline(o)) {
+                        f(inner)
+                    }
+                }
+            }
+        }
+    };
+    for s in stmts {
+        match s {
+            Stmt::Let { op, .. } => {
+                f(op);
+                for v in operands(op) {
+                    inline(v, f);
+                }
+            }
+            Stmt::Var { init: v, .. } | Stmt::Assign { value: v, .. } | Stmt::BreakIf { cond: v } => inline(*v, f),
+            Stmt::If { cond: v, body: inner } | Stmt::Loop { count: v, body: inner } => {
+                inline(*v, f);
+                visit_stmts(body, inner, f)
+            }
+        }
     }
 }

@@ -255,8 +255,8 @@ impl<F: Real> View<F> {
         });
         let t0 = (lo - ro) / safe;
         let t1 = (hi - ro) / safe;
-        let entry = t0.zip(t1, F::min).max_element();
-        let exit = t0.zip(t1, F::max).min_element();
+        let entry = t0.zip(t1, |a, b| a.min(b)).max_element();
+        let exit = t0.zip(t1, |a, b| a.max(b)).min_element();
         let t_near = entry.max(F::zero());
         let t_far = exit.min(self.max_distance);
         (t_near <= t_far).then_some((t_near, t_far))

@@ -4,13 +4,19 @@
 
 use std::fmt::Write;
 
-use super::library;
-use crate::back::kernel::{self, common_math_name, Dialect};
-use crate::back::{f32_literal, Entry, FrameLayout, Helper, Level};
+use crate::back::kernel::{self, Dialect};
+use crate::back::syntax::common_math_name;
+use crate::back::{f32_literal, Entry, FrameLayout, Level};
 use crate::lower::code::{MathFn, Ty};
+use crate::lower::trace::Function;
 use crate::lower::Program;
 
 struct OpenCl;
+
+/// Writes traced leaf functions in OpenCL C (a function library, without kernels).
+pub fn functions(functions: &[Function]) -> String {
+    kernel::write_functions(functions, &OpenCl)
+}
 
 /// Writes the complete OpenCL C program for `entry`.
 pub fn write(program: &Program, entry: Entry) -> String {
@@ -32,9 +38,6 @@ impl Dialect for OpenCl {
             "typedef struct {\n    float distance;\n    float3 albedo;\n    float ambient;\n    float diffuse;\n    float specular;\n    float shininess;\n} Sample;\n\n",
         );
     }
-    fn helpers_source(&self, used: &[Helper]) -> String {
-        library::helpers_source(used.iter().copied())
-    }
 
     fn type_name(&self, ty: Ty) -> &'static str {
         match ty {
@@ -42,6 +45,7 @@ impl Dialect for OpenCl {
             Ty::V3 => "float3",
             Ty::Pair => "float2",
             Ty::Bool => "int",
+            Ty::Int => "uint",
         }
     }
     fn vec4_type(&self) -> &'static str {
@@ -58,7 +62,7 @@ impl Dialect for OpenCl {
         }
     }
     fn index_lit(&self, v: u32) -> String {
-        v.to_string()
+        format!("{v}u")
     }
     fn cast(&self, ty: &str, v: &str) -> String {
         format!("({ty}){v}")
@@ -74,6 +78,7 @@ impl Dialect for OpenCl {
             MathFn::Abs => "fabs",
             MathFn::Min => "fmin",
             MathFn::Max => "fmax",
+            MathFn::Ln => "log",
             _ => common_math_name(f),
         }
     }
@@ -93,6 +98,9 @@ impl Dialect for OpenCl {
     }
     fn counted_loop(&self, bound: &str) -> String {
         format!("for (int i = 0; i < {bound}; i++) {{")
+    }
+    fn counted_loop_over(&self, index: &str, count: &str) -> String {
+        format!("for (uint {index} = 0u; {index} < {count}; {index}++) {{")
     }
 
     fn frame_parameter(&self) -> Option<&'static str> {

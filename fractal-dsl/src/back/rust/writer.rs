@@ -1,11 +1,13 @@
-//! The Rust writer: spells the lowered bodies as two generic functions — distance and sample — that the `scene!`
-//! macro compiles into the user's crate as the native evaluator (f32 and f64 instances of the same code). Leaves call
-//! [`crate::sdf`], the functions the interpreter calls too.
+//! The Rust writer: spells the lowered scene functions as two generic functions — distance and sample — that the
+//! `scene!` macro compiles into the user's crate as the native evaluator (f32 and f64 instances of the same code).
+//! Leaves call [`crate::sdf`] directly: the functions the interpreter runs and the kernels' leaf functions are traced
+//! from.
 
 use std::fmt::Write;
 
-use crate::back::syntax::{self, group_julia, Syntax};
-use crate::back::{Helper, Level};
+use crate::back::syntax::{self, common_math_name, Syntax};
+use crate::back::Level;
+use crate::leaf::Leaf;
 use crate::lower::code::{MathFn, Ty};
 use crate::lower::Program;
 
@@ -18,6 +20,7 @@ impl Syntax for RustSyntax {
             Ty::V3 => "V3<F>",
             Ty::Pair => "[F; 2]",
             Ty::Bool => "bool",
+            Ty::Int => "u32",
         }
     }
     fn declare(&self, name: &str, ty: Ty, value: &str, mutable: bool) -> String {
@@ -27,6 +30,9 @@ impl Syntax for RustSyntax {
     fn lit(&self, v: f64) -> String {
         // f64 Debug output round-trips exactly; `c` rounds it to F the same way the kernels' f32 literals are.
         format!("c::<F>({v:?})")
+    }
+    fn bool_lit(&self, v: bool) -> String {
+        v.to_string()
     }
     fn int(&self, v: u32) -> String {
         v.to_string()
@@ -40,42 +46,29 @@ impl Syntax for RustSyntax {
     fn make_v3(&self, x: &str, y: &str, z: &str) -> String {
         format!("V3 {{ x: {x}, y: {y}, z: {z} }}")
     }
+    fn make_pair(&self, distance: &str, trap: &str) -> String {
+        format!("[{distance}, {trap}]")
+    }
     fn comp(&self, v: &str, ty: Ty, i: u8) -> String {
         match ty {
             Ty::Pair => format!("{v}[{i}]"),
             _ => format!("{v}.{}", ["x", "y", "z"][i as usize]),
         }
     }
-    fn math(&self, f: MathFn, a: &[String]) -> String {
-        match f {
-            MathFn::Sin => format!("{}.sin()", a[0]),
-            MathFn::Cos => format!("{}.cos()", a[0]),
-            MathFn::Abs => format!("{}.abs()", a[0]),
-            MathFn::Sqrt => format!("{}.sqrt()", a[0]),
-            MathFn::Floor => format!("{}.floor()", a[0]),
-            MathFn::Min => format!("{}.min({})", a[0], a[1]),
-            MathFn::Max => format!("{}.max({})", a[0], a[1]),
-            MathFn::Pow => format!("{}.powf({})", a[0], a[1]),
-            MathFn::Clamp => format!("clamp({}, {}, {})", a[0], a[1], a[2]),
-            MathFn::Mix => format!("mix({}, {}, {})", a[0], a[1], a[2]),
-        }
+    fn math_name(&self, f: MathFn) -> &'static str {
+        common_math_name(f)
     }
-    fn length(&self, v: &str) -> String {
-        format!("length({v})")
-    }
-    fn call(&self, h: Helper, args: &[String]) -> String {
-        let args =
-            if h == Helper::DeJulia { group_julia(args, |c| format!("[{}]", c.join(", "))) } else { args.to_vec() };
-        format!("sdf::{}({})", h.name(), args.join(", "))
+    fn call(&self, leaf: Leaf, args: &[String]) -> String {
+        format!("sdf::{}({})", leaf.name(), args.join(", "))
     }
     fn select(&self, cond: &str, if_true: &str, if_false: &str) -> String {
         format!("select({cond}, {if_true}, {if_false})")
     }
-    fn less(&self, a: &str, b: &str) -> String {
-        format!("{a} < {b}")
-    }
     fn if_open(&self, cond: &str) -> String {
         format!("if {cond} {{")
+    }
+    fn loop_open(&self, count: &str, _depth: usize) -> String {
+        format!("for _ in 0..{count} {{")
     }
 }
 

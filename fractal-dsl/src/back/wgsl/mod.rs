@@ -1,6 +1,5 @@
 //! The WGSL backend: [`write`] spells a lowered scene as a complete WGSL module.
 
-pub mod library;
 mod writer;
 
-pub use writer::write;
+pub use writer::{functions, write};

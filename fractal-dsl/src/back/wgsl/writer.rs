@@ -4,13 +4,19 @@
 
 use std::fmt::Write;
 
-use super::library;
 use crate::back::kernel::{self, Dialect};
-use crate::back::{f32_literal, Entry, FrameLayout, Helper, Level};
-use crate::lower::code::Ty;
+use crate::back::syntax::common_math_name;
+use crate::back::{f32_literal, Entry, FrameLayout, Level};
+use crate::lower::code::{MathFn, Ty};
+use crate::lower::trace::Function;
 use crate::lower::Program;
 
 struct Wgsl;
+
+/// Writes traced leaf functions in WGSL (a function library, without kernels).
+pub fn functions(functions: &[Function]) -> String {
+    kernel::write_functions(functions, &Wgsl)
+}
 
 /// Writes the complete WGSL module for `entry`.
 pub fn write(program: &Program, entry: Entry) -> String {
@@ -45,9 +51,6 @@ impl Dialect for Wgsl {
             }
         }
     }
-    fn helpers_source(&self, used: &[Helper]) -> String {
-        library::helpers_source(used.iter().copied())
-    }
 
     fn type_name(&self, ty: Ty) -> &'static str {
         match ty {
@@ -55,6 +58,7 @@ impl Dialect for Wgsl {
             Ty::V3 => "vec3<f32>",
             Ty::Pair => "vec2<f32>",
             Ty::Bool => "bool",
+            Ty::Int => "u32",
         }
     }
     fn vec4_type(&self) -> &'static str {
@@ -82,6 +86,20 @@ impl Dialect for Wgsl {
     fn vector_operand(&self, scalar: &str) -> String {
         self.construct(self.type_name(Ty::V3), scalar)
     }
+    fn math_name(&self, f: MathFn) -> &'static str {
+        match f {
+            MathFn::Ln => "log",
+            _ => common_math_name(f),
+        }
+    }
+    fn math_call(&self, f: MathFn, args: &[String]) -> String {
+        match f {
+            // Vulkan drivers' acos loses most of its precision near ±1 (lavapipe: ~1e-4 radians at the Mandelbulb's
+            // pole), where atan2 of the same angle's sine and cosine keeps full precision.
+            MathFn::Acos => format!("atan2(sqrt(1.0 - {x} * {x}), {x})", x = args[0]),
+            _ => format!("{}({})", self.math_name(f), args.join(", ")),
+        }
+    }
     fn select(&self, cond: &str, if_true: &str, if_false: &str) -> String {
         format!("select({if_false}, {if_true}, {cond})")
     }
@@ -102,6 +120,9 @@ impl Dialect for Wgsl {
     }
     fn counted_loop(&self, bound: &str) -> String {
         format!("for (var i = 0; i < {bound}; i++) {{")
+    }
+    fn counted_loop_over(&self, index: &str, count: &str) -> String {
+        format!("for (var {index} = 0u; {index} < {count}; {index}++) {{")
     }
 
     fn frame_parameter(&self) -> Option<&'static str> {

@@ -1,0 +1,316 @@
+//! The plan: a scene folded and prepared for evaluation, with everything that does not depend on the point settled
+//! ahead — union order and guard boxes, parameter slots, which leaf function each primitive and fractal calls,
+//! rotation constants. The walker ([`super::walk`]) runs a plan in any [`Num`]: the interpreter runs it in f32 and
+//! f64, the lowering traces it into kernel code.
+
+use crate::analyse::{fold, guarded_bound, union_order};
+use crate::eval::Env;
+use crate::ir::*;
+use crate::leaf::{Leaf, LeafArg};
+use crate::math::{v3, V3};
+use crate::num::Num;
+
+/// A compiled scalar expression.
+#[derive(Clone, Debug)]
+pub enum Term {
+    Lit(f64),
+    Time,
+    /// Slot in [`Env::params`], and the declared default for a slot the caller did not fill.
+    Param(usize, f64),
+    Neg(Box<Term>),
+    Bin(BinOp, Box<Term>, Box<Term>),
+    Call(Func, Box<[Term]>),
+}
+
+impl Term {
+    fn compile(e: &Expr, params: &[ParamDecl]) -> Term {
+        match e {
+            Expr::Lit(v) => Term::Lit(*v),
+            Expr::Time => Term::Time,
+            Expr::Param(p) => match params.iter().position(|q| q.name == p.name) {
+                Some(i) => Term::Param(i, p.default),
+                // Every parameter of a scene is listed by `Scene::params`; a stray one reads its default.
+                None => Term::Lit(p.default),
+            },
+            Expr::Neg(a) => Term::Neg(Box::new(Term::compile(a, params))),
+            Expr::Bin(op, a, b) => {
+                Term::Bin(*op, Box::new(Term::compile(a, params)), Box::new(Term::compile(b, params)))
+            }
+            Expr::Call(f, args) => Term::Call(*f, args.iter().map(|a| Term::compile(a, params)).collect()),
+        }
+    }
+
+    #[inline]
+    pub fn eval<F: Num>(&self, env: &Env<F>) -> F {
+        match self {
+            Term::Lit(v) => F::lit(*v),
+            Term::Time => env.time,
+            Term::Param(i, default) => env.params.get(*i).copied().unwrap_or_else(|| F::lit(*default)),
+            Term::Neg(a) => -a.eval(env),
+            Term::Bin(op, a, b) => op.apply(a.eval(env), b.eval(env)),
+            Term::Call(f, args) => {
+                let mut v = [F::lit(0.0); 3];
+                for (slot, a) in v.iter_mut().zip(args.iter()) {
+                    *slot = a.eval(env);
+                }
+                f.apply(&v)
+            }
+        }
+    }
+}
+
+/// A compiled 3-vector expression.
+#[derive(Clone, Debug)]
+pub struct Term3(pub [Term; 3]);
+
+impl Term3 {
+    fn compile(v: &Vec3Expr, params: &[ParamDecl]) -> Term3 {
+        Term3([0, 1, 2].map(|i| Term::compile(&v.0[i], params)))
+    }
+    #[inline]
+    pub fn eval<F: Num>(&self, env: &Env<F>) -> V3<F> {
+        v3(self.0[0].eval(env), self.0[1].eval(env), self.0[2].eval(env))
+    }
+}
+
+/// An argument of a leaf call, after the point.
+#[derive(Clone, Debug)]
+pub enum ArgTerm {
+    Num(Term),
+    Vec(Term3),
+    Count(u32),
+}
+
+impl ArgTerm {
+    #[inline]
+    pub fn eval<F: Num>(&self, env: &Env<F>) -> LeafArg<F> {
+        match self {
+            ArgTerm::Num(t) => LeafArg::F(t.eval(env)),
+            ArgTerm::Vec(t) => LeafArg::V3(t.eval(env)),
+            ArgTerm::Count(n) => LeafArg::Count(F::count(*n)),
+        }
+    }
+}
+
+/// A leaf call: the function and its arguments after the point.
+#[derive(Clone, Debug)]
+pub struct LeafCall {
+    pub leaf: Leaf,
+    pub args: Vec<ArgTerm>,
+}
+
+/// Per axis: `None` where the expression folded to the literal 0 (the axis is left alone).
+pub type PerAxis = [Option<Term>; 3];
+
+fn per_axis(v: &Vec3Expr, params: &[ParamDecl]) -> PerAxis {
+    [0, 1, 2].map(|i| (v.0[i].as_lit() != Some(0.0)).then(|| Term::compile(&v.0[i], params)))
+}
+
+#[derive(Clone, Debug)]
+pub enum Paint {
+    Rgb(Term3),
+    OrbitTrap(Term3, Term3),
+}
+
+/// A compiled material.
+#[derive(Clone, Debug)]
+pub struct Mat {
+    pub albedo: Paint,
+    pub ambient: Term,
+    pub diffuse: Term,
+    pub specular: Term,
+    pub shininess: Term,
+}
+
+impl Mat {
+    fn compile(m: &Material, params: &[ParamDecl]) -> Mat {
+        Mat {
+            albedo: match &m.albedo {
+                Albedo::Rgb(c) => Paint::Rgb(Term3::compile(c, params)),
+                Albedo::OrbitTrap(a, b) => Paint::OrbitTrap(Term3::compile(a, params), Term3::compile(b, params)),
+            },
+            ambient: Term::compile(&m.ambient, params),
+            diffuse: Term::compile(&m.diffuse, params),
+            specular: Term::compile(&m.specular, params),
+            shininess: Term::compile(&m.shininess, params),
+        }
+    }
+}
+
+/// A union child's guard box (the child is skipped while the box is no nearer than the nearest distance so far).
+#[derive(Clone, Copy, Debug)]
+pub struct Guard {
+    pub center: [f64; 3],
+    pub half: [f64; 3],
+}
+
+/// A node of the plan.
+#[derive(Clone, Debug)]
+pub enum Step {
+    /// A primitive: the leaf's distance at the point.
+    Leaf(LeafCall),
+    /// A fractal: its estimate × the step factor, and the orbit trap for materials.
+    Fractal {
+        call: LeafCall,
+        step: f64,
+    },
+    /// A union or intersection of nothing: no geometry.
+    Empty,
+    /// Children in evaluation order, each with its guard (never on the first).
+    Union(Vec<(Step, Option<Guard>)>),
+    Intersect(Vec<Step>),
+    Subtract(Box<Step>, Box<Step>),
+    SmoothUnion(Vec<Step>, Term),
+    SmoothIntersect(Vec<Step>, Term),
+    SmoothSubtract(Box<Step>, Box<Step>, Term),
+    Translate(Box<Step>, Term3),
+    /// Unit axis, its outer product k·kᵀ and cross-product matrix [k]×, and the angle.
+    Rotate {
+        child: Box<Step>,
+        outer: [[f64; 3]; 3],
+        cross: [[f64; 3]; 3],
+        angle: Term,
+    },
+    Scale(Box<Step>, Term),
+    Repeat {
+        child: Box<Step>,
+        period: PerAxis,
+        count: Option<[u32; 3]>,
+    },
+    Twist(Box<Step>, Term),
+    Bend(Box<Step>, Term),
+    Round(Box<Step>, Term),
+    Onion(Box<Step>, Term),
+    Elongate(Box<Step>, PerAxis),
+    Material(Box<Step>, Box<Mat>),
+}
+
+/// A scene prepared for evaluation: the folded tree as [`Step`]s, the default material and the parameter slots.
+#[derive(Clone, Debug)]
+pub struct Plan {
+    pub root: Step,
+    pub default_material: Mat,
+    /// The parameters in slot order ([`Scene::params`]).
+    pub params: Vec<ParamDecl>,
+}
+
+impl Plan {
+    /// Folds and prepares `scene`. [`Env::params`] slot i holds the value of `scene.params()[i]`.
+    pub fn new(scene: &Scene) -> Plan {
+        let params = scene.params();
+        let folded = fold::fold_scene(scene);
+        let compiler = Compiler { params: &params };
+        Plan {
+            root: compiler.node(&folded.root),
+            default_material: Mat::compile(&Material::default_surface(), &params),
+            params,
+        }
+    }
+}
+
+struct Compiler<'a> {
+    params: &'a [ParamDecl],
+}
+
+impl Compiler<'_> {
+    fn num(&self, e: &Expr) -> Term {
+        Term::compile(e, self.params)
+    }
+    fn num3(&self, v: &Vec3Expr) -> Term3 {
+        Term3::compile(v, self.params)
+    }
+    fn boxed(&self, n: &Node) -> Box<Step> {
+        Box::new(self.node(n))
+    }
+    fn call(&self, leaf: Leaf, args: Vec<ArgTerm>) -> LeafCall {
+        LeafCall { leaf, args }
+    }
+
+    fn node(&self, n: &Node) -> Step {
+        match n {
+            Node::Prim(p) => Step::Leaf(self.prim(p)),
+            Node::Fractal(f) => Step::Fractal { call: self.fractal(f), step: f.kind.step_factor() },
+            Node::Union(children) if children.is_empty() => Step::Empty,
+            Node::Union(children) => Step::Union(
+                union_order(children)
+                    .into_iter()
+                    .enumerate()
+                    .map(|(pos, i)| {
+                        let guard =
+                            guarded_bound(children, pos).map(|b| Guard { center: b.center(), half: b.half_extents() });
+                        (self.node(&children[i]), guard)
+                    })
+                    .collect(),
+            ),
+            Node::Intersect(c) | Node::SmoothUnion(c, _) | Node::SmoothIntersect(c, _) if c.is_empty() => Step::Empty,
+            Node::Intersect(c) => Step::Intersect(c.iter().map(|c| self.node(c)).collect()),
+            Node::Subtract(a, b) => Step::Subtract(self.boxed(a), self.boxed(b)),
+            Node::SmoothUnion(c, k) => Step::SmoothUnion(c.iter().map(|c| self.node(c)).collect(), self.num(k)),
+            Node::SmoothIntersect(c, k) => Step::SmoothIntersect(c.iter().map(|c| self.node(c)).collect(), self.num(k)),
+            Node::SmoothSubtract(a, b, k) => Step::SmoothSubtract(self.boxed(a), self.boxed(b), self.num(k)),
+            Node::Translate(c, v) => Step::Translate(self.boxed(c), self.num3(v)),
+            Node::Rotate(c, axis, angle) => {
+                let k = axis.unit();
+                Step::Rotate {
+                    child: self.boxed(c),
+                    outer: [0, 1, 2].map(|i| [0, 1, 2].map(|j| k[i] * k[j])),
+                    cross: [[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]],
+                    angle: self.num(angle),
+                }
+            }
+            Node::Scale(c, s) => Step::Scale(self.boxed(c), self.num(s)),
+            Node::Repeat(c, period) => {
+                Step::Repeat { child: self.boxed(c), period: per_axis(period, self.params), count: None }
+            }
+            Node::RepeatLimited(c, period, count) => {
+                Step::Repeat { child: self.boxed(c), period: per_axis(period, self.params), count: Some(*count) }
+            }
+            Node::Twist(c, k) => Step::Twist(self.boxed(c), self.num(k)),
+            Node::Bend(c, k) => Step::Bend(self.boxed(c), self.num(k)),
+            Node::Round(c, r) => Step::Round(self.boxed(c), self.num(r)),
+            Node::Onion(c, t) => Step::Onion(self.boxed(c), self.num(t)),
+            Node::Elongate(c, h) => Step::Elongate(self.boxed(c), per_axis(h, self.params)),
+            Node::Material(c, m) => Step::Material(self.boxed(c), Box::new(Mat::compile(m, self.params))),
+        }
+    }
+
+    fn prim(&self, p: &Prim) -> LeafCall {
+        let n = |e: &Expr| ArgTerm::Num(self.num(e));
+        let v = |e: &Vec3Expr| ArgTerm::Vec(self.num3(e));
+        match p {
+            Prim::Sphere { radius } => self.call(Leaf::SdSphere, vec![n(radius)]),
+            Prim::Box { half } => self.call(Leaf::SdBox, vec![v(half)]),
+            Prim::RoundBox { half, radius } => self.call(Leaf::SdRoundBox, vec![v(half), n(radius)]),
+            Prim::Torus { major, minor } => self.call(Leaf::SdTorus, vec![n(major), n(minor)]),
+            Prim::Capsule { a, b, radius } => self.call(Leaf::SdCapsule, vec![v(a), v(b), n(radius)]),
+            Prim::Cylinder { radius, half_height } => self.call(Leaf::SdCylinder, vec![n(radius), n(half_height)]),
+            Prim::Cone { half_height, bottom, top } => self.call(Leaf::SdCone, vec![n(half_height), n(bottom), n(top)]),
+            Prim::Plane { normal, offset } => self.call(Leaf::SdPlane, vec![v(normal), n(offset)]),
+            Prim::Octahedron { size } => self.call(Leaf::SdOctahedron, vec![n(size)]),
+            Prim::Ellipsoid { radii } => self.call(Leaf::SdEllipsoid, vec![v(radii)]),
+        }
+    }
+
+    fn fractal(&self, f: &Fractal) -> LeafCall {
+        let n = |e: &Expr| ArgTerm::Num(self.num(e));
+        let iterations = ArgTerm::Count(f.iterations_or_default());
+        let bailout = n(&f.bailout_or_default());
+        match &f.kind {
+            FractalKind::Mandelbulb { power } if power.as_lit() == Some(8.0) => {
+                self.call(Leaf::DeMandelbulb8, vec![iterations, bailout])
+            }
+            FractalKind::Mandelbulb { power } => self.call(Leaf::DeMandelbulb, vec![n(power), iterations, bailout]),
+            FractalKind::Menger => self.call(Leaf::DeMenger, vec![iterations]),
+            FractalKind::Sierpinski => self.call(Leaf::DeSierpinski, vec![iterations]),
+            FractalKind::Julia { c } => {
+                let mut args: Vec<ArgTerm> = c.0.iter().map(n).collect();
+                args.extend([iterations, bailout]);
+                self.call(Leaf::DeJulia, args)
+            }
+            FractalKind::Mandelbox { scale } => self.call(
+                Leaf::DeMandelbox,
+                vec![n(scale), iterations, n(&f.min_radius_or_default()), n(&f.fold_limit_or_default())],
+            ),
+        }
+    }
+}

@@ -1,0 +1,332 @@
+//! The scene walker: the meaning of every node — CSG, transforms, domain operations, materials, union guards —
+//! written once, generic over [`Num`]. The interpreter runs it in f32 and f64; the lowering runs it on symbolic
+//! values to record the kernels' `scene_de` and `scene_sample` ([`crate::lower`]). The rules are listed in
+//! [`crate::eval`].
+
+use crate::eval::plan::{Guard, LeafCall, Mat, Paint, PerAxis, Plan, Step};
+use crate::eval::{Env, Sample};
+use crate::leaf::{CallLeaf, Leaf, LeafArg, LeafOut};
+use crate::math::*;
+
+/// Most arguments a leaf function takes, the point included.
+const MAX_LEAF_ARGS: usize = 8;
+
+/// The material part of a [`Sample`].
+#[derive(Clone, Copy, Debug)]
+pub struct Fields<F> {
+    pub albedo: V3<F>,
+    pub ambient: F,
+    pub diffuse: F,
+    pub specular: F,
+    pub shininess: F,
+}
+
+impl<F: CallLeaf> Carry<F> for Fields<F> {
+    #[inline(always)]
+    fn map_nums(self, f: &mut impl FnMut(F) -> F) -> Self {
+        Fields {
+            albedo: self.albedo.map_nums(f),
+            ambient: f(self.ambient),
+            diffuse: f(self.diffuse),
+            specular: f(self.specular),
+            shininess: f(self.shininess),
+        }
+    }
+    #[inline(always)]
+    fn zip_nums(self, o: Self, f: &mut impl FnMut(F, F) -> F) -> Self {
+        Fields {
+            albedo: self.albedo.zip_nums(o.albedo, f),
+            ambient: f(self.ambient, o.ambient),
+            diffuse: f(self.diffuse, o.diffuse),
+            specular: f(self.specular, o.specular),
+            shininess: f(self.shininess, o.shininess),
+        }
+    }
+}
+
+impl<F: CallLeaf> Fields<F> {
+    /// Mixed towards `o` by `w` (smooth blends).
+    #[inline(always)]
+    fn mix(self, o: Fields<F>, w: F) -> Fields<F> {
+        self.zip_nums(o, &mut |a, b| mix(a, b, w))
+    }
+    /// `a` where `m`, else `b`.
+    #[inline(always)]
+    fn select(m: F::Mask, a: Fields<F>, b: Fields<F>) -> Fields<F> {
+        a.zip_nums(b, &mut |x, y| select(m, x, y))
+    }
+}
+
+/// What a domain operation does to its child's distance.
+#[derive(Clone, Copy)]
+enum Post<F> {
+    Keep,
+    Mul(F),
+    Div(F),
+    Sub(F),
+    AbsSub(F),
+}
+
+impl<F: CallLeaf> Post<F> {
+    #[inline(always)]
+    fn apply(self, d: F) -> F {
+        match self {
+            Post::Keep => d,
+            Post::Mul(s) => d * s,
+            Post::Div(s) => d / s,
+            Post::Sub(r) => d - r,
+            Post::AbsSub(t) => abs(d) - t,
+        }
+    }
+}
+
+/// Evaluates a [`Plan`] in any [`Num`].
+#[derive(Clone, Copy, Debug)]
+pub struct Walk<'a> {
+    pub plan: &'a Plan,
+    /// Whether union children behind a bound are skipped while the bound is no nearer than the nearest so far.
+    pub guards: bool,
+}
+
+impl Walk<'_> {
+    /// Signed distance at `p`.
+    #[inline]
+    pub fn distance<F: CallLeaf>(&self, p: V3<F>, env: &Env<F>) -> F {
+        self.dist(&self.plan.root, p, env)
+    }
+
+    /// Distance and material at `p`.
+    #[inline]
+    pub fn sample<F: CallLeaf>(&self, p: V3<F>, env: &Env<F>) -> Sample<F> {
+        let (distance, f) = self.surf(&self.plan.root, p, env, &self.plan.default_material);
+        Sample {
+            distance,
+            albedo: f.albedo,
+            ambient: f.ambient,
+            diffuse: f.diffuse,
+            specular: f.specular,
+            shininess: f.shininess,
+        }
+    }
+
+    /// Whether a guarded child is worth evaluating: its box is nearer than `nearest` (the kernels' comparison).
+    #[inline]
+    fn guard<F: CallLeaf>(&self, guard: &Option<Guard>, p: V3<F>, nearest: F) -> Option<F::Mask> {
+        let g = guard.as_ref().filter(|_| self.guards)?;
+        let center = v3(c(g.center[0]), c(g.center[1]), c(g.center[2]));
+        let half = v3(c(g.half[0]), c(g.half[1]), c(g.half[2]));
+        let to_box = F::leaf(Leaf::SdBox, &[LeafArg::V3(p - center), LeafArg::V3(half)]).distance();
+        Some(lt(to_box, nearest))
+    }
+
+    fn dist<F: CallLeaf>(&self, step: &Step, p: V3<F>, env: &Env<F>) -> F {
+        match step {
+            Step::Leaf(call) => leaf(call, p, env).distance(),
+            Step::Fractal { call, step } => leaf(call, p, env).distance() * c(*step),
+            Step::Empty => c(f64::INFINITY),
+            Step::Union(children) => {
+                let mut d = self.dist(&children[0].0, p, env);
+                for (child, guard) in &children[1..] {
+                    d = match self.guard(guard, p, d) {
+                        Some(worth_it) => F::when(worth_it, d, |d| min(d, self.dist(child, p, env))),
+                        None => min(d, self.dist(child, p, env)),
+                    };
+                }
+                d
+            }
+            Step::Intersect(children) => {
+                let mut d = self.dist(&children[0], p, env);
+                for child in &children[1..] {
+                    d = max(d, self.dist(child, p, env));
+                }
+                d
+            }
+            Step::Subtract(a, b) => max(self.dist(a, p, env), -self.dist(b, p, env)),
+            Step::SmoothUnion(children, k) | Step::SmoothIntersect(children, k) => {
+                let blend = if matches!(step, Step::SmoothUnion(..)) { Leaf::SmoothMin } else { Leaf::SmoothMax };
+                let k = k.eval(env);
+                let mut d = self.dist(&children[0], p, env);
+                for child in &children[1..] {
+                    d = leaf3(blend, d, self.dist(child, p, env), k);
+                }
+                d
+            }
+            Step::SmoothSubtract(a, b, k) => {
+                let k = k.eval(env);
+                leaf3(Leaf::SmoothMax, self.dist(a, p, env), -self.dist(b, p, env), k)
+            }
+            Step::Material(child, _) => self.dist(child, p, env),
+            _ => {
+                let (child, q, post) = domain(step, p, env);
+                post.apply(self.dist(child, q, env))
+            }
+        }
+    }
+
+    fn surf<F: CallLeaf>(&self, step: &Step, p: V3<F>, env: &Env<F>, m: &Mat) -> (F, Fields<F>) {
+        match step {
+            Step::Leaf(call) => (leaf(call, p, env).distance(), leaf_fields(m, env, None)),
+            Step::Fractal { call, step } => {
+                let out = leaf(call, p, env);
+                (out.distance() * c(*step), leaf_fields(m, env, out.trap()))
+            }
+            Step::Empty => (c(f64::INFINITY), leaf_fields(m, env, None)),
+            Step::Union(children) => {
+                let mut acc = self.surf(&children[0].0, p, env, m);
+                for (child, guard) in &children[1..] {
+                    let nearest = |(d, f): (F, Fields<F>)| {
+                        let (ds, fs) = self.surf(child, p, env, m);
+                        (min(d, ds), Fields::select(lt(ds, d), fs, f))
+                    };
+                    acc = match self.guard(guard, p, acc.0) {
+                        Some(worth_it) => F::when(worth_it, acc, nearest),
+                        None => nearest(acc),
+                    };
+                }
+                acc
+            }
+            Step::Intersect(children) => {
+                let mut acc = self.surf(&children[0], p, env, m);
+                for child in &children[1..] {
+                    let (ds, fs) = self.surf(child, p, env, m);
+                    acc = (max(acc.0, ds), Fields::select(lt(acc.0, ds), fs, acc.1));
+                }
+                acc
+            }
+            Step::Subtract(a, b) => {
+                let (d, f) = self.surf(a, p, env, m);
+                (max(d, -self.dist(b, p, env)), f)
+            }
+            Step::SmoothUnion(children, k) | Step::SmoothIntersect(children, k) => {
+                let union = matches!(step, Step::SmoothUnion(..));
+                let k = k.eval(env);
+                let mut acc = self.surf(&children[0], p, env, m);
+                for child in &children[1..] {
+                    let (ds, fs) = self.surf(child, p, env, m);
+                    let (d, w) = if union {
+                        (leaf3(Leaf::SmoothMin, acc.0, ds, k), leaf3(Leaf::BlendWeight, acc.0, ds, k))
+                    } else {
+                        (leaf3(Leaf::SmoothMax, acc.0, ds, k), leaf3(Leaf::BlendWeight, ds, acc.0, k))
+                    };
+                    acc = (d, acc.1.mix(fs, w));
+                }
+                acc
+            }
+            Step::SmoothSubtract(a, b, k) => {
+                let k = k.eval(env);
+                let (d, f) = self.surf(a, p, env, m);
+                (leaf3(Leaf::SmoothMax, d, -self.dist(b, p, env), k), f)
+            }
+            Step::Material(child, inner) => self.surf(child, p, env, inner),
+            _ => {
+                let (child, q, post) = domain(step, p, env);
+                let (d, f) = self.surf(child, q, env, m);
+                (post.apply(d), f)
+            }
+        }
+    }
+}
+
+/// Calls a primitive's or fractal's leaf function at `p`.
+#[inline]
+fn leaf<F: CallLeaf>(call: &LeafCall, p: V3<F>, env: &Env<F>) -> LeafOut<F> {
+    let mut args = [LeafArg::V3(p); MAX_LEAF_ARGS];
+    for (slot, a) in args[1..].iter_mut().zip(&call.args) {
+        *slot = a.eval(env);
+    }
+    F::leaf(call.leaf, &args[..=call.args.len()])
+}
+
+/// Calls a leaf of three numbers (the smooth blends).
+#[inline]
+fn leaf3<F: CallLeaf>(leaf: Leaf, a: F, b: F, k: F) -> F {
+    F::leaf(leaf, &[LeafArg::F(a), LeafArg::F(b), LeafArg::F(k)]).distance()
+}
+
+/// The material of a leaf under `m`; `trap` is the fractal's orbit trap, for fractal leaves.
+#[inline]
+fn leaf_fields<F: CallLeaf>(m: &Mat, env: &Env<F>, trap: Option<F>) -> Fields<F> {
+    let albedo = match (&m.albedo, trap) {
+        (Paint::Rgb(c), _) => c.eval(env),
+        (Paint::OrbitTrap(a, _), None) => a.eval(env),
+        (Paint::OrbitTrap(a, b), Some(t)) => mix3(a.eval(env), b.eval(env), t),
+    };
+    Fields {
+        albedo,
+        ambient: m.ambient.eval(env),
+        diffuse: m.diffuse.eval(env),
+        specular: m.specular.eval(env),
+        shininess: m.shininess.eval(env),
+    }
+}
+
+/// Each axis of `p` moved by `f(axis, coordinate, term)`, or left alone where the term folded to 0.
+#[inline]
+fn per_axis<F: Num>(p: V3<F>, terms: &PerAxis, env: &Env<F>, f: impl Fn(usize, F, F) -> F) -> V3<F> {
+    let pc = [p.x, p.y, p.z];
+    let q = [0, 1, 2].map(|i| match &terms[i] {
+        None => pc[i],
+        Some(t) => f(i, pc[i], t.eval(env)),
+    });
+    v3(q[0], q[1], q[2])
+}
+
+/// The single-child operations that move the point and then adjust the child's distance.
+fn domain<'a, F: Num>(step: &'a Step, p: V3<F>, env: &Env<F>) -> (&'a Step, V3<F>, Post<F>) {
+    match step {
+        Step::Translate(child, offset) => (child, p - offset.eval(env), Post::Keep),
+        Step::Rotate { child, outer, cross, angle } => {
+            // p rotated by −angle (so the shape turns by +angle): Rodrigues' matrix c·I + (1 − c)·k·kᵀ − s·[k]×.
+            let a = angle.eval(env);
+            let co = cos(a);
+            let s = -sin(a);
+            let one_minus_c = c::<F>(1.0) - co;
+            let pc = [p.x, p.y, p.z];
+            let q = [0, 1, 2].map(|i| {
+                let mut sum = c::<F>(0.0);
+                for j in 0..3 {
+                    let diag = if i == j { co } else { c(0.0) };
+                    let e = diag + one_minus_c * c(outer[i][j]) + s * c(cross[i][j]);
+                    sum = sum + e * pc[j];
+                }
+                sum
+            });
+            (child, v3(q[0], q[1], q[2]), Post::Keep)
+        }
+        Step::Scale(child, s) => {
+            let s = s.eval(env);
+            (child, p / s, Post::Mul(s))
+        }
+        Step::Repeat { child, period, count } => {
+            let q = per_axis(p, period, env, |axis, x, per| {
+                let cell = floor(x / per + c(0.5));
+                let cell = match count {
+                    Some(n) => clamp(cell, c(-(n[axis] as f64)), c(n[axis] as f64)),
+                    None => cell,
+                };
+                x - per * cell
+            });
+            (child, q, Post::Keep)
+        }
+        Step::Twist(child, k) | Step::Bend(child, k) => {
+            // Twist turns the xz plane by k·y; bend turns the xy plane by k·x. At radius ρ from the axis the map
+            // stretches space by up to (v + sqrt(v² + 4))/2 with v = |k|·ρ (the Jacobian's largest singular value), so
+            // the child's distance is divided by that to stay a lower bound.
+            let twist = matches!(step, Step::Twist(..));
+            let k = k.eval(env);
+            let (a, b, driver) = if twist { (p.x, p.z, p.y) } else { (p.x, p.y, p.x) };
+            let angle = k * driver;
+            let (si, co) = (sin(angle), cos(angle));
+            let ra = co * a - si * b;
+            let rb = si * a + co * b;
+            let q = if twist { v3(ra, p.y, rb) } else { v3(ra, rb, p.z) };
+            let v = abs(k) * sqrt(a * a + b * b);
+            let stretch = (v + sqrt(v * v + c(4.0))) * c(0.5);
+            (child, q, Post::Div(stretch))
+        }
+        Step::Round(child, r) => (child, p, Post::Sub(r.eval(env))),
+        Step::Onion(child, t) => (child, p, Post::AbsSub(t.eval(env))),
+        Step::Elongate(child, h) => (child, per_axis(p, h, env, |_, x, h| x - clamp(x, -h, h)), Post::Keep),
+        _ => unreachable!("domain() is only called for single-child point operations"),
+    }
+}
