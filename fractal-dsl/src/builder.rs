@@ -57,50 +57,9 @@ pub fn vec4(x: impl Into<Expr>, y: impl Into<Expr>, z: impl Into<Expr>, w: impl 
     Vec4Expr([x.into(), y.into(), z.into(), w.into()])
 }
 
-// ---- primitives --------------------------------------------------------------------------------------------------
+// ---- primitives: declared with their builder functions in `crate::prims` ---------------------------------------
 
-pub fn sphere(radius: impl Into<Expr>) -> Node {
-    Node::Prim(Prim::Sphere { radius: radius.into() })
-}
-/// A box with half extents `half` (`box3` because `box` is a Rust keyword).
-pub fn box3(half: impl Into<Vec3Expr>) -> Node {
-    Node::Prim(Prim::Box { half: half.into() })
-}
-pub fn round_box(half: impl Into<Vec3Expr>, radius: impl Into<Expr>) -> Node {
-    Node::Prim(Prim::RoundBox { half: half.into(), radius: radius.into() })
-}
-pub fn torus(major: impl Into<Expr>, minor: impl Into<Expr>) -> Node {
-    Node::Prim(Prim::Torus { major: major.into(), minor: minor.into() })
-}
-pub fn capsule(a: impl Into<Vec3Expr>, b: impl Into<Vec3Expr>, radius: impl Into<Expr>) -> Node {
-    Node::Prim(Prim::Capsule { a: a.into(), b: b.into(), radius: radius.into() })
-}
-/// Capped cylinder along y.
-pub fn cylinder(radius: impl Into<Expr>, half_height: impl Into<Expr>) -> Node {
-    Node::Prim(Prim::Cylinder { radius: radius.into(), half_height: half_height.into() })
-}
-/// Capped cone along y, radius `bottom` at −half_height and `top` at +half_height.
-pub fn cone(half_height: impl Into<Expr>, bottom: impl Into<Expr>, top: impl Into<Expr>) -> Node {
-    Node::Prim(Prim::Cone { half_height: half_height.into(), bottom: bottom.into(), top: top.into() })
-}
-/// The half-space below the plane dot(p, normal) + offset = 0. The normal is normalised here when constant.
-pub fn plane(normal: impl Into<Vec3Expr>, offset: impl Into<Expr>) -> Node {
-    let mut normal = normal.into();
-    if let Some(n) = normal.lits() {
-        let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-        // A vector already of unit length is kept as written, so a printed scene reads back bit for bit.
-        if len > 0.0 && (len - 1.0).abs() > 4.0 * f64::EPSILON {
-            normal = n.map(|c| c / len).into();
-        }
-    }
-    Node::Prim(Prim::Plane { normal, offset: offset.into() })
-}
-pub fn octahedron(size: impl Into<Expr>) -> Node {
-    Node::Prim(Prim::Octahedron { size: size.into() })
-}
-pub fn ellipsoid(radii: impl Into<Vec3Expr>) -> Node {
-    Node::Prim(Prim::Ellipsoid { radii: radii.into() })
-}
+pub use crate::prims::*;
 
 // ---- fractals ----------------------------------------------------------------------------------------------------
 

@@ -12,6 +12,7 @@
 use std::fmt::Write;
 
 use crate::builder::{self as b, ShapeExt};
+use crate::ir::prim::{normalised, Rule};
 use crate::ir::*;
 
 const INDENT: &str = "    ";
@@ -111,15 +112,6 @@ fn axis_preimage(unit: [f64; 3]) -> [f64; 3] {
     preimage(unit, normalised)
 }
 
-/// A normal the builder's `plane` turns into exactly `unit` (see [`preimage`]).
-fn normal_preimage(unit: [f64; 3]) -> [f64; 3] {
-    let normalised = |n: [f64; 3]| match b::plane(n, 0.0) {
-        Node::Prim(Prim::Plane { normal, .. }) => normal.lits(),
-        _ => None,
-    };
-    preimage(unit, normalised)
-}
-
 /// A vector that `normalised` maps to exactly `unit`. The builder normalises axes and normals, and normalising a
 /// unit vector again rounds differently for about a third of them, so writing `unit` itself would not read back.
 /// The search starts from multiples of `unit` (they round differently from one another) and nudges each component
@@ -207,26 +199,18 @@ fn node(n: &Node, level: usize) -> String {
 }
 
 fn prim(p: &Prim) -> String {
-    match p {
-        Prim::Sphere { radius } => format!("sphere({})", expr(radius)),
-        Prim::Box { half } => format!("box3({})", vec3(half)),
-        Prim::RoundBox { half, radius } => format!("round_box({}, {})", vec3(half), expr(radius)),
-        Prim::Torus { major, minor } => format!("torus({}, {})", expr(major), expr(minor)),
-        Prim::Capsule { a, b, radius } => format!("capsule({}, {}, {})", vec3(a), vec3(b), expr(radius)),
-        Prim::Cylinder { radius, half_height } => format!("cylinder({}, {})", expr(radius), expr(half_height)),
-        Prim::Cone { half_height, bottom, top } => {
-            format!("cone({}, {}, {})", expr(half_height), expr(bottom), expr(top))
-        }
-        Prim::Plane { normal, offset } => {
-            let normal = match normal.lits() {
-                Some(n) => const_vec3(normal_preimage(n)),
-                None => vec3(normal),
-            };
-            format!("plane({normal}, {})", expr(offset))
-        }
-        Prim::Octahedron { size } => format!("octahedron({})", expr(size)),
-        Prim::Ellipsoid { radii } => format!("ellipsoid({})", vec3(radii)),
-    }
+    let args: Vec<String> = p
+        .declared_args()
+        .map(|(decl, value)| match value {
+            ArgValue::Num(e) => expr(e),
+            // A constant direction is stored normalised: print what normalises to exactly it.
+            ArgValue::Vec3(v) => match (decl.rule, v.lits()) {
+                (Rule::Direction, Some(n)) => const_vec3(preimage(n, |m| Some(normalised(m)))),
+                _ => vec3(v),
+            },
+        })
+        .collect();
+    format!("{}({})", p.name(), args.join(", "))
 }
 
 fn fractal(f: &Fractal) -> String {

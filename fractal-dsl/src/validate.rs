@@ -12,6 +12,7 @@
 use std::fmt;
 
 use crate::analyse::interval::{range, Interval};
+use crate::ir::prim::Rule;
 use crate::ir::*;
 
 /// Most nodes a distance tree may have.
@@ -167,18 +168,7 @@ pub fn node_label(node: &Node) -> &'static str {
 
 /// The function that makes a primitive in scene source.
 pub fn prim_name(p: &Prim) -> &'static str {
-    match p {
-        Prim::Sphere { .. } => "sphere",
-        Prim::Box { .. } => "box3",
-        Prim::RoundBox { .. } => "round_box",
-        Prim::Torus { .. } => "torus",
-        Prim::Capsule { .. } => "capsule",
-        Prim::Cylinder { .. } => "cylinder",
-        Prim::Cone { .. } => "cone",
-        Prim::Plane { .. } => "plane",
-        Prim::Octahedron { .. } => "octahedron",
-        Prim::Ellipsoid { .. } => "ellipsoid",
-    }
+    p.name()
 }
 
 // ---- sizes ----------------------------------------------------------------------------------------------------------
@@ -217,27 +207,7 @@ pub fn node_depth(n: &Node) -> usize {
 pub fn own_exprs(node: &Node) -> Vec<&Expr> {
     let mut out: Vec<&Expr> = Vec::new();
     match node {
-        Node::Prim(p) => match p {
-            Prim::Sphere { radius } => out.push(radius),
-            Prim::Box { half } => out.extend(&half.0),
-            Prim::RoundBox { half, radius } => {
-                out.extend(&half.0);
-                out.push(radius)
-            }
-            Prim::Torus { major, minor } => out.extend([major, minor]),
-            Prim::Capsule { a, b, radius } => {
-                out.extend(a.0.iter().chain(&b.0));
-                out.push(radius)
-            }
-            Prim::Cylinder { radius, half_height } => out.extend([radius, half_height]),
-            Prim::Cone { half_height, bottom, top } => out.extend([half_height, bottom, top]),
-            Prim::Plane { normal, offset } => {
-                out.extend(&normal.0);
-                out.push(offset)
-            }
-            Prim::Octahedron { size } => out.push(size),
-            Prim::Ellipsoid { radii } => out.extend(&radii.0),
-        },
+        Node::Prim(p) => out.extend(p.exprs()),
         Node::Fractal(f) => {
             match &f.kind {
                 FractalKind::Mandelbulb { power } => out.push(power),
@@ -508,55 +478,47 @@ fn constant(out: &mut Vec<Problem>, arg: &'static str, what: &str, v: f64, lim: 
 
 // ---- per-value checks ---------------------------------------------------------------------------------------------
 
-/// Rules of a primitive's dimensions.
+/// Rules of a primitive's arguments, as its declaration states them.
 pub fn check_prim(p: &Prim) -> Vec<Problem> {
     let mut out = Vec::new();
     let o = &mut out;
-    match p {
-        Prim::Sphere { radius } => number(o, "radius", "sphere radius", radius, gt(0.0)),
-        Prim::Box { half } => vector(o, "half", "box3 half extent", half, gt(0.0)),
-        Prim::RoundBox { half, radius } => {
-            vector(o, "half", "round_box half extent", half, gt(0.0));
-            if o.is_empty() {
-                // The rounding cannot exceed the smallest half extent (the box inside would turn inside out).
-                let smallest = half.0.iter().map(|h| value_range(h).0.lo).fold(f64::INFINITY, f64::min);
-                let lim = within(0.0, true, smallest, true);
-                number(o, "radius", "round_box radius", radius, lim);
-                if let Some(p) = o.last_mut() {
-                    p.message.push_str(" (the rounding cannot exceed the smallest half extent)");
+    let decl = p.decl();
+    for (arg, value) in p.declared_args() {
+        let exprs: Vec<&Expr> = value.exprs().iter().collect();
+        match (arg.rule, value) {
+            (Rule::Positive | Rule::NonNegative, _) => {
+                let lim = if arg.rule == Rule::Positive { gt(0.0) } else { ge(0.0) };
+                match value {
+                    ArgValue::Num(e) => number(o, arg.name, arg.what, e, lim),
+                    ArgValue::Vec3(v) => vector(o, arg.name, arg.what, v, lim),
                 }
             }
-        }
-        Prim::Torus { major, minor } => {
-            number(o, "major", "torus major radius", major, ge(0.0));
-            number(o, "minor", "torus minor radius", minor, gt(0.0));
-        }
-        Prim::Capsule { a, b, radius } => {
-            finite(o, "a", "capsule end a", &a.0.iter().collect::<Vec<_>>());
-            finite(o, "b", "capsule end b", &b.0.iter().collect::<Vec<_>>());
-            number(o, "radius", "capsule radius", radius, gt(0.0));
-        }
-        Prim::Cylinder { radius, half_height } => {
-            number(o, "radius", "cylinder radius", radius, gt(0.0));
-            number(o, "half_height", "cylinder half_height", half_height, gt(0.0));
-        }
-        Prim::Cone { half_height, bottom, top } => {
-            number(o, "half_height", "cone half_height", half_height, gt(0.0));
-            number(o, "bottom", "cone bottom radius", bottom, ge(0.0));
-            number(o, "top", "cone top radius", top, ge(0.0));
-            if o.is_empty() && constant_value(bottom) == Some(0.0) && constant_value(top) == Some(0.0) {
-                o.push(Problem::new("", "cone radii bottom and top cannot both be 0".into()));
+            (Rule::Finite, _) => finite(o, arg.name, arg.what, &exprs),
+            (Rule::Direction, _) => {
+                let before = o.len();
+                finite(o, arg.name, arg.what, &exprs);
+                if o.len() == before && value.exprs().iter().all(|e| e.as_lit() == Some(0.0)) {
+                    o.push(Problem::new(arg.name, format!("{} must be non-zero, found vec3(0, 0, 0)", arg.what)));
+                }
             }
-        }
-        Prim::Plane { normal, offset } => {
-            finite(o, "normal", "plane normal", &normal.0.iter().collect::<Vec<_>>());
-            finite(o, "offset", "plane offset", &[offset]);
-            if o.is_empty() && normal.lits() == Some([0.0; 3]) {
-                o.push(Problem::new("normal", "plane normal must be non-zero, found vec3(0, 0, 0)".into()));
+            (Rule::RoundingOf(of), ArgValue::Num(e)) => {
+                // Checked once the vector it rounds is valid: the rounding cannot turn the shape inside out.
+                if o.is_empty() {
+                    let smallest = p.args[of].exprs().iter().map(|h| value_range(h).0.lo).fold(f64::INFINITY, f64::min);
+                    number(o, arg.name, arg.what, e, within(0.0, true, smallest, true));
+                    if let Some(problem) = o.last_mut() {
+                        let of = decl.args[of].name;
+                        problem.message.push_str(&format!(" (the rounding cannot exceed the smallest {of} extent)"));
+                    }
+                }
             }
+            (Rule::RoundingOf(_), ArgValue::Vec3(_)) => {}
         }
-        Prim::Octahedron { size } => number(o, "size", "octahedron size", size, gt(0.0)),
-        Prim::Ellipsoid { radii } => vector(o, "radii", "ellipsoid radius", radii, gt(0.0)),
+    }
+    if let Some((indices, message)) = decl.not_all_zero {
+        if o.is_empty() && indices.iter().all(|&i| p.args[i].exprs().iter().all(|e| constant_value(e) == Some(0.0))) {
+            o.push(Problem::new("", message.to_string()));
+        }
     }
     out
 }

@@ -1,12 +1,12 @@
 //! Walks over every expression of a scene, for analyses that only care about the numbers, and the facts they give:
 //! the scene's parameters ([`Scene::params`]) and whether it reads the time ([`Scene::uses_time`]).
 
-use crate::ir::{Albedo, CameraPlacement, Expr, FractalKind, LightKind, Material, Node, ParamDecl, Prim, Scene};
+use crate::ir::{Albedo, CameraPlacement, Expr, FractalKind, LightKind, Material, Node, ParamDecl, Scene};
 
 /// Calls `f` on every expression in the distance tree (geometry and materials), in tree order.
 pub fn visit_node_exprs<'a>(node: &'a Node, f: &mut dyn FnMut(&'a Expr)) {
     match node {
-        Node::Prim(p) => prim_exprs(p, f),
+        Node::Prim(p) => p.exprs().for_each(&mut *f),
         Node::Fractal(fr) => {
             match &fr.kind {
                 FractalKind::Mandelbulb { power } => f(power),
@@ -33,42 +33,6 @@ pub fn visit_node_exprs<'a>(node: &'a Node, f: &mut dyn FnMut(&'a Expr)) {
     }
     for c in node.children() {
         visit_node_exprs(c, f);
-    }
-}
-
-fn prim_exprs<'a>(p: &'a Prim, f: &mut dyn FnMut(&'a Expr)) {
-    let v3 = |v: &'a crate::ir::Vec3Expr, f: &mut dyn FnMut(&'a Expr)| v.0.iter().for_each(f);
-    match p {
-        Prim::Sphere { radius } => f(radius),
-        Prim::Box { half } => v3(half, f),
-        Prim::RoundBox { half, radius } => {
-            v3(half, f);
-            f(radius)
-        }
-        Prim::Torus { major, minor } => {
-            f(major);
-            f(minor)
-        }
-        Prim::Capsule { a, b, radius } => {
-            v3(a, f);
-            v3(b, f);
-            f(radius)
-        }
-        Prim::Cylinder { radius, half_height } => {
-            f(radius);
-            f(half_height)
-        }
-        Prim::Cone { half_height, bottom, top } => {
-            f(half_height);
-            f(bottom);
-            f(top)
-        }
-        Prim::Plane { normal, offset } => {
-            v3(normal, f);
-            f(offset)
-        }
-        Prim::Octahedron { size } => f(size),
-        Prim::Ellipsoid { radii } => v3(radii, f),
     }
 }
 

@@ -11,86 +11,9 @@
 //! estimators that fall short of the true distance (Sierpinski, Mandelbox, twist, bend).
 
 use super::interval::{range, Interval};
-use crate::ir::{Axis, Expr, Fractal, FractalKind, Node, Prim, Vec3Expr};
-
-/// An axis-aligned box.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Aabb {
-    pub min: [f64; 3],
-    pub max: [f64; 3],
-}
-
-impl Aabb {
-    pub fn new(min: [f64; 3], max: [f64; 3]) -> Aabb {
-        Aabb { min, max }
-    }
-    /// The box [−half, half] per axis.
-    pub fn centered(half: [f64; 3]) -> Aabb {
-        Aabb { min: half.map(|h| -h), max: half }
-    }
-    /// The cube [−half, half]³.
-    pub fn cube(half: f64) -> Aabb {
-        Aabb::centered([half; 3])
-    }
-    pub fn center(&self) -> [f64; 3] {
-        [0, 1, 2].map(|i| 0.5 * (self.min[i] + self.max[i]))
-    }
-    pub fn half_extents(&self) -> [f64; 3] {
-        [0, 1, 2].map(|i| 0.5 * (self.max[i] - self.min[i]))
-    }
-    pub fn is_finite(&self) -> bool {
-        self.min.iter().chain(&self.max).all(|v| v.is_finite())
-    }
-    /// Whether `p` lies inside or on the box.
-    pub fn contains(&self, p: [f64; 3]) -> bool {
-        (0..3).all(|i| self.min[i] <= p[i] && p[i] <= self.max[i])
-    }
-    /// The smallest box containing both.
-    pub fn union(&self, o: &Aabb) -> Aabb {
-        Aabb { min: [0, 1, 2].map(|i| self.min[i].min(o.min[i])), max: [0, 1, 2].map(|i| self.max[i].max(o.max[i])) }
-    }
-    /// The overlap of both. Disjoint boxes bound an empty shape; the result is then a flat box between them (any box
-    /// bounds nothing), so the extents never go negative.
-    pub fn intersection(&self, o: &Aabb) -> Aabb {
-        let mut b = Aabb {
-            min: [0, 1, 2].map(|i| self.min[i].max(o.min[i])),
-            max: [0, 1, 2].map(|i| self.max[i].min(o.max[i])),
-        };
-        for i in 0..3 {
-            if b.min[i] > b.max[i] {
-                let mid = 0.5 * (b.min[i] + b.max[i]);
-                b.min[i] = mid;
-                b.max[i] = mid;
-            }
-        }
-        b
-    }
-    /// Grown by `by[i]` on both sides of axis i.
-    pub fn grow3(&self, by: [f64; 3]) -> Aabb {
-        Aabb { min: [0, 1, 2].map(|i| self.min[i] - by[i]), max: [0, 1, 2].map(|i| self.max[i] + by[i]) }
-    }
-    /// Grown by `by` on every side.
-    pub fn grow(&self, by: f64) -> Aabb {
-        self.grow3([by; 3])
-    }
-    /// The box swept when moved by any offset whose components lie in `lo[i]..=hi[i]`.
-    pub fn translate(&self, lo: [f64; 3], hi: [f64; 3]) -> Aabb {
-        Aabb { min: [0, 1, 2].map(|i| self.min[i] + lo[i]), max: [0, 1, 2].map(|i| self.max[i] + hi[i]) }
-    }
-    /// The box scaled about the origin by a factor `s`.
-    pub fn scale(&self, s: f64) -> Aabb {
-        let a = self.min.map(|v| v * s);
-        let b = self.max.map(|v| v * s);
-        Aabb { min: [0, 1, 2].map(|i| a[i].min(b[i])), max: [0, 1, 2].map(|i| a[i].max(b[i])) }
-    }
-    pub fn corners(&self) -> [[f64; 3]; 8] {
-        std::array::from_fn(|k| [0, 1, 2].map(|i| if k >> i & 1 == 0 { self.min[i] } else { self.max[i] }))
-    }
-    /// The box of a set of points (`None` for none).
-    pub fn of_points(points: impl IntoIterator<Item = [f64; 3]>) -> Option<Aabb> {
-        points.into_iter().map(|p| Aabb { min: p, max: p }).reduce(|a, b| a.union(&b))
-    }
-}
+pub use crate::geom::Aabb;
+use crate::ir::prim::ArgRange;
+use crate::ir::{ArgValue, Axis, Fractal, FractalKind, Node, Prim, Vec3Expr};
 
 /// Signed distance from `p` to the box, by the same formula as [`crate::sdf::sd_box`] (so a guard computed here and one
 /// computed in a kernel agree).
@@ -336,40 +259,20 @@ fn rodrigues(p: [f64; 3], k: [f64; 3], s: f64, c: f64) -> [f64; 3] {
     [0, 1, 2].map(|i| p[i] * c + cross[i] * s + k[i] * dot * (1.0 - c))
 }
 
+/// A primitive's bound, as its declaration computes it from the arguments' ranges.
 fn prim_bound(p: &Prim) -> Bound {
-    let hi = |e: &Expr| range(e).hi.max(0.0);
-    let max_abs = |e: &Expr| range(e).max_abs();
-    let b = match p {
-        Prim::Sphere { radius } => Aabb::cube(hi(radius)),
-        // |p_i| ≤ half_i inside the box; the rounded box keeps its outer size.
-        Prim::Box { half } | Prim::RoundBox { half, .. } => Aabb::centered(half.0.each_ref().map(hi)),
-        Prim::Torus { major, minor } => {
-            let r = max_abs(major) + hi(minor);
-            Aabb::centered([r, hi(minor), r])
-        }
-        Prim::Capsule { a, b, radius } => {
-            let (a, b) = (ranges(a), ranges(b));
-            let r = hi(radius);
-            Aabb { min: [0, 1, 2].map(|i| a[i].lo.min(b[i].lo) - r), max: [0, 1, 2].map(|i| a[i].hi.max(b[i].hi) + r) }
-        }
-        Prim::Cylinder { radius, half_height } => Aabb::centered([hi(radius), hi(half_height), hi(radius)]),
-        Prim::Cone { half_height, bottom, top } => {
-            let r = max_abs(bottom).max(max_abs(top));
-            Aabb::centered([r, max_abs(half_height), r])
-        }
-        Prim::Plane { .. } => return Bound::UNBOUNDED,
-        Prim::Octahedron { size } => Aabb::cube(hi(size)),
-        Prim::Ellipsoid { radii } => {
-            let r = ranges(radii);
-            // IQ's ellipsoid estimate falls short of the distance by up to the ratio of its radii.
-            let smallest = r.iter().map(|i| i.min_abs()).fold(f64::INFINITY, f64::min);
-            let largest = r.iter().map(|i| i.max_abs()).fold(0.0, f64::max);
-            let b = Aabb::centered(r.map(|i| i.max_abs()));
-            let reach = if largest > 0.0 { smallest / largest } else { 0.0 };
-            return Bound { reach, exact_guard: false, ..Bound::exact(b) }.map(Some);
-        }
-    };
-    Bound::exact(b).map(Some)
+    let ranges: Vec<ArgRange> = p
+        .args
+        .iter()
+        .map(|a| match a {
+            ArgValue::Num(e) => ArgRange::Num(range(e)),
+            ArgValue::Vec3(v) => ArgRange::Vec3(ranges(v)),
+        })
+        .collect();
+    match (p.decl().bound)(&ranges) {
+        Some(b) => Bound { aabb: Some(b.aabb), reach: b.reach, exact_guard: b.reach >= 1.0 }.map(Some),
+        None => Bound::UNBOUNDED,
+    }
 }
 
 // ---- fractal radii (measured; the bounds tests re-check them) --------------------------------------------------------

@@ -112,21 +112,13 @@ pub fn fold_node(n: &Node) -> Node {
 }
 
 fn fold_prim(p: &Prim) -> Prim {
-    let f = fold_expr;
-    match p {
-        Prim::Sphere { radius } => Prim::Sphere { radius: f(radius) },
-        Prim::Box { half } => Prim::Box { half: fold_v3(half) },
-        Prim::RoundBox { half, radius } => Prim::RoundBox { half: fold_v3(half), radius: f(radius) },
-        Prim::Torus { major, minor } => Prim::Torus { major: f(major), minor: f(minor) },
-        Prim::Capsule { a, b, radius } => Prim::Capsule { a: fold_v3(a), b: fold_v3(b), radius: f(radius) },
-        Prim::Cylinder { radius, half_height } => Prim::Cylinder { radius: f(radius), half_height: f(half_height) },
-        Prim::Cone { half_height, bottom, top } => {
-            Prim::Cone { half_height: f(half_height), bottom: f(bottom), top: f(top) }
+    let mut folded = p.clone();
+    for a in &mut folded.args {
+        for e in a.exprs_mut() {
+            *e = fold_expr(e);
         }
-        Prim::Plane { normal, offset } => Prim::Plane { normal: fold_v3(normal), offset: f(offset) },
-        Prim::Octahedron { size } => Prim::Octahedron { size: f(size) },
-        Prim::Ellipsoid { radii } => Prim::Ellipsoid { radii: fold_v3(radii) },
     }
+    folded
 }
 
 fn fold_fractal(fr: &Fractal) -> Fractal {

@@ -275,20 +275,15 @@ impl Compiler<'_> {
     }
 
     fn prim(&self, p: &Prim) -> LeafCall {
-        let n = |e: &Expr| ArgTerm::Num(self.num(e));
-        let v = |e: &Vec3Expr| ArgTerm::Vec(self.num3(e));
-        match p {
-            Prim::Sphere { radius } => self.call(Leaf::SdSphere, vec![n(radius)]),
-            Prim::Box { half } => self.call(Leaf::SdBox, vec![v(half)]),
-            Prim::RoundBox { half, radius } => self.call(Leaf::SdRoundBox, vec![v(half), n(radius)]),
-            Prim::Torus { major, minor } => self.call(Leaf::SdTorus, vec![n(major), n(minor)]),
-            Prim::Capsule { a, b, radius } => self.call(Leaf::SdCapsule, vec![v(a), v(b), n(radius)]),
-            Prim::Cylinder { radius, half_height } => self.call(Leaf::SdCylinder, vec![n(radius), n(half_height)]),
-            Prim::Cone { half_height, bottom, top } => self.call(Leaf::SdCone, vec![n(half_height), n(bottom), n(top)]),
-            Prim::Plane { normal, offset } => self.call(Leaf::SdPlane, vec![v(normal), n(offset)]),
-            Prim::Octahedron { size } => self.call(Leaf::SdOctahedron, vec![n(size)]),
-            Prim::Ellipsoid { radii } => self.call(Leaf::SdEllipsoid, vec![v(radii)]),
-        }
+        let args = p
+            .args
+            .iter()
+            .map(|a| match a {
+                ArgValue::Num(e) => ArgTerm::Num(self.num(e)),
+                ArgValue::Vec3(v) => ArgTerm::Vec(self.num3(v)),
+            })
+            .collect();
+        self.call(p.decl().leaf, args)
     }
 
     fn fractal(&self, f: &Fractal) -> LeafCall {

@@ -5,60 +5,10 @@
 //! Numbers are [`Expr`]s so that `t` and `param(..)` can stand wherever a literal can.
 
 mod expr;
+pub mod prim;
 
 pub use expr::{BinOp, Expr, Func, ParamDecl, Vec3Expr, Vec4Expr};
-
-/// Exact signed-distance primitives. Each is 1-Lipschitz and, except where noted, the exact Euclidean distance.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Prim {
-    Sphere {
-        radius: Expr,
-    },
-    /// Axis-aligned box centred at the origin, `half` its half extents.
-    Box {
-        half: Vec3Expr,
-    },
-    /// A box of half extents `half` with edges rounded by `radius` (the outer size stays `half`).
-    RoundBox {
-        half: Vec3Expr,
-        radius: Expr,
-    },
-    /// Torus in the xz plane: `major` is the ring radius, `minor` the tube radius.
-    Torus {
-        major: Expr,
-        minor: Expr,
-    },
-    /// Segment from `a` to `b` swept by a sphere of `radius`.
-    Capsule {
-        a: Vec3Expr,
-        b: Vec3Expr,
-        radius: Expr,
-    },
-    /// Capped cylinder along y.
-    Cylinder {
-        radius: Expr,
-        half_height: Expr,
-    },
-    /// Capped cone along y: radius `bottom` at y = -half_height, `top` at y = +half_height.
-    Cone {
-        half_height: Expr,
-        bottom: Expr,
-        top: Expr,
-    },
-    /// Half-space `dot(p, normal) + offset <= 0`; `normal` is normalised by the builder. Unbounded.
-    Plane {
-        normal: Vec3Expr,
-        offset: Expr,
-    },
-    /// Regular octahedron `|x|+|y|+|z| = size`.
-    Octahedron {
-        size: Expr,
-    },
-    /// Ellipsoid with semi-axes `radii`: a lower bound of the distance, not exact (IQ's bound).
-    Ellipsoid {
-        radii: Vec3Expr,
-    },
-}
+pub use prim::{ArgValue, Prim, PrimDecl, PrimKind};
 
 /// The fractal families. Their distance estimators are not exactly 1-Lipschitz, so each carries a measured step
 /// factor ([`FractalKind::step_factor`], set by `analyse`).

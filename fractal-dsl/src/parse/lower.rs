@@ -220,7 +220,7 @@ impl Lower {
             let receiver = m.receiver.map(Ty::name).unwrap_or("value");
             format!("`{name}` is a method: write {receiver}.{name}(..)")
         } else {
-            let candidates = vocab::NAMES.iter().copied().chain(vocab::FUNCTIONS.iter().map(|f| f.name));
+            let candidates = vocab::NAMES.iter().copied().chain(vocab::functions().map(|f| f.name));
             match vocab::suggest(&name, candidates) {
                 Some(s) => format!("unknown name `{name}`; did you mean `{s}`?"),
                 None => format!("unknown name `{name}` (the names are `t`, the time in seconds, and `PI`)"),
@@ -281,7 +281,7 @@ impl Lower {
                 let receiver = m.receiver.map(Ty::name).unwrap_or("value");
                 format!("`{name}` is a method, not a function: write {receiver}.{name}(..)")
             } else {
-                match vocab::suggest(&name, vocab::FUNCTIONS.iter().map(|f| f.name)) {
+                match vocab::suggest(&name, vocab::functions().map(|f| f.name)) {
                     Some(s) => format!("unknown function `{name}`; did you mean `{s}`?"),
                     None => format!("unknown function `{name}`"),
                 }
@@ -379,7 +379,7 @@ impl Lower {
             values.push_back(self.argument(entry, param, arg, depth + 1)?);
         }
 
-        let value = (entry.build)(&mut Args(values)).map_err(|m| syn::Error::new(name_span, m))?;
+        let value = entry.build(&mut Args(values)).map_err(|m| syn::Error::new(name_span, m))?;
         let problems = self.check(entry, &value).map_err(|m| syn::Error::new(name_span, m))?;
         match problems.into_iter().next() {
             None => Ok(value),

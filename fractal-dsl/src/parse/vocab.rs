@@ -2,10 +2,14 @@
 //! the builder call that gives it meaning. Arity and type errors are produced from this table, so they read the same
 //! for every word; nothing here decides what a word means beyond naming the builder function.
 
+use std::borrow::Cow;
 use std::collections::VecDeque;
+use std::sync::OnceLock;
 
 use crate::builder::{self as b, Color, ShapeExt};
+use crate::ir::prim::ArgShape;
 use crate::ir::*;
+use crate::prims::decl::PRIMS;
 
 /// The type of a value or of an argument slot.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -131,6 +135,7 @@ impl Value {
 }
 
 /// One argument slot of a signature. A `many` slot takes one or more values.
+#[derive(Clone)]
 pub(crate) struct Param {
     pub name: &'static str,
     pub ty: Ty,
@@ -145,22 +150,65 @@ const fn many(name: &'static str, ty: Ty) -> Param {
 }
 
 /// Builds the value of a call from its coerced arguments (the receiver first, for methods).
-pub(crate) type Build = fn(&mut Args) -> Result<Value, String>;
+pub(crate) type BuildFn = fn(&mut Args) -> Result<Value, String>;
+
+/// What gives a call its meaning: a builder call, or a declared primitive ([`crate::prims`]).
+pub(crate) enum Build {
+    Fn(BuildFn),
+    Prim(&'static PrimDecl),
+}
 
 /// A function (`receiver: None`) or a method of the language.
 pub(crate) struct Entry {
     pub name: &'static str,
     pub receiver: Option<Ty>,
-    pub params: &'static [Param],
+    pub params: Cow<'static, [Param]>,
     pub result: Ty,
     pub build: Build,
 }
 
-const fn fun(name: &'static str, params: &'static [Param], result: Ty, build: Build) -> Entry {
-    Entry { name, receiver: None, params, result, build }
+const fn fun(name: &'static str, params: &'static [Param], result: Ty, build: BuildFn) -> Entry {
+    Entry { name, receiver: None, params: Cow::Borrowed(params), result, build: Build::Fn(build) }
 }
-const fn meth(receiver: Ty, name: &'static str, params: &'static [Param], result: Ty, build: Build) -> Entry {
-    Entry { name, receiver: Some(receiver), params, result, build }
+const fn meth(receiver: Ty, name: &'static str, params: &'static [Param], result: Ty, build: BuildFn) -> Entry {
+    Entry { name, receiver: Some(receiver), params: Cow::Borrowed(params), result, build: Build::Fn(build) }
+}
+
+/// The signature of a declared primitive: its arguments as the declaration types them.
+fn prim_entry(decl: &'static PrimDecl) -> Entry {
+    let params = decl
+        .args
+        .iter()
+        .map(|a| Param {
+            name: a.name,
+            ty: match a.shape {
+                ArgShape::Number => Ty::Number,
+                ArgShape::Vec3 => Ty::Vec3,
+            },
+            many: false,
+        })
+        .collect();
+    Entry { name: decl.name, receiver: None, params: Cow::Owned(params), result: Ty::Shape, build: Build::Prim(decl) }
+}
+
+impl Entry {
+    /// Builds the value of a call from its coerced arguments (the receiver first, for methods).
+    pub(crate) fn build(&self, args: &mut Args) -> Result<Value, String> {
+        match self.build {
+            Build::Fn(f) => f(args),
+            Build::Prim(decl) => {
+                let mut values = Vec::with_capacity(decl.args.len());
+                for _ in decl.args {
+                    values.push(match args.0.pop_front() {
+                        Some(Value::Number(e)) => ArgValue::Num(e),
+                        Some(Value::Vec3(v)) => ArgValue::Vec3(v),
+                        _ => return Err(mismatch()),
+                    });
+                }
+                Ok(Value::Shape(decl.node(values)))
+            }
+        }
+    }
 }
 
 impl Entry {
@@ -312,25 +360,6 @@ pub(crate) static FUNCTIONS: &[Entry] = &[
     fun("rgb", &[p("r", T::Number), p("g", T::Number), p("b", T::Number)], T::Color, |a| {
         Ok(Value::Color(b::rgb(a.num()?, a.num()?, a.num()?)))
     }),
-    // ---- primitives
-    fun("sphere", &[p("radius", T::Number)], T::Shape, |a| shape(b::sphere(a.num()?))),
-    fun("box3", &[p("half", T::Vec3)], T::Shape, |a| shape(b::box3(a.vec3()?))),
-    fun("round_box", &[p("half", T::Vec3), p("radius", T::Number)], T::Shape, |a| {
-        shape(b::round_box(a.vec3()?, a.num()?))
-    }),
-    fun("torus", &[p("major", T::Number), p("minor", T::Number)], T::Shape, |a| shape(b::torus(a.num()?, a.num()?))),
-    fun("capsule", &[p("a", T::Vec3), p("b", T::Vec3), p("radius", T::Number)], T::Shape, |a| {
-        shape(b::capsule(a.vec3()?, a.vec3()?, a.num()?))
-    }),
-    fun("cylinder", &[p("radius", T::Number), p("half_height", T::Number)], T::Shape, |a| {
-        shape(b::cylinder(a.num()?, a.num()?))
-    }),
-    fun("cone", &[p("half_height", T::Number), p("bottom", T::Number), p("top", T::Number)], T::Shape, |a| {
-        shape(b::cone(a.num()?, a.num()?, a.num()?))
-    }),
-    fun("plane", &[p("normal", T::Vec3), p("offset", T::Number)], T::Shape, |a| shape(b::plane(a.vec3()?, a.num()?))),
-    fun("octahedron", &[p("size", T::Number)], T::Shape, |a| shape(b::octahedron(a.num()?))),
-    fun("ellipsoid", &[p("radii", T::Vec3)], T::Shape, |a| shape(b::ellipsoid(a.vec3()?))),
     // ---- fractals
     fun("mandelbulb", &[p("power", T::Number)], T::Fractal, |a| fractal(b::mandelbulb(a.num()?))),
     fun("menger", &[p("levels", T::Int)], T::Fractal, |a| fractal(b::menger(a.int()?))),
@@ -478,8 +507,14 @@ pub(crate) static METHODS: &[Entry] = &[
 /// Names that stand alone (not called).
 pub(crate) const NAMES: &[&str] = &["t", "PI"];
 
+/// Every free function: the table above, then the declared primitives.
+pub(crate) fn functions() -> impl Iterator<Item = &'static Entry> {
+    static PRIM_ENTRIES: OnceLock<Vec<Entry>> = OnceLock::new();
+    FUNCTIONS.iter().chain(PRIM_ENTRIES.get_or_init(|| PRIMS.iter().copied().map(prim_entry).collect()).iter())
+}
+
 pub(crate) fn function(name: &str) -> Option<&'static Entry> {
-    FUNCTIONS.iter().find(|e| e.name == name)
+    functions().find(|e| e.name == name)
 }
 
 pub(crate) fn method(name: &str) -> Option<&'static Entry> {
