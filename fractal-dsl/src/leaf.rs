@@ -1,13 +1,9 @@
-//! The table of leaf functions: each formula of [`crate::sdf`] with its name, typed parameters and result, and one
-//! dispatcher ([`Leaf::eval`]) that calls it in any [`Num`]. The scene walker calls leaves through [`CallLeaf`], so
-//! scalars run the formula directly while the tracer records a call of a named kernel function and traces that
-//! function's body once ([`crate::lower::trace`]).
-//!
-//! Adding a leaf function: write it in `sdf.rs`, add its row here.
+//! What a table of leaf functions is made of: argument and result kinds, argument and result values, and the
+//! [`leaves!`] macro that writes the table — the `Leaf` enum with each function's name, typed parameters and result,
+//! and one dispatcher that calls it in any [`Num`]. The table itself stands in `sdf.rs`, beside the functions.
 
 use crate::math::V3;
 use crate::num::Num;
-use crate::sdf;
 
 /// The type of a leaf function's parameter.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -69,39 +65,30 @@ impl<F: Copy> LeafOut<F> {
     }
 }
 
-/// How a number type calls a leaf function: directly (the default), or — when tracing — as a call of the named
-/// function the kernel defines once.
-pub trait CallLeaf: Num {
-    #[inline(always)]
-    fn leaf(leaf: Leaf, args: &[LeafArg<Self>]) -> LeafOut<Self> {
-        leaf.eval(args)
-    }
-}
-
-impl CallLeaf for f32 {}
-impl CallLeaf for f64 {}
-
+/// Takes the next argument of a leaf call as the declared kind (used by [`leaves!`]).
 macro_rules! take {
     ($it:ident, F) => {
         match $it.next() {
-            Some(LeafArg::F(v)) => *v,
+            Some($crate::leaf::LeafArg::F(v)) => *v,
             _ => unreachable!("leaf arguments are built from Leaf::params"),
         }
     };
     ($it:ident, V3) => {
         match $it.next() {
-            Some(LeafArg::V3(v)) => *v,
+            Some($crate::leaf::LeafArg::V3(v)) => *v,
             _ => unreachable!("leaf arguments are built from Leaf::params"),
         }
     };
     ($it:ident, Count) => {
         match $it.next() {
-            Some(LeafArg::Count(v)) => *v,
+            Some($crate::leaf::LeafArg::Count(v)) => *v,
             _ => unreachable!("leaf arguments are built from Leaf::params"),
         }
     };
 }
 
+/// Writes the leaf table: `Variant => function(param: Kind, ..) -> Result;` rows, Kind one of F, V3, Count and
+/// Result F or Pair, each row naming a function of the module it is written in.
 macro_rules! leaves {
     ($($variant:ident => $func:ident($($arg:ident: $kind:ident),*) -> $ret:ident;)*) => {
         /// A leaf function of [`crate::sdf`]; the kernels name it [`Leaf::name`].
@@ -122,54 +109,37 @@ macro_rules! leaves {
             }
 
             /// Parameter names and types, in order.
-            pub fn params(self) -> &'static [(&'static str, ArgKind)] {
+            pub fn params(self) -> &'static [(&'static str, $crate::leaf::ArgKind)] {
                 match self {
-                    $(Leaf::$variant => &[$((stringify!($arg), ArgKind::$kind),)*],)*
+                    $(Leaf::$variant => &[$((stringify!($arg), $crate::leaf::ArgKind::$kind),)*],)*
                 }
             }
 
-            pub fn returns(self) -> RetKind {
+            pub fn returns(self) -> $crate::leaf::RetKind {
                 match self {
-                    $(Leaf::$variant => RetKind::$ret,)*
+                    $(Leaf::$variant => $crate::leaf::RetKind::$ret,)*
                 }
             }
 
             /// Runs the formula in `F` on arguments of the types [`Leaf::params`] lists.
             #[inline(always)]
-            pub fn eval<F: Num>(self, args: &[LeafArg<F>]) -> LeafOut<F> {
+            pub fn eval<F: $crate::num::Num>(
+                self,
+                args: &[$crate::leaf::LeafArg<F>],
+            ) -> $crate::leaf::LeafOut<F> {
                 #[allow(unused_mut, unused_variables)]
                 let mut it = args.iter();
                 match self {
                     $(Leaf::$variant => {
-                        $(let $arg = take!(it, $kind);)*
-                        leaves!(@ret $ret, sdf::$func($($arg),*))
+                        $(let $arg = $crate::leaf::take!(it, $kind);)*
+                        $crate::leaf::leaves!(@ret $ret, $func($($arg),*))
                     })*
                 }
             }
         }
     };
-    (@ret F, $e:expr) => { LeafOut::F($e) };
-    (@ret Pair, $e:expr) => { LeafOut::Pair($e) };
+    (@ret F, $e:expr) => { $crate::leaf::LeafOut::F($e) };
+    (@ret Pair, $e:expr) => { $crate::leaf::LeafOut::Pair($e) };
 }
 
-leaves! {
-    SdSphere => sd_sphere(p: V3, r: F) -> F;
-    SdBox => sd_box(p: V3, b: V3) -> F;
-    SdRoundBox => sd_round_box(p: V3, b: V3, r: F) -> F;
-    SdTorus => sd_torus(p: V3, major: F, minor: F) -> F;
-    SdCapsule => sd_capsule(p: V3, a: V3, b: V3, r: F) -> F;
-    SdCylinder => sd_cylinder(p: V3, r: F, h: F) -> F;
-    SdCone => sd_cone(p: V3, h: F, r1: F, r2: F) -> F;
-    SdPlane => sd_plane(p: V3, n: V3, offset: F) -> F;
-    SdOctahedron => sd_octahedron(p: V3, s: F) -> F;
-    SdEllipsoid => sd_ellipsoid(p: V3, r: V3) -> F;
-    SmoothMin => smooth_min(a: F, b: F, k: F) -> F;
-    SmoothMax => smooth_max(a: F, b: F, k: F) -> F;
-    BlendWeight => blend_weight(a: F, b: F, k: F) -> F;
-    DeMandelbulb => de_mandelbulb(p: V3, power: F, iterations: Count, bailout: F) -> Pair;
-    DeMandelbulb8 => de_mandelbulb8(p: V3, iterations: Count, bailout: F) -> Pair;
-    DeMenger => de_menger(p: V3, levels: Count) -> Pair;
-    DeSierpinski => de_sierpinski(p: V3, levels: Count) -> Pair;
-    DeJulia => de_julia(p: V3, cx: F, cy: F, cz: F, cw: F, iterations: Count, bailout: F) -> Pair;
-    DeMandelbox => de_mandelbox(p: V3, scale: F, iterations: Count, min_radius: F, fold_limit: F) -> Pair;
-}
+pub(crate) use {leaves, take};

@@ -12,7 +12,7 @@ use decl::*;
 pub mod decl {
     use crate::geom::Aabb;
     use crate::ir::prim::{ArgShape, PrimArg, PrimBound, PrimDecl, Rule};
-    use crate::leaf::Leaf;
+    use crate::sdf::Leaf;
 
     const fn num(name: &'static str, what: &'static str, rule: Rule) -> PrimArg {
         PrimArg { name, what, shape: ArgShape::Number, rule }

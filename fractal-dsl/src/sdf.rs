@@ -2,9 +2,45 @@
 //! once, generic over [`Num`]. `f32` and `f64` run them directly (interpreter, native evaluator, reference); the
 //! tracer records them into the kernels' named functions (`sd_box`, `de_mandelbulb8`, …) and a lane type runs them a
 //! packet at a time. So they branch with [`select`] and loop with [`Num::iterate`] (see [`crate::num`]), and the guard
-//! constants below reach every kernel as traced literals. [`crate::leaf`] lists them with their signatures.
+//! constants below reach every kernel as traced literals. The table just below lists them with their signatures.
 
+use crate::leaf::{leaves, LeafArg, LeafOut};
 use crate::math::*;
+
+// The leaf table: every function below with its parameters' kinds and its result ([`crate::leaf`]).
+leaves! {
+    SdSphere => sd_sphere(p: V3, r: F) -> F;
+    SdBox => sd_box(p: V3, b: V3) -> F;
+    SdRoundBox => sd_round_box(p: V3, b: V3, r: F) -> F;
+    SdTorus => sd_torus(p: V3, major: F, minor: F) -> F;
+    SdCapsule => sd_capsule(p: V3, a: V3, b: V3, r: F) -> F;
+    SdCylinder => sd_cylinder(p: V3, r: F, h: F) -> F;
+    SdCone => sd_cone(p: V3, h: F, r1: F, r2: F) -> F;
+    SdPlane => sd_plane(p: V3, n: V3, offset: F) -> F;
+    SdOctahedron => sd_octahedron(p: V3, s: F) -> F;
+    SdEllipsoid => sd_ellipsoid(p: V3, r: V3) -> F;
+    SmoothMin => smooth_min(a: F, b: F, k: F) -> F;
+    SmoothMax => smooth_max(a: F, b: F, k: F) -> F;
+    BlendWeight => blend_weight(a: F, b: F, k: F) -> F;
+    DeMandelbulb => de_mandelbulb(p: V3, power: F, iterations: Count, bailout: F) -> Pair;
+    DeMandelbulb8 => de_mandelbulb8(p: V3, iterations: Count, bailout: F) -> Pair;
+    DeMenger => de_menger(p: V3, levels: Count) -> Pair;
+    DeSierpinski => de_sierpinski(p: V3, levels: Count) -> Pair;
+    DeJulia => de_julia(p: V3, cx: F, cy: F, cz: F, cw: F, iterations: Count, bailout: F) -> Pair;
+    DeMandelbox => de_mandelbox(p: V3, scale: F, iterations: Count, min_radius: F, fold_limit: F) -> Pair;
+}
+
+/// How a number type calls a leaf function: directly (the default), or — when tracing — as a call of the named
+/// function the kernel defines once.
+pub trait CallLeaf: Num {
+    #[inline(always)]
+    fn leaf(leaf: Leaf, args: &[LeafArg<Self>]) -> LeafOut<Self> {
+        leaf.eval(args)
+    }
+}
+
+impl CallLeaf for f32 {}
+impl CallLeaf for f64 {}
 
 /// Smallest divisor used where a formula divides by a user value that may be zero (smooth blend k, capsule length).
 pub const TINY: f64 = 1e-30;

@@ -7,10 +7,11 @@ mod common;
 
 use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
-use fractal_dsl::leaf::{ArgKind, Leaf, LeafArg, LeafOut};
+use fractal_dsl::leaf::{ArgKind, LeafArg, LeafOut};
 use fractal_dsl::lower::code::{Body, CmpOp, LogicOp, MathFn, Op, Stmt, Ty, Val};
 use fractal_dsl::lower::trace::trace_leaf;
 use fractal_dsl::math::{v3, Carry, Mask, Num, V3};
+use fractal_dsl::sdf::Leaf;
 
 // ---- a trivial lane type: four f32 lanes, every operation lane-wise -------------------------------------------------
 

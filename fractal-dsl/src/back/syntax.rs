@@ -5,9 +5,9 @@
 use std::fmt::Write;
 
 use super::Level;
-use crate::leaf::Leaf;
 use crate::lower::code::{Body, LogicOp, MathFn, Op, Stmt, Ty, Val};
 use crate::lower::SampleVals;
+use crate::sdf::Leaf;
 
 /// How one language spells values and statements. Operations every language spells alike (arithmetic, negation,
 /// comparisons) are spelled by the walker.

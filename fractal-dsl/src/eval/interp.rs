@@ -7,8 +7,8 @@ use crate::eval::plan::Plan;
 use crate::eval::walk::Walk;
 use crate::eval::{Env, Evaluator, Sample};
 use crate::ir::*;
-use crate::leaf::CallLeaf;
 use crate::math::{Real, V3};
+use crate::sdf::CallLeaf;
 
 /// Evaluates a scene by walking its plan; see [`crate::eval`] for the rules.
 #[derive(Clone, Debug)]

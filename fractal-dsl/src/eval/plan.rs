@@ -6,9 +6,10 @@
 use crate::analyse::{fold, guarded_bound, union_order};
 use crate::eval::Env;
 use crate::ir::*;
-use crate::leaf::{Leaf, LeafArg};
+use crate::leaf::LeafArg;
 use crate::math::{v3, V3};
 use crate::num::Num;
+use crate::sdf::Leaf;
 
 /// A compiled scalar expression.
 #[derive(Clone, Debug)]

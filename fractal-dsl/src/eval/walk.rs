@@ -5,8 +5,9 @@
 
 use crate::eval::plan::{Guard, LeafCall, Mat, Paint, PerAxis, Plan, Step};
 use crate::eval::{Env, Sample};
-use crate::leaf::{CallLeaf, Leaf, LeafArg, LeafOut};
+use crate::leaf::{LeafArg, LeafOut};
 use crate::math::*;
+use crate::sdf::{CallLeaf, Leaf};
 
 /// Most arguments a leaf function takes, the point included.
 const MAX_LEAF_ARGS: usize = 8;

@@ -7,7 +7,7 @@ use std::fmt;
 
 use super::{Expr, Vec3Expr};
 use crate::geom::{Aabb, Interval};
-use crate::leaf::Leaf;
+use crate::sdf::Leaf;
 
 /// The type of a primitive's argument.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

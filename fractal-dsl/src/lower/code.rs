@@ -5,7 +5,7 @@
 use std::collections::HashMap;
 
 use crate::ir::BinOp;
-use crate::leaf::Leaf;
+use crate::sdf::Leaf;
 
 /// The type of a value.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

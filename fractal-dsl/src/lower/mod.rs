@@ -52,7 +52,7 @@ pub struct Program {
     pub distance_result: Val,
     pub sample: Body,
     pub sample_result: SampleVals,
-    /// The leaf functions the bodies call, traced, in [`crate::leaf::Leaf`] order.
+    /// The leaf functions the bodies call, traced, in [`crate::sdf::Leaf`] order.
     pub functions: Vec<Function>,
     /// Uniform parameters, in slot order.
     pub params: Vec<ParamDecl>,

@@ -11,9 +11,10 @@ use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
 use super::code::{Body, Builder, CmpOp, LogicOp, MathFn, Ty, Val};
 use crate::ir::BinOp;
-use crate::leaf::{ArgKind, CallLeaf, Leaf, LeafArg, LeafOut, RetKind};
+use crate::leaf::{ArgKind, LeafArg, LeafOut, RetKind};
 use crate::math::{v3, V3};
 use crate::num::{Carry, Mask, Num};
+use crate::sdf::{CallLeaf, Leaf};
 
 thread_local! {
     /// The builders of the functions being traced on this thread, innermost last.

@@ -7,9 +7,9 @@ use std::fmt::Write;
 
 use crate::back::syntax::{self, common_math_name, Syntax};
 use crate::back::Level;
-use crate::leaf::Leaf;
 use crate::lower::code::{MathFn, Ty};
 use crate::lower::Program;
+use crate::sdf::Leaf;
 
 struct RustSyntax;
 
