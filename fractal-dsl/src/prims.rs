@@ -29,7 +29,7 @@ pub mod decl {
 
     /// Every primitive, in the order documentation lists them.
     pub static PRIMS: &[&PrimDecl] =
-        &[&SPHERE, &BOX3, &ROUND_BOX, &TORUS, &CAPSULE, &CYLINDER, &CONE, &PLANE, &OCTAHEDRON, &ELLIPSOID];
+        &[&SPHERE, &BOX3, &ROUND_BOX, &TORUS, &CAPSULE, &CYLINDER, &CONE, &PLANE, &OCTAHEDRON, &HEX_PRISM, &ELLIPSOID];
 
     pub static SPHERE: PrimDecl = PrimDecl {
         name: "sphere",
@@ -133,6 +133,19 @@ pub mod decl {
         not_all_zero: None,
     };
 
+    pub static HEX_PRISM: PrimDecl = PrimDecl {
+        name: "hex_prism",
+        doc: "a hexagonal prism along y: inradius `radius` in the xz plane, `half_height` above and below",
+        args: &[num("radius", "hex_prism radius", Positive), num("half_height", "hex_prism half_height", Positive)],
+        leaf: Leaf::SdHexPrism,
+        // The corners lie at 2/√3 of the inradius (a hair more, so rounding never puts one outside).
+        bound: |a| {
+            let corner = a[0].hi() * 1.154_700_6;
+            PrimBound::exact(Aabb::centered([corner, a[1].hi(), corner]))
+        },
+        not_all_zero: None,
+    };
+
     pub static ELLIPSOID: PrimDecl = PrimDecl {
         name: "ellipsoid",
         doc: "an ellipsoid of semi-axes `radii` (a lower bound of the distance, not exact)",
@@ -188,6 +201,11 @@ pub fn plane(normal: impl Into<Vec3Expr>, offset: impl Into<Expr>) -> Node {
 
 pub fn octahedron(size: impl Into<Expr>) -> Node {
     OCTAHEDRON.node(vec![size.into().into()])
+}
+
+/// Hexagonal prism along y with inradius `radius`.
+pub fn hex_prism(radius: impl Into<Expr>, half_height: impl Into<Expr>) -> Node {
+    HEX_PRISM.node(vec![radius.into().into(), half_height.into().into()])
 }
 
 pub fn ellipsoid(radii: impl Into<Vec3Expr>) -> Node {

@@ -18,6 +18,7 @@ leaves! {
     SdCone => sd_cone(p: V3, h: F, r1: F, r2: F) -> F;
     SdPlane => sd_plane(p: V3, n: V3, offset: F) -> F;
     SdOctahedron => sd_octahedron(p: V3, s: F) -> F;
+    SdHexPrism => sd_hex_prism(p: V3, r: F, h: F) -> F;
     SdEllipsoid => sd_ellipsoid(p: V3, r: V3) -> F;
     SmoothMin => smooth_min(a: F, b: F, k: F) -> F;
     SmoothMax => smooth_max(a: F, b: F, k: F) -> F;
@@ -138,6 +139,24 @@ pub fn sd_octahedron<F: Num>(p: V3<F>, s: F) -> F {
     let k = clamp(c::<F>(0.5) * (q.z - q.y + s), c(0.0), s);
     let to_edge = length(v3(q.x, q.y - s + k, q.z - k));
     select(in_x | in_y | in_z, to_edge, m * c(INV_SQRT3))
+}
+
+/// IQ's exact hexagonal prism along y: the hexagon in the xz plane has inradius `r` (its flat sides face ±z), the
+/// prism extends `h` above and below.
+#[inline(always)]
+pub fn sd_hex_prism<F: Num>(p: V3<F>, r: F, h: F) -> F {
+    // The edge normal of the 30° sector and tan(30°).
+    let (kx, kz, tan30) = (c::<F>(-0.866_025_403_784_438_6), c::<F>(0.5), c::<F>(INV_SQRT3));
+    let a = abs3(p);
+    // Fold the 60° wedge onto the sector whose flat side is z = r.
+    let fold = c::<F>(2.0) * min(kx * a.x + kz * a.z, c(0.0));
+    let (x, z) = (a.x - fold * kx, a.z - fold * kz);
+    let ex = x - clamp(x, -tan30 * r, tan30 * r);
+    let ez = z - r;
+    let across = sqrt(ex * ex + ez * ez) * select(lt(ez, c(0.0)), c(-1.0), c(1.0));
+    let along = a.y - h;
+    let (ox, oy) = (max(across, c(0.0)), max(along, c(0.0)));
+    min(max(across, along), c(0.0)) + sqrt(ox * ox + oy * oy)
 }
 
 /// IQ's ellipsoid bound; at the centre, minus the smallest radius.

@@ -35,6 +35,7 @@ pub fn vocabulary() -> Vec<Row> {
         row!("cone", Exact, { cone(0.8, 0.6, 0.2) }),
         row!("plane", Exact, { plane(vec3(0.3, 1.0, -0.2), 0.4) }),
         row!("octahedron", Exact, { octahedron(1.2) }),
+        row!("hex_prism", Exact, { hex_prism(0.8, 0.5) }),
         row!("ellipsoid", Exact, { ellipsoid(vec3(1.0, 0.5, 0.75)) }),
         // ---- fractals
         row!("mandelbulb(8) trig-free", Mandelbulb, { mandelbulb(8) }).within(1.5),
