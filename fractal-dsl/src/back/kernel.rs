@@ -7,7 +7,7 @@
 use std::fmt::Write;
 
 use super::render::*;
-use super::syntax::{self, Syntax};
+use super::syntax::{self, Prec, Spelling, Syntax};
 use super::{Entry, FrameLayout, Level};
 use crate::ir::{HitEpsilon, Shadows};
 use crate::lower::code::{MathFn, Ty};
@@ -45,6 +45,10 @@ pub trait Dialect {
     }
     /// The conditional expression on a scalar condition.
     fn select(&self, cond: &str, if_true: &str, if_false: &str) -> String;
+    /// How tightly [`Dialect::select`]'s spelling binds.
+    fn select_prec(&self) -> Prec {
+        Prec::Atom
+    }
     /// A field of the frame uniform ([`FrameLayout`]), e.g. `origin.xyz` or `lights[2].xyz`.
     fn frame_field(&self, field: &str) -> String;
 
@@ -125,6 +129,9 @@ impl<D: Dialect> Syntax for GpuSyntax<'_, D> {
     fn select(&self, cond: &str, if_true: &str, if_false: &str) -> String {
         self.0.select(cond, if_true, if_false)
     }
+    fn select_prec(&self) -> Prec {
+        self.0.select_prec()
+    }
     fn if_open(&self, cond: &str) -> String {
         format!("if {} {{", parenthesized(cond))
     }
@@ -143,8 +150,9 @@ pub fn write_functions<D: Dialect>(functions: &[Function], dialect: &D) -> Strin
     for f in functions {
         let params: Vec<(&str, &str)> = f.params.iter().map(|&(name, ty)| (name, dialect.type_name(ty))).collect();
         let _ = writeln!(out, "{}", dialect.function_open(dialect.type_name(f.returns), f.name(), &params));
-        syntax::write_body(&mut out, &f.body, &syn, Level(1));
-        let _ = writeln!(out, "{}return {};", Level(1), syntax::atom(&f.body, &syn, f.result));
+        let spelling = Spelling::new(&f.body, &syn, &[f.result]);
+        spelling.write(&mut out, Level(1));
+        let _ = writeln!(out, "{}return {};", Level(1), spelling.value(f.result));
         out.push_str("}\n\n");
     }
     out
@@ -183,7 +191,18 @@ pub fn write<D: Dialect>(program: &Program, entry: Entry, dialect: &D) -> String
 
 /// A condition as C-like `if`s need it: in parentheses (a comparison spelled in place already is).
 fn parenthesized(cond: &str) -> String {
-    if cond.starts_with('(') && cond.ends_with(')') {
+    // Already wrapped when the opening parenthesis closes at the very end (not `(a) || (b)`).
+    let mut depth = 0usize;
+    let wrapped = cond.starts_with('(')
+        && cond.char_indices().all(|(i, ch)| {
+            match ch {
+                '(' => depth += 1,
+                ')' => depth = depth.saturating_sub(1),
+                _ => {}
+            }
+            depth > 0 || i == cond.len() - 1
+        });
+    if wrapped {
         cond.to_string()
     } else {
         format!("({cond})")
@@ -258,17 +277,17 @@ impl<D: Dialect> Kernel<'_, D> {
         let (p, syn) = (self.p, GpuSyntax(self.d));
         let (float, vec3) = (self.float(), self.vec3());
         self.function_open(float, "scene_de", &[("p", vec3)], p.distance_reads_frame);
-        syntax::write_body(&mut self.out, &p.distance, &syn, Level(1));
-        let result = syntax::atom(&p.distance, &syn, p.distance_result);
+        let spelling = Spelling::new(&p.distance, &syn, &[p.distance_result]);
+        spelling.write(&mut self.out, Level(1));
+        let result = spelling.value(p.distance_result);
         self.line(Level(1), &format!("return {result};"));
         self.function_close();
 
         self.function_open("Sample", "scene_sample", &[("p", vec3)], p.sample_reads_frame);
-        syntax::write_body(&mut self.out, &p.sample, &syn, Level(1));
-        let fields: Vec<(&str, String)> = syntax::sample_fields(&p.sample_result)
-            .into_iter()
-            .map(|(field, v)| (field, syntax::atom(&p.sample, &syn, v)))
-            .collect();
+        let spelling = Spelling::new(&p.sample, &syn, &p.sample_result.all());
+        spelling.write(&mut self.out, Level(1));
+        let fields: Vec<(&str, String)> =
+            syntax::sample_fields(&p.sample_result).into_iter().map(|(field, v)| (field, spelling.value(v))).collect();
         for statement in self.d.sample_return(&fields) {
             self.line(Level(1), &statement);
         }

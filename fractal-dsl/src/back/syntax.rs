@@ -1,11 +1,13 @@
-//! What differs between the languages when spelling lowered code — [`Syntax`] — and the one statement walker all
-//! writers share ([`write_body`]), with the sample result's field names ([`sample_fields`]). The Rust writer frames
+//! What differs between the languages when spelling lowered code — [`Syntax`] — and the one spelling of a body all
+//! writers share ([`Spelling`]), with the sample result's field names ([`sample_fields`]). The Rust writer frames
 //! the bodies itself; the GPU languages' framing is [`super::kernel`].
 
+use std::collections::{HashMap, HashSet};
 use std::fmt::Write;
 
 use super::Level;
-use crate::lower::code::{Body, LogicOp, MathFn, Op, Stmt, Ty, Val};
+use crate::ir::BinOp;
+use crate::lower::code::{is_inline, operands, Body, LogicOp, MathFn, Op, Stmt, Ty, Val};
 use crate::lower::SampleVals;
 use crate::sdf::Leaf;
 
@@ -36,6 +38,10 @@ pub trait Syntax {
         format!("{}({})", leaf.name(), args.join(", "))
     }
     fn select(&self, cond: &str, if_true: &str, if_false: &str) -> String;
+    /// How tightly [`Syntax::select`]'s spelling binds (a call binds like a name).
+    fn select_prec(&self) -> Prec {
+        Prec::Atom
+    }
     fn if_open(&self, cond: &str) -> String;
     /// The first line of a loop running `count` times; `depth` numbers nested loops (0 outermost).
     fn loop_open(&self, count: &str, depth: usize) -> String;
@@ -68,14 +74,6 @@ pub fn common_math_name(f: MathFn) -> &'static str {
     }
 }
 
-/// Spells a value where it is used: inline values in place, everything else by name.
-pub fn atom(body: &Body, syn: &dyn Syntax, v: Val) -> String {
-    match body.op(v) {
-        Some(op) if crate::lower::code::is_inline(op) => spell_op(body, syn, op),
-        _ => name(v),
-    }
-}
-
 /// The sample result's values by field name, in the field order of every language's `Sample`.
 pub fn sample_fields(r: &SampleVals) -> [(&'static str, Val); 6] {
     [
@@ -88,65 +86,197 @@ pub fn sample_fields(r: &SampleVals) -> [(&'static str, Val); 6] {
     ]
 }
 
-fn spell_op(body: &Body, syn: &dyn Syntax, op: &Op) -> String {
-    let a = |v: &Val| atom(body, syn, *v);
+/// How tightly a spelled expression binds, to parenthesise only where the languages need it (C's rules, which
+/// WGSL and Rust share for these operators). A single operation keeps its operand grouping exactly: floating-point
+/// addition is not associative, so `a + (b + c)` keeps its parentheses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Prec {
+    /// `c ? a : b` (OpenCL's select).
+    Ternary,
+    Or,
+    And,
+    Add,
+    Mul,
+    Unary,
+    /// Names, literals, calls, constructors, components, parenthesised comparisons.
+    Atom,
+}
+
+fn bin_prec(op: BinOp) -> Prec {
     match op {
-        Op::Lit(b) => syn.lit(f64::from_bits(b.0)),
-        Op::BoolLit(v) => syn.bool_lit(*v),
-        Op::IntLit(n) => syn.int(*n),
-        Op::Time => syn.time(),
-        Op::Param(i) => syn.param(*i),
-        Op::Arg(name) => name.to_string(),
-        Op::MakeV3(x, y, z) => syn.make_v3(&a(x), &a(y), &a(z)),
-        Op::MakePair(d, t) => syn.make_pair(&a(d), &a(t)),
-        Op::Comp(v, i) => syn.comp(&a(v), body.ty(*v), *i),
-        Op::Neg(v) => format!("-{}", a(v)),
-        Op::Bin(op, x, y) => format!("{} {} {}", a(x), op.symbol(), a(y)),
-        Op::Math(f, args) => syn.math(*f, &args.iter().map(a).collect::<Vec<_>>()),
-        Op::Call(leaf, args) => syn.call(*leaf, &args.iter().map(a).collect::<Vec<_>>()),
-        Op::Cmp(op, x, y) => format!("({} {} {})", a(x), op.symbol(), a(y)),
-        Op::Logic(op, x, y) => {
-            let symbol = match op {
-                LogicOp::And => "&&",
-                LogicOp::Or => "||",
-            };
-            format!("{} {symbol} {}", a(x), a(y))
-        }
-        Op::Not(v) => format!("!{}", a(v)),
-        Op::Select(c, t, f) => syn.select(&a(c), &a(t), &a(f)),
-        Op::Load(v) => name(*v),
+        BinOp::Add | BinOp::Sub => Prec::Add,
+        BinOp::Mul | BinOp::Div => Prec::Mul,
     }
 }
 
-/// Writes the statements of a body at `level`.
-pub fn write_body(out: &mut String, body: &Body, syn: &dyn Syntax, level: Level) {
-    write_stmts(out, body, &body.stmts, syn, level, 0);
+/// Spells one body: each value by name, except values spelled where they are used — literals, arguments,
+/// components, comparisons, and any value used exactly once in the block that defines it (so `a * b + c` reads as
+/// one expression instead of a chain of single-use names). Loads of variables keep their names: they read a
+/// variable at one point of the program.
+pub struct Spelling<'a> {
+    body: &'a Body,
+    syn: &'a dyn Syntax,
+    /// Values whose definition is spelled at their one use.
+    folded: HashSet<Val>,
 }
 
-fn write_stmts(out: &mut String, body: &Body, stmts: &[Stmt], syn: &dyn Syntax, level: Level, loops: usize) {
+impl<'a> Spelling<'a> {
+    /// The spelling of `body` whose `results` are used (returned) in its top block.
+    pub fn new(body: &'a Body, syn: &'a dyn Syntax, results: &[Val]) -> Spelling<'a> {
+        let mut uses: HashMap<Val, (usize, usize)> = HashMap::new();
+        let mut defined_in: HashMap<Val, usize> = HashMap::new();
+        let mut next_block = 1;
+        for &r in results {
+            count_use(body, r, 0, &mut uses);
+        }
+        count_stmts(body, &body.stmts, 0, &mut next_block, &mut uses, &mut defined_in);
+        let folded = defined_in
+            .into_iter()
+            .filter(|(v, block)| {
+                !matches!(body.op(*v), Some(Op::Load(_))) && uses.get(v).is_some_and(|&(n, at)| n == 1 && at == *block)
+            })
+            .map(|(v, _)| v)
+            .collect();
+        Spelling { body, syn, folded }
+    }
+
+    /// A value as an operand or a result.
+    pub fn value(&self, v: Val) -> String {
+        self.spelled(v).0
+    }
+
+    fn spelled(&self, v: Val) -> (String, Prec) {
+        match self.body.op(v) {
+            Some(op) if is_inline(op) || self.folded.contains(&v) => self.op(op),
+            _ => (name(v), Prec::Atom),
+        }
+    }
+
+    /// `v` spelled as an operand that needs at least `prec`.
+    fn operand(&self, v: Val, prec: Prec) -> String {
+        let (text, own) = self.spelled(v);
+        if own < prec {
+            format!("({text})")
+        } else {
+            text
+        }
+    }
+
+    fn op(&self, op: &Op) -> (String, Prec) {
+        let syn = self.syn;
+        let any = |v: &Val| self.value(*v);
+        let atom = |text: String| (text, Prec::Atom);
+        match op {
+            Op::Lit(b) => atom(syn.lit(f64::from_bits(b.0))),
+            Op::BoolLit(v) => atom(syn.bool_lit(*v)),
+            Op::IntLit(n) => atom(syn.int(*n)),
+            Op::Time => atom(syn.time()),
+            Op::Param(i) => atom(syn.param(*i)),
+            Op::Arg(name) => atom(name.to_string()),
+            Op::MakeV3(x, y, z) => atom(syn.make_v3(&any(x), &any(y), &any(z))),
+            Op::MakePair(d, t) => atom(syn.make_pair(&any(d), &any(t))),
+            Op::Comp(v, i) => atom(syn.comp(&self.operand(*v, Prec::Atom), self.body.ty(*v), *i)),
+            Op::Neg(v) => (format!("-{}", self.operand(*v, Prec::Unary)), Prec::Unary),
+            Op::Not(v) => (format!("!{}", self.operand(*v, Prec::Unary)), Prec::Unary),
+            Op::Bin(op, x, y) => {
+                let p = bin_prec(*op);
+                // The right operand of the same precedence is parenthesised: the grouping is the computation.
+                let right = self.operand(*y, if p == Prec::Add { Prec::Mul } else { Prec::Unary });
+                (format!("{} {} {right}", self.operand(*x, p), op.symbol()), p)
+            }
+            Op::Logic(op, x, y) => {
+                let (symbol, p, tighter) = match op {
+                    LogicOp::And => ("&&", Prec::And, Prec::Add),
+                    LogicOp::Or => ("||", Prec::Or, Prec::And),
+                };
+                (format!("{} {symbol} {}", self.operand(*x, p), self.operand(*y, tighter)), p)
+            }
+            Op::Math(f, args) => atom(syn.math(*f, &args.iter().map(any).collect::<Vec<_>>())),
+            Op::Call(leaf, args) => atom(syn.call(*leaf, &args.iter().map(any).collect::<Vec<_>>())),
+            Op::Cmp(op, x, y) => {
+                atom(format!("({} {} {})", self.operand(*x, Prec::Add), op.symbol(), self.operand(*y, Prec::Add)))
+            }
+            Op::Select(c, t, f) => {
+                let operand = |v: &Val| self.operand(*v, Prec::Or);
+                (syn.select(&operand(c), &operand(t), &operand(f)), syn.select_prec())
+            }
+            Op::Load(v) => atom(name(*v)),
+        }
+    }
+
+    /// Writes the statements of the body at `level`.
+    pub fn write(&self, out: &mut String, level: Level) {
+        self.stmts(out, &self.body.stmts, level, 0);
+    }
+
+    fn stmts(&self, out: &mut String, stmts: &[Stmt], level: Level, loops: usize) {
+        let syn = self.syn;
+        for s in stmts {
+            match s {
+                Stmt::Let { val, .. } if self.folded.contains(val) => {}
+                Stmt::Let { val, ty, op } => {
+                    let _ = writeln!(out, "{level}{}", syn.declare(&name(*val), *ty, &self.op(op).0, false));
+                }
+                Stmt::Var { var, ty, init } => {
+                    let _ = writeln!(out, "{level}{}", syn.declare(&name(*var), *ty, &self.value(*init), true));
+                }
+                Stmt::Assign { var, value } => {
+                    let _ = writeln!(out, "{level}{} = {};", name(*var), self.value(*value));
+                }
+                Stmt::If { cond, body } => {
+                    let _ = writeln!(out, "{level}{}", syn.if_open(&self.value(*cond)));
+                    self.stmts(out, body, level.next(), loops);
+                    let _ = writeln!(out, "{level}}}");
+                }
+                Stmt::Loop { count, body } => {
+                    let _ = writeln!(out, "{level}{}", syn.loop_open(&self.value(*count), loops));
+                    self.stmts(out, body, level.next(), loops + 1);
+                    let _ = writeln!(out, "{level}}}");
+                }
+                Stmt::BreakIf { cond } => {
+                    let _ = writeln!(out, "{level}{}", syn.break_if(&self.value(*cond)));
+                }
+            }
+        }
+    }
+}
+
+/// Counts a use of `v` in `block`: (number of uses, block of the last use); a value spelled in place is used where
+/// its user is, so its operands are counted there too.
+fn count_use(body: &Body, v: Val, block: usize, uses: &mut HashMap<Val, (usize, usize)>) {
+    let entry = uses.entry(v).or_insert((0, block));
+    *entry = (entry.0 + 1, block);
+    if let Some(op) = body.op(v).filter(|op| is_inline(op)) {
+        for w in operands(op) {
+            count_use(body, w, block, uses);
+        }
+    }
+}
+
+fn count_stmts(
+    body: &Body,
+    stmts: &[Stmt],
+    block: usize,
+    next_block: &mut usize,
+    uses: &mut HashMap<Val, (usize, usize)>,
+    defined_in: &mut HashMap<Val, usize>,
+) {
     for s in stmts {
         match s {
-            Stmt::Let { val, ty, op } => {
-                let _ = writeln!(out, "{level}{}", syn.declare(&name(*val), *ty, &spell_op(body, syn, op), false));
+            Stmt::Let { val, op, .. } => {
+                defined_in.insert(*val, block);
+                for w in operands(op) {
+                    count_use(body, w, block, uses);
+                }
             }
-            Stmt::Var { var, ty, init } => {
-                let _ = writeln!(out, "{level}{}", syn.declare(&name(*var), *ty, &atom(body, syn, *init), true));
+            Stmt::Var { init: v, .. } | Stmt::Assign { value: v, .. } | Stmt::BreakIf { cond: v } => {
+                count_use(body, *v, block, uses)
             }
-            Stmt::Assign { var, value } => {
-                let _ = writeln!(out, "{level}{} = {};", name(*var), atom(body, syn, *value));
-            }
-            Stmt::If { cond, body: inner } => {
-                let _ = writeln!(out, "{level}{}", syn.if_open(&atom(body, syn, *cond)));
-                write_stmts(out, body, inner, syn, level.next(), loops);
-                let _ = writeln!(out, "{level}}}");
-            }
-            Stmt::Loop { count, body: inner } => {
-                let _ = writeln!(out, "{level}{}", syn.loop_open(&atom(body, syn, *count), loops));
-                write_stmts(out, body, inner, syn, level.next(), loops + 1);
-                let _ = writeln!(out, "{level}}}");
-            }
-            Stmt::BreakIf { cond } => {
-                let _ = writeln!(out, "{level}{}", syn.break_if(&atom(body, syn, *cond)));
+            Stmt::If { cond: v, body: inner } | Stmt::Loop { count: v, body: inner } => {
+                count_use(body, *v, block, uses);
+                let own = *next_block;
+                *next_block += 1;
+                count_stmts(body, inner, own, next_block, uses, defined_in);
             }
         }
     }

@@ -5,7 +5,7 @@
 use std::fmt::Write;
 
 use crate::back::kernel::{self, Dialect};
-use crate::back::syntax::common_math_name;
+use crate::back::syntax::{common_math_name, Prec};
 use crate::back::{f32_literal, Entry, FrameLayout, Level};
 use crate::lower::code::{MathFn, Ty};
 use crate::lower::trace::Function;
@@ -84,6 +84,9 @@ impl Dialect for OpenCl {
     }
     fn select(&self, cond: &str, if_true: &str, if_false: &str) -> String {
         format!("{cond} ? {if_true} : {if_false}")
+    }
+    fn select_prec(&self) -> Prec {
+        Prec::Ternary
     }
     fn frame_field(&self, field: &str) -> String {
         format!("frame->{field}")

@@ -5,7 +5,7 @@
 
 use std::fmt::Write;
 
-use crate::back::syntax::{self, common_math_name, Syntax};
+use crate::back::syntax::{self, common_math_name, Spelling, Syntax};
 use crate::back::Level;
 use crate::lower::code::{MathFn, Ty};
 use crate::lower::Program;
@@ -90,16 +90,18 @@ pub fn write(program: &Program, krate: &str) -> String {
         let _ = writeln!(out, "    use {krate}::sdf;");
     };
     header(&mut out, DISTANCE_FN, "F");
-    syntax::write_body(&mut out, &program.distance, &RustSyntax, Level(1));
-    let _ = writeln!(out, "    {}", syntax::atom(&program.distance, &RustSyntax, program.distance_result));
+    let spelling = Spelling::new(&program.distance, &RustSyntax, &[program.distance_result]);
+    spelling.write(&mut out, Level(1));
+    let _ = writeln!(out, "    {}", spelling.value(program.distance_result));
     out.push_str("}\n\n");
 
     header(&mut out, SAMPLE_FN, &format!("{krate}::eval::Sample<F>"));
-    syntax::write_body(&mut out, &program.sample, &RustSyntax, Level(1));
+    let spelling = Spelling::new(&program.sample, &RustSyntax, &program.sample_result.all());
+    spelling.write(&mut out, Level(1));
     let r = program.sample_result;
     let _ = writeln!(out, "    {krate}::eval::Sample {{");
     for (field, v) in syntax::sample_fields(&r) {
-        let _ = writeln!(out, "        {field}: {},", syntax::atom(&program.sample, &RustSyntax, v));
+        let _ = writeln!(out, "        {field}: {},", spelling.value(v));
     }
     out.push_str("    }\n}\n");
     out
