@@ -36,6 +36,44 @@ fn all_rows() -> Vec<Row> {
     rows
 }
 
+/// A row's name as a file name: `mandelbulb(8) trig-free` → `mandelbulb_8_trig_free`; an operator standing alone
+/// becomes a word (`expr: +` → `expr_plus`).
+fn slug(name: &str) -> String {
+    let words: Vec<String> = name
+        .split_whitespace()
+        .map(|w| match w {
+            "+" => "plus".to_string(),
+            "-" => "minus".to_string(),
+            "*" => "times".to_string(),
+            "/" => "over".to_string(),
+            _ => w.chars().map(|c| if c.is_ascii_alphanumeric() { c.to_ascii_lowercase() } else { '_' }).collect(),
+        })
+        .collect();
+    let joined = words.join("_");
+    joined.split('_').filter(|part| !part.is_empty()).collect::<Vec<_>>().join("_")
+}
+
+/// The code every row runs through — its OpenCL C and WGSL probe kernels and its native evaluator — pinned per row,
+/// so one diff shows what a change does to every vocabulary item's code.
+#[test]
+fn every_row_has_pinned_code() {
+    let mut seen = std::collections::HashSet::new();
+    for row in all_rows() {
+        let name = slug(row.name);
+        assert!(seen.insert(name.clone()), "two rows share the snapshot name {name}");
+        let program = lower(row.scene());
+        let text = format!(
+            "// ---- OpenCL C probe\n{}\n// ---- WGSL probe\n{}\n// ---- native Rust\n{}",
+            back::opencl::write(&program, Entry::Probe),
+            back::wgsl::write(&program, Entry::Probe),
+            back::rust::write(&program, "fractal_dsl"),
+        );
+        insta::with_settings!({ snapshot_path => "snapshots/rows", prepend_module_to_snapshot => false }, {
+            insta::assert_snapshot!(name, text);
+        });
+    }
+}
+
 // ---- the evaluators -------------------------------------------------------------------------------------------------
 
 struct InterpreterF32;
