@@ -1,10 +1,11 @@
-//! What `scene!` expands to: a scene compiled at build time into kernel sources and a native evaluator.
+//! What `scene!` expands to: a scene compiled at build time into kernel sources, a native evaluator, its parameters'
+//! defaults and code that constructs its IR.
 
 use std::sync::OnceLock;
 
 use crate::eval::{Env, Evaluator, Sample};
 use crate::ir::Scene;
-use crate::math::V3;
+use crate::math::{Real, V3};
 
 /// The native evaluator functions emitted by the Rust writer and compiled by rustc with the user's crate.
 #[derive(Clone, Copy, Debug)]
@@ -15,22 +16,63 @@ pub struct NativeFns {
     pub sample_f64: fn(V3<f64>, &Env<f64>) -> Sample<f64>,
 }
 
-/// A scene compiled by `scene!`: the OpenCL C and WGSL render kernels, a native evaluator in f32 and f64, and the IR
-/// (re-read from the canonical source the first time it is asked for).
+/// The defaults of a scene's parameters in [`Scene::params`] order, in both precisions the native evaluator runs in:
+/// the parameter block of [`CompiledScene::distance`], written by the macro as constants.
+#[derive(Clone, Copy, Debug)]
+pub struct DefaultParams {
+    pub f32: &'static [f32],
+    pub f64: &'static [f64],
+}
+
+impl DefaultParams {
+    /// A scene without parameters.
+    pub const NONE: DefaultParams = DefaultParams { f32: &[], f64: &[] };
+}
+
+/// A precision a [`CompiledScene`] carries its default parameters in: f32 or f64.
+pub trait CompiledReal: Real {
+    /// The defaults in this precision.
+    fn defaults(defaults: &DefaultParams) -> &'static [Self];
+}
+
+impl CompiledReal for f32 {
+    fn defaults(defaults: &DefaultParams) -> &'static [f32] {
+        defaults.f32
+    }
+}
+
+impl CompiledReal for f64 {
+    fn defaults(defaults: &DefaultParams) -> &'static [f64] {
+        defaults.f64
+    }
+}
+
+/// A scene compiled by `scene!`: the OpenCL C and WGSL render kernels, a native evaluator in f32 and f64, the
+/// parameters' defaults, and the IR (constructed by code the macro wrote, the first time it is asked for).
 #[derive(Debug)]
 pub struct CompiledScene {
     source: &'static str,
     opencl: &'static str,
     wgsl: &'static str,
     native: NativeFns,
+    build: fn() -> Scene,
+    defaults: DefaultParams,
     scene: OnceLock<Scene>,
 }
 
 impl CompiledScene {
-    /// Used by the macro's expansion; `source` is the canonical scene text the kernels were written from.
+    /// Used by the macro's expansion; `source` is the canonical scene text the kernels were written from, `build`
+    /// constructs its IR and `defaults` are its parameters' defaults.
     #[doc(hidden)]
-    pub const fn new(source: &'static str, opencl: &'static str, wgsl: &'static str, native: NativeFns) -> Self {
-        CompiledScene { source, opencl, wgsl, native, scene: OnceLock::new() }
+    pub const fn new(
+        source: &'static str,
+        opencl: &'static str,
+        wgsl: &'static str,
+        native: NativeFns,
+        build: fn() -> Scene,
+        defaults: DefaultParams,
+    ) -> Self {
+        CompiledScene { source, opencl, wgsl, native, build, defaults, scene: OnceLock::new() }
     }
     /// The complete OpenCL C program (kernel `render`).
     pub fn opencl(&self) -> &'static str {
@@ -44,29 +86,25 @@ impl CompiledScene {
     pub fn source(&self) -> &'static str {
         self.source
     }
-    /// The scene's IR.
+    /// The scene's IR, built once on first use.
     pub fn scene(&self) -> &Scene {
-        self.scene.get_or_init(|| {
-            crate::parse::parse_str(self.source)
-                .unwrap_or_else(|e| unreachable!("canonical scene text written by the compiler reads back: {e}"))
-        })
+        self.scene.get_or_init(self.build)
     }
+    /// The native evaluator, for callers that prepare their own [`Env`] (time, parameter values).
     pub fn native(&self) -> NativeFns {
         self.native
     }
-    /// Distance at `p` by the native f32 evaluator, at time 0 with parameters at their defaults.
+    /// Distance at `p` by the native f32 evaluator, at time 0 with parameters at their defaults: one call.
     pub fn distance(&self, p: impl Into<glam::Vec3>) -> f32 {
-        let params = self.default_params::<f32>();
-        (self.native.distance_f32)(p.into().into(), &Env { time: 0.0, params: &params })
+        (self.native.distance_f32)(p.into().into(), &Env { time: 0.0, params: self.defaults.f32 })
     }
     /// Distance at `p` by the native f64 evaluator (the twin for reference work).
     pub fn distance_f64(&self, p: impl Into<glam::DVec3>) -> f64 {
-        let params = self.default_params::<f64>();
-        (self.native.distance_f64)(p.into().into(), &Env { time: 0.0, params: &params })
+        (self.native.distance_f64)(p.into().into(), &Env { time: 0.0, params: self.defaults.f64 })
     }
-    /// Parameter defaults in uniform order.
-    pub fn default_params<F: crate::math::Real>(&self) -> Vec<F> {
-        self.scene().params().iter().map(|p| F::c(p.default)).collect()
+    /// Parameter defaults in uniform order ([`Scene::params`] order), in precision `F`.
+    pub fn default_params<F: CompiledReal>(&self) -> &'static [F] {
+        F::defaults(&self.defaults)
     }
 }
 

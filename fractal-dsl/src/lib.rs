@@ -44,5 +44,5 @@ pub mod sdf;
 pub mod validate;
 pub mod visit;
 
-pub use compiled::{compile, CompiledScene, Kernels, NativeFns};
+pub use compiled::{compile, CompiledScene, DefaultParams, Kernels, NativeFns};
 pub use ir::*;

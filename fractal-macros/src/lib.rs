@@ -1,6 +1,6 @@
 //! `scene!` and `scene_file!`: compile a scene at build time. The macro only parses (with fractal-dsl's parser), asks
-//! fractal-dsl's writers for the kernels and the native evaluator, and wraps them in a `CompiledScene`; it has no code
-//! generation of its own.
+//! fractal-dsl's writers for the kernels, the native evaluator, the code that constructs the IR and the parameters'
+//! defaults, and wraps them in a `CompiledScene`; it has no code generation of its own.
 
 use proc_macro::TokenStream;
 use proc_macro2::{Span, TokenStream as TokenStream2};
@@ -86,14 +86,30 @@ fn expand(scene: &fractal_dsl::Scene, span: Span) -> TokenStream2 {
     };
     let distance = syn::Ident::new(fractal_dsl::back::rust::DISTANCE_FN, Span::call_site());
     let sample = syn::Ident::new(fractal_dsl::back::rust::SAMPLE_FN, Span::call_site());
+    let ir = fractal_dsl::back::rust::ir_tokens::scene(scene, &krate);
+    let (defaults_f32, defaults_f64) = fractal_dsl::back::rust::ir_tokens::default_params(scene);
     let (source, opencl, wgsl) = (kernels.source, kernels.opencl, kernels.wgsl);
     quote! {{
         #native
-        #krate::CompiledScene::new(#source, #opencl, #wgsl, #krate::NativeFns {
-            distance_f32: #distance::<f32>,
-            distance_f64: #distance::<f64>,
-            sample_f32: #sample::<f32>,
-            sample_f64: #sample::<f64>,
-        })
+        #[allow(clippy::all)]
+        fn __fractal_scene() -> #krate::Scene {
+            #ir
+        }
+        #[allow(clippy::all)]
+        const __FRACTAL_DEFAULTS: #krate::compiled::DefaultParams =
+            #krate::compiled::DefaultParams { f32: #defaults_f32, f64: #defaults_f64 };
+        #krate::CompiledScene::new(
+            #source,
+            #opencl,
+            #wgsl,
+            #krate::NativeFns {
+                distance_f32: #distance::<f32>,
+                distance_f64: #distance::<f64>,
+                sample_f32: #sample::<f32>,
+                sample_f64: #sample::<f64>,
+            },
+            __fractal_scene,
+            __FRACTAL_DEFAULTS,
+        )
     }}
 }

@@ -13,7 +13,7 @@ use std::process::Command;
 use fractal_dsl::builder::{scene, sphere};
 use fractal_dsl::eval::{Env, Sample};
 use fractal_dsl::math::{v3, Real, V3};
-use fractal_dsl::{compile, CompiledScene, Kernels, NativeFns, Scene};
+use fractal_dsl::{compile, CompiledScene, DefaultParams, Kernels, NativeFns, Scene};
 use fractal_runtime::export::{export, export_compiled, export_scene, ExportError, Exported, Target, ENTRY_POINT};
 
 /// Every built-in scene's file name (without extension) and compiled kernels.
@@ -220,13 +220,16 @@ fn export_scene_compiles_and_exports() {
     }
 }
 
-/// Stand-ins for the native evaluator a `scene!` expansion carries: export never calls it.
+/// Stand-ins for the native evaluator and the IR constructor a `scene!` expansion carries: export calls neither.
 fn unused_distance<F: Real>(_: V3<F>, _: &Env<F>) -> F {
     F::c(f64::NAN)
 }
 fn unused_sample<F: Real>(p: V3<F>, env: &Env<F>) -> Sample<F> {
     let nan = unused_distance(p, env);
     Sample { distance: nan, albedo: v3(nan, nan, nan), ambient: nan, diffuse: nan, specular: nan, shininess: nan }
+}
+fn unused_scene() -> Scene {
+    unreachable!("export never reads the IR")
 }
 
 #[test]
@@ -239,7 +242,14 @@ fn export_compiled_exports_the_build_time_kernels() {
         sample_f64: unused_sample::<f64>,
     };
     let leak = |s: &str| -> &'static str { Box::leak(s.to_owned().into_boxed_str()) };
-    let compiled = CompiledScene::new(leak(&kernels.source), leak(&kernels.opencl), leak(&kernels.wgsl), native);
+    let compiled = CompiledScene::new(
+        leak(&kernels.source),
+        leak(&kernels.opencl),
+        leak(&kernels.wgsl),
+        native,
+        unused_scene,
+        DefaultParams::NONE,
+    );
     for target in Target::ALL {
         let out = export_compiled(&compiled, target).unwrap_or_else(|e| panic!("{name} to {target}: {e}"));
         assert_eq!(out, exported(&name, &kernels, target), "{target}: export_compiled differs from export");

@@ -92,7 +92,7 @@ impl Row {
         self.compiled.scene()
     }
     pub fn param_values(&self) -> Vec<f32> {
-        self.params.clone().unwrap_or_else(|| self.compiled.default_params::<f32>())
+        self.params.clone().unwrap_or_else(|| self.compiled.default_params::<f32>().to_vec())
     }
     /// The environment in precision `F`, from the f32 values the kernels read.
     fn env_values<F: Real>(&self) -> (F, Vec<F>) {

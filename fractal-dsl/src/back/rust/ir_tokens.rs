@@ -1,0 +1,552 @@
+//! The IR as Rust: [`scene`] spells a [`Scene`] as a Rust expression that constructs it, and [`default_params`] its
+//! parameters' defaults as constant slices, so the `scene!` macro's expansion holds its IR and default parameter
+//! block without parsing anything or walking the IR at run time.
+//!
+//! Every IR value is written exactly: numbers as suffixed literals that read back as the same `f64` (non-finite
+//! ones as the `f64` constants), names as string literals, and every enum by its full path under `krate`, the path of
+//! fractal-dsl in the crate the expansion lands in. The matches are exhaustive, so an IR change that this file does
+//! not follow is a compile error here.
+
+use proc_macro2::{Literal, TokenStream};
+use quote::quote;
+
+use crate::ir::*;
+
+/// A Rust expression of type `Scene` (named through `krate`) that constructs `scene` exactly.
+pub fn scene(scene: &Scene, krate: &TokenStream) -> TokenStream {
+    let w = Writer { k: krate };
+    let root = w.node(&scene.root);
+    let lights = scene.lights.iter().map(|l| w.light(l));
+    let camera = w.camera(&scene.camera);
+    let settings = w.settings(&scene.settings);
+    let k = krate;
+    quote! {
+        #k::Scene {
+            root: #root,
+            lights: ::std::vec![#(#lights),*],
+            camera: #camera,
+            settings: #settings,
+        }
+    }
+}
+
+/// Constant expressions of type `&'static [f32]` and `&'static [f64]`: the defaults of the scene's parameters in
+/// [`Scene::params`] order (uniform slot order), rounded to f32 the way [`crate::math::Real::c`] rounds them.
+pub fn default_params(scene: &Scene) -> (TokenStream, TokenStream) {
+    let params = scene.params();
+    let single = params.iter().map(|p| f32_lit(p.default as f32));
+    let double = params.iter().map(|p| f64_lit(p.default));
+    (quote!(&[#(#single),*]), quote!(&[#(#double),*]))
+}
+
+/// An `f64` literal (with its sign) that reads back as exactly `v`.
+fn f64_lit(v: f64) -> TokenStream {
+    if v.is_nan() {
+        quote!(::core::f64::NAN)
+    } else if v.is_infinite() {
+        if v > 0.0 {
+            quote!(::core::f64::INFINITY)
+        } else {
+            quote!(::core::f64::NEG_INFINITY)
+        }
+    } else {
+        // Negative literals are written as a negation so the token stays an ordinary literal; `-0.0` keeps its sign.
+        let magnitude = Literal::f64_suffixed(v.abs());
+        if v.is_sign_negative() {
+            quote!(-#magnitude)
+        } else {
+            quote!(#magnitude)
+        }
+    }
+}
+
+/// An `f32` literal (with its sign) that reads back as exactly `v`.
+fn f32_lit(v: f32) -> TokenStream {
+    if v.is_nan() {
+        quote!(::core::f32::NAN)
+    } else if v.is_infinite() {
+        if v > 0.0 {
+            quote!(::core::f32::INFINITY)
+        } else {
+            quote!(::core::f32::NEG_INFINITY)
+        }
+    } else {
+        let magnitude = Literal::f32_suffixed(v.abs());
+        if v.is_sign_negative() {
+            quote!(-#magnitude)
+        } else {
+            quote!(#magnitude)
+        }
+    }
+}
+
+fn u32_lit(v: u32) -> Literal {
+    Literal::u32_suffixed(v)
+}
+
+fn f64_array<const N: usize>(v: &[f64; N]) -> TokenStream {
+    let items = v.iter().map(|&x| f64_lit(x));
+    quote!([#(#items),*])
+}
+
+fn u32_array<const N: usize>(v: &[u32; N]) -> TokenStream {
+    let items = v.iter().map(|&x| u32_lit(x));
+    quote!([#(#items),*])
+}
+
+/// Spells IR values with the types named through `k`.
+struct Writer<'a> {
+    k: &'a TokenStream,
+}
+
+impl Writer<'_> {
+    fn boxed(&self, inner: TokenStream) -> TokenStream {
+        quote!(::std::boxed::Box::new(#inner))
+    }
+
+    fn option<T>(&self, v: &Option<T>, some: impl Fn(&T) -> TokenStream) -> TokenStream {
+        match v {
+            Some(x) => {
+                let x = some(x);
+                quote!(::core::option::Option::Some(#x))
+            }
+            None => quote!(::core::option::Option::None),
+        }
+    }
+
+    fn expr(&self, e: &Expr) -> TokenStream {
+        let k = self.k;
+        match e {
+            Expr::Lit(v) => {
+                let v = f64_lit(*v);
+                quote!(#k::Expr::Lit(#v))
+            }
+            Expr::Time => quote!(#k::Expr::Time),
+            Expr::Param(p) => {
+                let p = self.boxed(self.param(p));
+                quote!(#k::Expr::Param(#p))
+            }
+            Expr::Neg(a) => {
+                let a = self.boxed(self.expr(a));
+                quote!(#k::Expr::Neg(#a))
+            }
+            Expr::Bin(op, a, b) => {
+                let op = self.bin_op(*op);
+                let (a, b) = (self.boxed(self.expr(a)), self.boxed(self.expr(b)));
+                quote!(#k::Expr::Bin(#op, #a, #b))
+            }
+            Expr::Call(f, args) => {
+                let f = self.func(*f);
+                let args = args.iter().map(|a| self.expr(a));
+                quote!(#k::Expr::Call(#f, ::std::vec![#(#args),*]))
+            }
+        }
+    }
+
+    fn param(&self, p: &ParamDecl) -> TokenStream {
+        let k = self.k;
+        let ParamDecl { name, default, min, max } = p;
+        let (default, min, max) = (f64_lit(*default), f64_lit(*min), f64_lit(*max));
+        quote! {
+            #k::ParamDecl { name: ::std::string::String::from(#name), default: #default, min: #min, max: #max }
+        }
+    }
+
+    fn bin_op(&self, op: BinOp) -> TokenStream {
+        let k = self.k;
+        match op {
+            BinOp::Add => quote!(#k::BinOp::Add),
+            BinOp::Sub => quote!(#k::BinOp::Sub),
+            BinOp::Mul => quote!(#k::BinOp::Mul),
+            BinOp::Div => quote!(#k::BinOp::Div),
+        }
+    }
+
+    fn func(&self, f: Func) -> TokenStream {
+        let k = self.k;
+        match f {
+            Func::Sin => quote!(#k::Func::Sin),
+            Func::Cos => quote!(#k::Func::Cos),
+            Func::Abs => quote!(#k::Func::Abs),
+            Func::Sqrt => quote!(#k::Func::Sqrt),
+            Func::Min => quote!(#k::Func::Min),
+            Func::Max => quote!(#k::Func::Max),
+            Func::Pow => quote!(#k::Func::Pow),
+            Func::Clamp => quote!(#k::Func::Clamp),
+            Func::Mix => quote!(#k::Func::Mix),
+        }
+    }
+
+    fn vec3(&self, v: &Vec3Expr) -> TokenStream {
+        let k = self.k;
+        let items = v.0.iter().map(|e| self.expr(e));
+        quote!(#k::Vec3Expr([#(#items),*]))
+    }
+
+    fn vec4(&self, v: &Vec4Expr) -> TokenStream {
+        let k = self.k;
+        let items = v.0.iter().map(|e| self.expr(e));
+        quote!(#k::Vec4Expr([#(#items),*]))
+    }
+
+    fn node(&self, n: &Node) -> TokenStream {
+        let k = self.k;
+        let child = |c: &Node| self.boxed(self.node(c));
+        let list = |cs: &[Node]| {
+            let cs = cs.iter().map(|c| self.node(c));
+            quote!(::std::vec![#(#cs),*])
+        };
+        match n {
+            Node::Prim(p) => {
+                let p = self.prim(p);
+                quote!(#k::Node::Prim(#p))
+            }
+            Node::Fractal(f) => {
+                let f = self.fractal(f);
+                quote!(#k::Node::Fractal(#f))
+            }
+            Node::Union(cs) => {
+                let cs = list(cs);
+                quote!(#k::Node::Union(#cs))
+            }
+            Node::Intersect(cs) => {
+                let cs = list(cs);
+                quote!(#k::Node::Intersect(#cs))
+            }
+            Node::Subtract(a, b) => {
+                let (a, b) = (child(a), child(b));
+                quote!(#k::Node::Subtract(#a, #b))
+            }
+            Node::SmoothUnion(cs, r) => {
+                let (cs, r) = (list(cs), self.expr(r));
+                quote!(#k::Node::SmoothUnion(#cs, #r))
+            }
+            Node::SmoothIntersect(cs, r) => {
+                let (cs, r) = (list(cs), self.expr(r));
+                quote!(#k::Node::SmoothIntersect(#cs, #r))
+            }
+            Node::SmoothSubtract(a, b, r) => {
+                let (a, b, r) = (child(a), child(b), self.expr(r));
+                quote!(#k::Node::SmoothSubtract(#a, #b, #r))
+            }
+            Node::Translate(c, v) => {
+                let (c, v) = (child(c), self.vec3(v));
+                quote!(#k::Node::Translate(#c, #v))
+            }
+            Node::Rotate(c, axis, angle) => {
+                let (c, axis, angle) = (child(c), self.axis(*axis), self.expr(angle));
+                quote!(#k::Node::Rotate(#c, #axis, #angle))
+            }
+            Node::Scale(c, s) => {
+                let (c, s) = (child(c), self.expr(s));
+                quote!(#k::Node::Scale(#c, #s))
+            }
+            Node::Repeat(c, period) => {
+                let (c, period) = (child(c), self.vec3(period));
+                quote!(#k::Node::Repeat(#c, #period))
+            }
+            Node::RepeatLimited(c, period, count) => {
+                let (c, period, count) = (child(c), self.vec3(period), u32_array(count));
+                quote!(#k::Node::RepeatLimited(#c, #period, #count))
+            }
+            Node::Twist(c, rate) => {
+                let (c, rate) = (child(c), self.expr(rate));
+                quote!(#k::Node::Twist(#c, #rate))
+            }
+            Node::Bend(c, rate) => {
+                let (c, rate) = (child(c), self.expr(rate));
+                quote!(#k::Node::Bend(#c, #rate))
+            }
+            Node::Round(c, r) => {
+                let (c, r) = (child(c), self.expr(r));
+                quote!(#k::Node::Round(#c, #r))
+            }
+            Node::Onion(c, t) => {
+                let (c, t) = (child(c), self.expr(t));
+                quote!(#k::Node::Onion(#c, #t))
+            }
+            Node::Elongate(c, h) => {
+                let (c, h) = (child(c), self.vec3(h));
+                quote!(#k::Node::Elongate(#c, #h))
+            }
+            Node::Material(c, m) => {
+                let (c, m) = (child(c), self.material(m));
+                quote!(#k::Node::Material(#c, #m))
+            }
+        }
+    }
+
+    fn axis(&self, a: Axis) -> TokenStream {
+        let k = self.k;
+        match a {
+            Axis::X => quote!(#k::Axis::X),
+            Axis::Y => quote!(#k::Axis::Y),
+            Axis::Z => quote!(#k::Axis::Z),
+            Axis::Any(u) => {
+                let u = f64_array(&u);
+                quote!(#k::Axis::Any(#u))
+            }
+        }
+    }
+
+    fn prim(&self, p: &Prim) -> TokenStream {
+        let k = self.k;
+        match p {
+            Prim::Sphere { radius } => {
+                let radius = self.expr(radius);
+                quote!(#k::Prim::Sphere { radius: #radius })
+            }
+            Prim::Box { half } => {
+                let half = self.vec3(half);
+                quote!(#k::Prim::Box { half: #half })
+            }
+            Prim::RoundBox { half, radius } => {
+                let (half, radius) = (self.vec3(half), self.expr(radius));
+                quote!(#k::Prim::RoundBox { half: #half, radius: #radius })
+            }
+            Prim::Torus { major, minor } => {
+                let (major, minor) = (self.expr(major), self.expr(minor));
+                quote!(#k::Prim::Torus { major: #major, minor: #minor })
+            }
+            Prim::Capsule { a, b, radius } => {
+                let (a, b, radius) = (self.vec3(a), self.vec3(b), self.expr(radius));
+                quote!(#k::Prim::Capsule { a: #a, b: #b, radius: #radius })
+            }
+            Prim::Cylinder { radius, half_height } => {
+                let (radius, half_height) = (self.expr(radius), self.expr(half_height));
+                quote!(#k::Prim::Cylinder { radius: #radius, half_height: #half_height })
+            }
+            Prim::Cone { half_height, bottom, top } => {
+                let (half_height, bottom, top) = (self.expr(half_height), self.expr(bottom), self.expr(top));
+                quote!(#k::Prim::Cone { half_height: #half_height, bottom: #bottom, top: #top })
+            }
+            Prim::Plane { normal, offset } => {
+                let (normal, offset) = (self.vec3(normal), self.expr(offset));
+                quote!(#k::Prim::Plane { normal: #normal, offset: #offset })
+            }
+            Prim::Octahedron { size } => {
+                let size = self.expr(size);
+                quote!(#k::Prim::Octahedron { size: #size })
+            }
+            Prim::Ellipsoid { radii } => {
+                let radii = self.vec3(radii);
+                quote!(#k::Prim::Ellipsoid { radii: #radii })
+            }
+        }
+    }
+
+    fn fractal(&self, f: &Fractal) -> TokenStream {
+        let k = self.k;
+        let Fractal { kind, iterations, bailout, min_radius, fold_limit } = f;
+        let kind = match kind {
+            FractalKind::Mandelbulb { power } => {
+                let power = self.expr(power);
+                quote!(#k::FractalKind::Mandelbulb { power: #power })
+            }
+            FractalKind::Menger => quote!(#k::FractalKind::Menger),
+            FractalKind::Sierpinski => quote!(#k::FractalKind::Sierpinski),
+            FractalKind::Julia { c } => {
+                let c = self.vec4(c);
+                quote!(#k::FractalKind::Julia { c: #c })
+            }
+            FractalKind::Mandelbox { scale } => {
+                let scale = self.expr(scale);
+                quote!(#k::FractalKind::Mandelbox { scale: #scale })
+            }
+        };
+        let iterations = self.option(iterations, |&n| {
+            let n = u32_lit(n);
+            quote!(#n)
+        });
+        let bailout = self.option(bailout, |e| self.expr(e));
+        let min_radius = self.option(min_radius, |e| self.expr(e));
+        let fold_limit = self.option(fold_limit, |e| self.expr(e));
+        quote! {
+            #k::Fractal {
+                kind: #kind,
+                iterations: #iterations,
+                bailout: #bailout,
+                min_radius: #min_radius,
+                fold_limit: #fold_limit,
+            }
+        }
+    }
+
+    fn material(&self, m: &Material) -> TokenStream {
+        let k = self.k;
+        let Material { albedo, ambient, diffuse, specular, shininess } = m;
+        let albedo = match albedo {
+            Albedo::Rgb(c) => {
+                let c = self.vec3(c);
+                quote!(#k::Albedo::Rgb(#c))
+            }
+            Albedo::OrbitTrap(a, b) => {
+                let (a, b) = (self.vec3(a), self.vec3(b));
+                quote!(#k::Albedo::OrbitTrap(#a, #b))
+            }
+        };
+        let (ambient, diffuse) = (self.expr(ambient), self.expr(diffuse));
+        let (specular, shininess) = (self.expr(specular), self.expr(shininess));
+        quote! {
+            #k::Material {
+                albedo: #albedo,
+                ambient: #ambient,
+                diffuse: #diffuse,
+                specular: #specular,
+                shininess: #shininess,
+            }
+        }
+    }
+
+    fn light(&self, l: &Light) -> TokenStream {
+        let k = self.k;
+        let Light { kind, color, intensity } = l;
+        let kind = match kind {
+            LightKind::Directional { direction } => {
+                let direction = self.vec3(direction);
+                quote!(#k::LightKind::Directional { direction: #direction })
+            }
+            LightKind::Point { position } => {
+                let position = self.vec3(position);
+                quote!(#k::LightKind::Point { position: #position })
+            }
+        };
+        let (color, intensity) = (self.vec3(color), self.expr(intensity));
+        quote!(#k::Light { kind: #kind, color: #color, intensity: #intensity })
+    }
+
+    fn camera(&self, c: &Camera) -> TokenStream {
+        let k = self.k;
+        let Camera { placement, fov_degrees } = c;
+        let placement = match placement {
+            CameraPlacement::LookAt { position, target } => {
+                let (position, target) = (self.vec3(position), self.vec3(target));
+                quote!(#k::CameraPlacement::LookAt { position: #position, target: #target })
+            }
+            CameraPlacement::Path { keys, interpolation, looped } => {
+                let keys = keys.iter().map(|key| {
+                    let CameraKey { time, position, target } = key;
+                    let (time, position, target) = (f64_lit(*time), f64_array(position), f64_array(target));
+                    quote!(#k::CameraKey { time: #time, position: #position, target: #target })
+                });
+                let interpolation = match interpolation {
+                    PathInterpolation::Linear => quote!(#k::PathInterpolation::Linear),
+                    PathInterpolation::CatmullRom => quote!(#k::PathInterpolation::CatmullRom),
+                };
+                quote! {
+                    #k::CameraPlacement::Path {
+                        keys: ::std::vec![#(#keys),*],
+                        interpolation: #interpolation,
+                        looped: #looped,
+                    }
+                }
+            }
+        };
+        let fov_degrees = f64_lit(*fov_degrees);
+        quote!(#k::Camera { placement: #placement, fov_degrees: #fov_degrees })
+    }
+
+    fn settings(&self, s: &RenderSettings) -> TokenStream {
+        let k = self.k;
+        let RenderSettings {
+            max_steps,
+            max_distance,
+            epsilon,
+            shadows,
+            ambient_occlusion,
+            glow,
+            fog,
+            background,
+            gamma,
+        } = s;
+        let max_steps = u32_lit(*max_steps);
+        let max_distance = f64_lit(*max_distance);
+        let epsilon = match epsilon {
+            HitEpsilon::Fixed(e) => {
+                let e = f64_lit(*e);
+                quote!(#k::HitEpsilon::Fixed(#e))
+            }
+            HitEpsilon::Pixel(f) => {
+                let f = f64_lit(*f);
+                quote!(#k::HitEpsilon::Pixel(#f))
+            }
+        };
+        let shadows = match shadows {
+            Shadows::None => quote!(#k::Shadows::None),
+            Shadows::Hard => quote!(#k::Shadows::Hard),
+            Shadows::Soft(sharpness) => {
+                let sharpness = f64_lit(*sharpness);
+                quote!(#k::Shadows::Soft(#sharpness))
+            }
+        };
+        let ambient_occlusion = self.option(ambient_occlusion, |&a| f64_lit(a));
+        let glow = self.option(glow, f64_array);
+        let fog = self.option(fog, |f| {
+            let Fog { color, density } = f;
+            let (color, density) = (f64_array(color), f64_lit(*density));
+            quote!(#k::Fog { color: #color, density: #density })
+        });
+        let background = f64_array(background);
+        let gamma = f64_lit(*gamma);
+        quote! {
+            #k::RenderSettings {
+                max_steps: #max_steps,
+                max_distance: #max_distance,
+                epsilon: #epsilon,
+                shadows: #shadows,
+                ambient_occlusion: #ambient_occlusion,
+                glow: #glow,
+                fog: #fog,
+                background: #background,
+                gamma: #gamma,
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{default_params, f32_lit, f64_lit};
+    use crate::builder::*;
+    use proc_macro2::TokenStream;
+    use quote::quote;
+
+    fn text(tokens: TokenStream) -> String {
+        tokens.to_string()
+    }
+
+    #[test]
+    fn numbers_are_written_exactly_with_their_sign() {
+        assert_eq!(text(f64_lit(0.1)), "0.1f64");
+        assert_eq!(text(f64_lit(-2.5)), "- 2.5f64");
+        assert_eq!(text(f64_lit(-0.0)), "- 0f64");
+        assert_eq!(text(f64_lit(f64::INFINITY)), ":: core :: f64 :: INFINITY");
+        assert_eq!(text(f32_lit(0.1)), "0.1f32");
+        let third = 1.0f64 / 3.0;
+        let written = text(f64_lit(third));
+        assert_eq!(written.trim_end_matches("f64").parse::<f64>().unwrap(), third);
+    }
+
+    #[test]
+    fn the_scene_is_one_rust_expression_naming_the_ir_through_the_crate_path() {
+        let s = scene(
+            union(sphere(param("r", 1.0, 0.5..2.0)), mandelbulb(8).translate(vec3(1.5, 0.0, 0.0)))
+                .material(rgb(0.9, 0.2, 0.1)),
+        );
+        let tokens = super::scene(&s, &quote!(::fractal_dsl));
+        let parsed: syn::Expr = syn::parse2(tokens.clone()).expect("the emitted scene is a Rust expression");
+        assert!(matches!(parsed, syn::Expr::Struct(_)));
+        let written = text(tokens);
+        for part in [":: fractal_dsl :: Scene", ":: fractal_dsl :: Node :: Union", "\"r\"", "1.5f64"] {
+            assert!(written.contains(part), "{part} missing from {written}");
+        }
+    }
+
+    #[test]
+    fn defaults_follow_the_parameter_order_in_both_precisions() {
+        let s = scene(sphere(param("a", 0.1, 0.0..1.0) + param("b", -0.5, -1.0..1.0) + param("a", 0.1, 0.0..1.0)));
+        let (single, double) = default_params(&s);
+        assert_eq!(text(single), "& [0.1f32 , - 0.5f32]");
+        assert_eq!(text(double), "& [0.1f64 , - 0.5f64]");
+    }
+}

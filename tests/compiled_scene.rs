@@ -1,0 +1,119 @@
+//! What a `CompiledScene` holds is what its source says, built at compile time: the IR the macro's expansion
+//! constructs equals the IR its canonical source reads back as, its default parameter block is the scene's parameter
+//! defaults in uniform order, and `distance()` is the native evaluator called with that block at time 0.
+
+use fractal::dsl::eval::Env;
+use fractal::dsl::parse::parse_str;
+use fractal::prelude::*;
+use fractal::scenes;
+
+const POINTS: [[f32; 3]; 6] =
+    [[0.0, 0.0, 0.0], [1.5, 0.0, 0.0], [0.3, -0.7, 0.2], [-1.2, 0.4, 2.5], [2.0, 2.0, -2.0], [0.05, 1.1, -0.6]];
+
+/// Checks the IR, the defaults and both `distance` twins of `compiled` against what its source text says.
+fn check(name: &str, compiled: &CompiledScene) {
+    let parsed = parse_str(compiled.source()).unwrap_or_else(|e| panic!("{name}: canonical source reads back: {e}"));
+    assert_eq!(compiled.scene(), &parsed, "{name}: the constructed IR differs from the parsed source");
+
+    let defaults_f64: Vec<f64> = parsed.params().iter().map(|p| p.default).collect();
+    let defaults_f32: Vec<f32> = defaults_f64.iter().map(|&d| d as f32).collect();
+    assert_eq!(compiled.default_params::<f64>(), defaults_f64.as_slice(), "{name}: f64 defaults");
+    assert_eq!(compiled.default_params::<f32>(), defaults_f32.as_slice(), "{name}: f32 defaults");
+
+    let native = compiled.native();
+    let env_f32 = Env { time: 0.0f32, params: &defaults_f32 };
+    let env_f64 = Env { time: 0.0f64, params: &defaults_f64 };
+    for p in POINTS {
+        let (single, double) = (Vec3::from_array(p), DVec3::from_array(p.map(f64::from)));
+        let expected = (native.distance_f32)(single.into(), &env_f32);
+        assert_eq!(compiled.distance(single).to_bits(), expected.to_bits(), "{name} at {p:?}");
+        let expected = (native.distance_f64)(double.into(), &env_f64);
+        assert_eq!(compiled.distance_f64(double).to_bits(), expected.to_bits(), "{name} at {p:?} (f64)");
+    }
+}
+
+#[test]
+fn every_built_in_scene_holds_its_source_ir_and_defaults() {
+    for (name, compiled) in scenes::ALL {
+        check(name, compiled);
+    }
+}
+
+#[test]
+fn distance_reads_the_build_time_parameter_defaults() {
+    let compiled = scene! {
+        union(
+            sphere(param("radius", 0.75, 0.5..2.0)).translate(vec3(param("x", -0.3, -1.0..1.0), 0.0, 0.0)),
+            box3(vec3(0.25, 0.25, 0.25)).translate(vec3(1.5, 0.0, 0.0)),
+        )
+    };
+    check("params", &compiled);
+    // `Scene::params` order: a transform's own values come before its child's.
+    assert_eq!(compiled.default_params::<f32>(), &[-0.3f32, 0.75f32][..]);
+    assert_eq!(compiled.default_params::<f64>(), &[-0.3, 0.75][..]);
+    // At the sphere's centre, (-0.3, 0, 0): one radius inside.
+    assert!((compiled.distance(Vec3::new(-0.3, 0.0, 0.0)) + 0.75).abs() < 1e-6);
+    assert!((compiled.distance_f64(DVec3::new(-0.3, 0.0, 0.0)) + 0.75).abs() < 1e-12);
+    // Other values through an environment of the caller's own.
+    let moved =
+        (compiled.native().distance_f32)(Vec3::new(-0.3, 0.0, 0.0).into(), &Env { time: 0.0, params: &[0.0, 1.5] });
+    assert!((moved - (0.3 - 1.5)).abs() < 1e-6, "{moved}");
+}
+
+#[test]
+fn every_kind_of_ir_value_is_constructed_exactly() {
+    let compiled = scene! {
+        scene(union(
+            smooth_union(sphere(0.5 + 0.25 * sin(t)), box3(vec3(0.4, 0.3, 0.2)).rotate_x(0.3), 0.1),
+            smooth_intersect(round_box(vec3(0.5, 0.5, 0.5), 0.05), torus(0.6, 0.2).rotate_y(-0.4), 0.05)
+                .translate(vec3(2.0, 0.0, 0.0)),
+            smooth_subtract(capsule(vec3(0.0, -0.5, 0.0), vec3(0.0, 0.5, 0.0), 0.2), cylinder(0.1, 1.0), 0.05)
+                .rotate_z(-(cos(t) / 3.0)),
+            intersect(cone(0.5, 0.4, 0.1), octahedron(0.6)).translate(vec3(-2.0, 0.0, 0.0)),
+            subtract(ellipsoid(vec3(0.5, 0.3, 0.4)), plane(vec3(0.0, 1.0, 1.0), -0.1)).rotate(vec3(1.0, 1.0, 0.0), 0.7),
+            sphere(0.2).repeat(vec3(3.0, 0.0, 3.0)).translate(vec3(0.0, -3.0, 0.0)),
+            sphere(clamp(abs(0.1 - t), 0.05, 0.2))
+                .repeat_limited(vec3(0.5, 0.5, 0.0), vec3(2, 1, 0))
+                .twist(0.5)
+                .bend(0.1)
+                .round(0.01)
+                .onion(0.02)
+                .elongate(vec3(0.1, 0.0, 0.0))
+                .scale(param("size", 1.5, 0.5..3.0))
+                .material(phong(rgb(0.2, 0.8, 0.3), 0.1, 0.8, 0.3, 24.0)),
+            mandelbulb(8)
+                .iterations(6)
+                .bailout(4.0)
+                .material(orbit_trap(rgb(1.0, 0.5, 0.2), rgb(0.1, 0.2, 0.9)).specular(0.5).shininess(16.0))
+                .translate(vec3(0.0, 3.0, 0.0)),
+            menger(3).scale(0.5).translate(vec3(3.0, 3.0, 0.0)),
+            sierpinski_tetrahedron(5).translate(vec3(-3.0, 3.0, 0.0)),
+            julia(vec4(-0.2, 0.6, 0.2, 0.0)).translate(vec3(0.0, 6.0, 0.0)),
+            mandelbox(-1.5).min_radius(0.4).fold_limit(1.1).scale(0.2).translate(vec3(0.0, -6.0, 0.0)),
+            sphere(max(0.1, min(sqrt(0.09), pow(0.5, 2.0))) * mix(1.0, 2.0, 0.5)).material(rgb(0.9, 0.9, 0.9).ambient(0.2).diffuse(0.7)),
+        ))
+        .light(directional(vec3(0.6, 0.8, -0.4), rgb(1.0, 0.9, 0.8)).intensity(1.2))
+        .light(point_light(vec3(0.0, 4.0, 0.0), rgb(0.5, 0.5, 1.0)).intensity(param("lamp", 2.0, 0.0..5.0)))
+        .camera(
+            camera_path(
+                key(0.0, vec3(0.0, 1.0, -5.0), vec3(0.0, 0.0, 0.0)),
+                key(2.0, vec3(5.0, 1.0, 0.0), vec3(0.0, 0.0, 0.0)),
+            )
+            .linear()
+            .looped()
+            .fov(60.0)
+        )
+        .max_steps(200)
+        .max_distance(50.0)
+        .pixel_epsilon(1.5)
+        .soft_shadows(8.0)
+        .ambient_occlusion(0.5)
+        .glow(rgb(0.1, 0.2, 0.3))
+        .fog(rgb(0.5, 0.5, 0.5), 0.05)
+        .background(rgb(0.0, 0.0, 0.0))
+        .gamma(2.2)
+    };
+    check("every kind", &compiled);
+    // Geometry's parameters first, then the lights'.
+    assert_eq!(compiled.default_params::<f64>(), &[1.5, 2.0][..]);
+}
