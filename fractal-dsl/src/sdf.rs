@@ -207,23 +207,24 @@ fn escape_estimate<F: Num>(r: F, dr: F) -> F {
     c::<F>(0.5) * ln(max(r, c(TINY))) * r / dr
 }
 
-/// Mandelbulb of any power by the trigonometric form; the derivative uses the same `power` as the iteration.
+/// The orbit of an escape-time map from z = p: z ← map(z, |z|, dr) + p with dr ← its derivative, while |z| stays
+/// within `escape` and dr below [`DR_MAX`]; returns the distance estimate and the orbit trap (closest approach to the
+/// origin, at most 1).
 #[inline(always)]
-pub fn de_mandelbulb<F: Num>(p: V3<F>, power: F, iterations: F::Count, bailout: F) -> [F; 2] {
-    let escape = mandelbulb_escape(power, bailout);
+fn escape_time<F: Num>(
+    p: V3<F>,
+    iterations: F::Count,
+    escape: F,
+    map: impl Fn(V3<F>, F, F) -> (V3<F>, F),
+) -> [F; 2] {
     let r0 = length(p);
     let (_, dr, r, trap) = F::iterate(
         iterations,
         (p, c::<F>(1.0), r0, r0),
         |&(_, dr, r, _)| orbit_bounded(r, escape, dr),
         |(z, dr, r, trap)| {
-            let theta = acos(clamp(z.z / max(r, c(TINY)), c(-1.0), c(1.0))) * power;
-            let phi = atan2(z.y, z.x) * power;
-            let dr = power * pow(r, power - c(1.0)) * dr + c(1.0);
-            let zr = pow(r, power);
-            let (st, ct) = (sin(theta), cos(theta));
-            let (sp, cp) = (sin(phi), cos(phi));
-            let z = v3(st * cp, sp * st, ct) * zr + p;
+            let (z, dr) = map(z, r, dr);
+            let z = z + p;
             let r = length(z);
             (z, dr, r, min(trap, r))
         },
@@ -231,46 +232,50 @@ pub fn de_mandelbulb<F: Num>(p: V3<F>, power: F, iterations: F::Count, bailout: 
     [escape_estimate(r, dr), min(trap, c(1.0))]
 }
 
+/// Mandelbulb of any power by the trigonometric form; the derivative uses the same `power` as the iteration.
+#[inline(always)]
+pub fn de_mandelbulb<F: Num>(p: V3<F>, power: F, iterations: F::Count, bailout: F) -> [F; 2] {
+    escape_time(p, iterations, mandelbulb_escape(power, bailout), |z, r, dr| {
+        let theta = acos(clamp(z.z / max(r, c(TINY)), c(-1.0), c(1.0))) * power;
+        let phi = atan2(z.y, z.x) * power;
+        let dr = power * pow(r, power - c(1.0)) * dr + c(1.0);
+        let zr = pow(r, power);
+        let (st, ct) = (sin(theta), cos(theta));
+        let (sp, cp) = (sin(phi), cos(phi));
+        (v3(st * cp, sp * st, ct) * zr, dr)
+    })
+}
+
 /// Power-8 Mandelbulb without trigonometry: the same map as [`de_mandelbulb`] at power 8, by
 /// (z + iρ)^8 and ((x + iy)/ρ)^8 expanded as polynomials.
 #[inline(always)]
 pub fn de_mandelbulb8<F: Num>(p: V3<F>, iterations: F::Count, bailout: F) -> [F; 2] {
-    let escape = mandelbulb_escape(c(8.0), bailout);
-    let r0 = length(p);
-    let (_, dr, r, trap) = F::iterate(
-        iterations,
-        (p, c::<F>(1.0), r0, r0),
-        |&(_, dr, r, _)| orbit_bounded(r, escape, dr),
-        |(z, dr, r, trap)| {
-            let x2 = z.x * z.x;
-            let y2 = z.y * z.y;
-            let a = z.z * z.z;
-            let b = x2 + y2;
-            let r2 = a + b;
-            let dr = c::<F>(8.0) * r2 * r2 * r2 * r * dr + c(1.0);
-            let a2 = a * a;
-            let b2 = b * b;
-            let cos_part =
-                a2 * a2 - c::<F>(28.0) * a2 * a * b + c::<F>(70.0) * a2 * b2 - c::<F>(28.0) * a * b2 * b + b2 * b2;
-            let sin_part = c::<F>(8.0) * z.z * (a2 * a - c::<F>(7.0) * a2 * b + c::<F>(7.0) * a * b2 - b2 * b);
-            // On the polar axis ρ = 0 and the azimuth is undefined; the map sends x and y to 0 there. The threshold is
-            // TINY, not 0: fast-math GPU code flushes subnormal b to 0 inside sqrt, and 1/sqrt(0) would be Inf.
-            let inv_rho = select(gt(b, c(TINY)), c::<F>(1.0) / sqrt(max(b, c(TINY))), c(0.0));
-            let ux = z.x * inv_rho;
-            let uy = z.y * inv_rho;
-            let u2x = ux * ux - uy * uy;
-            let u2y = c::<F>(2.0) * ux * uy;
-            let u4x = u2x * u2x - u2y * u2y;
-            let u4y = c::<F>(2.0) * u2x * u2y;
-            let u8x = u4x * u4x - u4y * u4y;
-            let u8y = c::<F>(2.0) * u4x * u4y;
-            let rho_sin = b * inv_rho * sin_part;
-            let z = v3(rho_sin * u8x, rho_sin * u8y, cos_part) + p;
-            let r = length(z);
-            (z, dr, r, min(trap, r))
-        },
-    );
-    [escape_estimate(r, dr), min(trap, c(1.0))]
+    escape_time(p, iterations, mandelbulb_escape(c(8.0), bailout), |z, r, dr| {
+        let x2 = z.x * z.x;
+        let y2 = z.y * z.y;
+        let a = z.z * z.z;
+        let b = x2 + y2;
+        let r2 = a + b;
+        let dr = c::<F>(8.0) * r2 * r2 * r2 * r * dr + c(1.0);
+        let a2 = a * a;
+        let b2 = b * b;
+        let cos_part =
+            a2 * a2 - c::<F>(28.0) * a2 * a * b + c::<F>(70.0) * a2 * b2 - c::<F>(28.0) * a * b2 * b + b2 * b2;
+        let sin_part = c::<F>(8.0) * z.z * (a2 * a - c::<F>(7.0) * a2 * b + c::<F>(7.0) * a * b2 - b2 * b);
+        // On the polar axis ρ = 0 and the azimuth is undefined; the map sends x and y to 0 there. The threshold is
+        // TINY, not 0: fast-math GPU code flushes subnormal b to 0 inside sqrt, and 1/sqrt(0) would be Inf.
+        let inv_rho = select(gt(b, c(TINY)), c::<F>(1.0) / sqrt(max(b, c(TINY))), c(0.0));
+        let ux = z.x * inv_rho;
+        let uy = z.y * inv_rho;
+        let u2x = ux * ux - uy * uy;
+        let u2y = c::<F>(2.0) * ux * uy;
+        let u4x = u2x * u2x - u2y * u2y;
+        let u4y = c::<F>(2.0) * u2x * u2y;
+        let u8x = u4x * u4x - u4y * u4y;
+        let u8y = c::<F>(2.0) * u4x * u4y;
+        let rho_sin = b * inv_rho * sin_part;
+        (v3(rho_sin * u8x, rho_sin * u8y, cos_part), dr)
+    })
 }
 
 /// Menger sponge of `levels` levels in [-1, 1]³ (IQ's formulation).

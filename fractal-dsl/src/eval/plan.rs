@@ -198,8 +198,12 @@ pub struct Plan {
 impl Plan {
     /// Folds and prepares `scene`. [`Env::params`] slot i holds the value of `scene.params()[i]`.
     pub fn new(scene: &Scene) -> Plan {
-        let params = scene.params();
-        let folded = fold::fold_scene(scene);
+        Plan::folded(&fold::fold_scene(scene), scene.params())
+    }
+
+    /// Prepares a scene already folded, whose parameter slots (taken before folding, which may drop a parameter's
+    /// only use) are `params`.
+    pub fn folded(folded: &Scene, params: Vec<ParamDecl>) -> Plan {
         let compiler = Compiler { params: &params };
         Plan {
             root: compiler.node(&folded.root),

@@ -70,8 +70,8 @@ pub struct Program {
 
 /// Lowers a scene (folding it first).
 pub fn lower(scene: &Scene) -> Program {
-    let plan = Plan::new(scene);
     let folded = fold::fold_scene(scene);
+    let plan = Plan::folded(&folded, scene.params());
     let walk = Walk { plan: &plan, guards: true };
     let params = plan.params.clone();
 

@@ -11,6 +11,7 @@ use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
 use crate::ir::*;
+use crate::prims::decl::PRIMS;
 
 /// A Rust expression of type `Scene` (named through `krate`) that constructs `scene` exactly.
 pub fn scene(scene: &Scene, krate: &TokenStream) -> TokenStream {
@@ -289,50 +290,21 @@ impl Writer<'_> {
         }
     }
 
+    /// A primitive names its declaration by its place in the table (the same table the macro read).
     fn prim(&self, p: &Prim) -> TokenStream {
         let k = self.k;
-        match p {
-            Prim::Sphere { radius } => {
-                let radius = self.expr(radius);
-                quote!(#k::Prim::Sphere { radius: #radius })
+        let index = PRIMS.iter().position(|d| d.name == p.name()).unwrap_or_default();
+        let args = p.args.iter().map(|a| match a {
+            ArgValue::Num(e) => {
+                let e = self.expr(e);
+                quote!(#k::ArgValue::Num(#e))
             }
-            Prim::Box { half } => {
-                let half = self.vec3(half);
-                quote!(#k::Prim::Box { half: #half })
+            ArgValue::Vec3(v) => {
+                let v = self.vec3(v);
+                quote!(#k::ArgValue::Vec3(#v))
             }
-            Prim::RoundBox { half, radius } => {
-                let (half, radius) = (self.vec3(half), self.expr(radius));
-                quote!(#k::Prim::RoundBox { half: #half, radius: #radius })
-            }
-            Prim::Torus { major, minor } => {
-                let (major, minor) = (self.expr(major), self.expr(minor));
-                quote!(#k::Prim::Torus { major: #major, minor: #minor })
-            }
-            Prim::Capsule { a, b, radius } => {
-                let (a, b, radius) = (self.vec3(a), self.vec3(b), self.expr(radius));
-                quote!(#k::Prim::Capsule { a: #a, b: #b, radius: #radius })
-            }
-            Prim::Cylinder { radius, half_height } => {
-                let (radius, half_height) = (self.expr(radius), self.expr(half_height));
-                quote!(#k::Prim::Cylinder { radius: #radius, half_height: #half_height })
-            }
-            Prim::Cone { half_height, bottom, top } => {
-                let (half_height, bottom, top) = (self.expr(half_height), self.expr(bottom), self.expr(top));
-                quote!(#k::Prim::Cone { half_height: #half_height, bottom: #bottom, top: #top })
-            }
-            Prim::Plane { normal, offset } => {
-                let (normal, offset) = (self.vec3(normal), self.expr(offset));
-                quote!(#k::Prim::Plane { normal: #normal, offset: #offset })
-            }
-            Prim::Octahedron { size } => {
-                let size = self.expr(size);
-                quote!(#k::Prim::Octahedron { size: #size })
-            }
-            Prim::Ellipsoid { radii } => {
-                let radii = self.vec3(radii);
-                quote!(#k::Prim::Ellipsoid { radii: #radii })
-            }
-        }
+        });
+        quote!(#k::Prim { kind: #k::PrimKind(#k::prims::decl::PRIMS[#index]), args: ::std::vec![#(#args),*] })
     }
 
     fn fractal(&self, f: &Fractal) -> TokenStream {
