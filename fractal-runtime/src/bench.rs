@@ -37,9 +37,10 @@ use fractal_dsl::{CameraPlacement, Scene};
 use glam::{DQuat, DVec3};
 
 use crate::camera::{CameraPath, Pose};
+use crate::device::{Backend, DeviceInfo};
 use crate::error::RenderError;
 use crate::frame::{Frame, ParamValues};
-use crate::renderer::{Backend, DeviceInfo, KernelSources, RenderJob};
+use crate::renderer::{KernelSources, RenderJob};
 use crate::select::{BackendChoice, RendererOptions};
 
 pub use accuracy::Accuracy;

@@ -2,7 +2,7 @@
 //! Nothing here panics on a missing GPU or driver; every failure is one of these values with a message a user can act
 //! on.
 
-use crate::renderer::Backend;
+use crate::device::Backend;
 
 /// A camera that cannot be placed.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]

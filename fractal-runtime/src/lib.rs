@@ -10,6 +10,10 @@
 //!
 //! The runtime never writes kernel text; it runs what the scene compiler (`fractal_dsl::back`) wrote.
 //!
+//! The modules form layers, each using only modules listed before it: [`device`] (the [`Backend`] families and
+//! [`DeviceInfo`]), [`image`], [`export`], [`output`], [`error`], [`camera`], [`frame`], [`renderer`], [`backend`],
+//! [`select`](mod@select), [`bench`](mod@bench), [`viewer`], [`cli`].
+//!
 //! ```
 //! use fractal_dsl::builder::{scene, sphere};
 //! use fractal_dsl::eval::{Env, Evaluator, Sample};
@@ -42,6 +46,7 @@ pub mod backend;
 pub mod bench;
 pub mod camera;
 pub mod cli;
+pub mod device;
 pub mod error;
 pub mod export;
 pub mod frame;
@@ -56,8 +61,9 @@ pub use backend::cpu::{render_scene, CpuRenderer};
 pub use backend::opencl::{probe_opencl, OpenClRenderer};
 pub use backend::wgpu::{probe_wgsl, WgpuRenderer};
 pub use camera::{CameraPath, Pose};
+pub use device::{Backend, DeviceInfo};
 pub use error::{CameraError, FrameError, RenderError};
 pub use frame::{Frame, LightSlot, ParamValues, MAX_IMAGE_SIDE};
 pub use image::Image;
-pub use renderer::{Backend, CpuKernel, DeviceInfo, KernelSources, ProbeSample, RenderJob, Renderer};
+pub use renderer::{CpuKernel, KernelSources, ProbeSample, RenderJob, Renderer};
 pub use select::{select, AutoRenderer, BackendChoice, RendererOptions, UnknownBackend};

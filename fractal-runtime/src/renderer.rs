@@ -1,5 +1,6 @@
 //! The one interface every renderer implements: a [`RenderJob`] (the scene's kernels plus the frame uniforms) in,
-//! an [`Image`] out, and a description of the device that drew it.
+//! an [`Image`] out, and a description of the device that drew it ([`DeviceInfo`], which lives with [`Backend`] in
+//! [`crate::device`] and is re-exported here).
 //!
 //! A job carries every form of the scene a caller has (WGSL, OpenCL C, a CPU evaluator); each renderer takes the one
 //! it runs, so the same job can be handed to whichever backend was selected, or retried on the next one.
@@ -9,61 +10,13 @@ use std::fmt;
 use fractal_dsl::eval::Evaluator;
 use fractal_dsl::Scene;
 
+pub use crate::device::{Backend, DeviceInfo};
 use crate::error::RenderError;
 use crate::frame::Frame;
 use crate::image::Image;
 
-/// The three renderer families.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Backend {
-    /// WGSL through wgpu (Vulkan, Metal, DX12, GL; lavapipe without a GPU).
-    Wgpu,
-    /// OpenCL C through an OpenCL platform (a GPU driver, or pocl on a CPU).
-    OpenCl,
-    /// The scene's CPU evaluator, threaded with rayon.
-    Cpu,
-}
-
-impl Backend {
-    pub const ALL: [Backend; 3] = [Backend::Wgpu, Backend::OpenCl, Backend::Cpu];
-    /// The name used on the command line.
-    pub fn name(self) -> &'static str {
-        match self {
-            Backend::Wgpu => "wgpu",
-            Backend::OpenCl => "opencl",
-            Backend::Cpu => "cpu",
-        }
-    }
-}
-
-impl fmt::Display for Backend {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
 /// One probe result: `[distance, ambient, diffuse, specular, albedo.r, albedo.g, albedo.b, shininess]`.
 pub type ProbeSample = [f32; 8];
-
-/// Which device a renderer got.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct DeviceInfo {
-    pub backend: Backend,
-    /// The API under the backend: "Vulkan", "Metal", "OpenCL 3.0 PoCL …", "rayon".
-    pub api: String,
-    /// Device name, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)".
-    pub name: String,
-    /// Driver name and version, as the driver reports them.
-    pub driver: String,
-    /// Device kind: "Cpu", "DiscreteGpu", "IntegratedGpu", …
-    pub device_type: String,
-}
-
-impl fmt::Display for DeviceInfo {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{} on {} ({}, {}), driver {}", self.backend, self.name, self.api, self.device_type, self.driver)
-    }
-}
 
 /// What the CPU renderer runs: an f32 evaluator of the scene (native or interpreted) and the scene itself (for its
 /// render settings, bound and materials).

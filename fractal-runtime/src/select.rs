@@ -7,9 +7,10 @@ use std::str::FromStr;
 
 use crate::backend::cpu::CpuRenderer;
 use crate::backend::wgpu::WgpuRenderer;
+use crate::device::{Backend, DeviceInfo};
 use crate::error::RenderError;
 use crate::image::Image;
-use crate::renderer::{Backend, DeviceInfo, RenderJob, Renderer};
+use crate::renderer::{RenderJob, Renderer};
 
 /// The `--backend` choice.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]

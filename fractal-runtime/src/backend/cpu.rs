@@ -12,10 +12,11 @@ use fractal_dsl::math::{dot, length, normalize, v3, Real, V3};
 use fractal_dsl::{HitEpsilon, Node, RenderSettings, Scene, Shadows};
 use rayon::prelude::*;
 
+use crate::device::{Backend, DeviceInfo};
 use crate::error::{FrameError, RenderError};
 use crate::frame::{Frame, LightSlot};
 use crate::image::Image;
-use crate::renderer::{Backend, DeviceInfo, RenderJob, Renderer};
+use crate::renderer::{RenderJob, Renderer};
 
 /// Renders with the job's CPU evaluator on all cores.
 #[derive(Clone, Debug, Default)]

@@ -10,10 +10,11 @@ use fractal_dsl::back::Entry;
 use ocl::enums::{DeviceInfo as ClDeviceInfo, DeviceInfoResult};
 use ocl::{flags, Buffer, Context, Device, Kernel, Platform, Program, Queue};
 
+use crate::device::{Backend, DeviceInfo};
 use crate::error::RenderError;
 use crate::frame::Frame;
 use crate::image::Image;
-use crate::renderer::{Backend, DeviceInfo, ProbeSample, RenderJob, Renderer};
+use crate::renderer::{ProbeSample, RenderJob, Renderer};
 
 /// The build option that trades strict IEEE semantics for speed; off in precise mode.
 pub const FAST_MATH: &str = "-cl-fast-relaxed-math";

@@ -11,10 +11,11 @@ use std::sync::{mpsc, Arc, Mutex};
 use fractal_dsl::back::Entry;
 use wgpu::util::DeviceExt;
 
+use crate::device::{Backend, DeviceInfo};
 use crate::error::RenderError;
 use crate::frame::Frame;
 use crate::image::Image;
-use crate::renderer::{Backend, DeviceInfo, ProbeSample, RenderJob, Renderer};
+use crate::renderer::{ProbeSample, RenderJob, Renderer};
 
 /// Workgroup edge of the `render` entry point (8×8).
 pub const RENDER_WORKGROUP: u32 = 8;

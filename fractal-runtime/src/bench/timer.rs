@@ -5,9 +5,10 @@
 //! kernels take other arguments than the generated ones (the image size instead of the frame uniforms). Both kernels
 //! go through the same dispatcher, so the ratio compares kernels, not plumbing.
 
+use crate::device::{Backend, DeviceInfo};
 use crate::error::RenderError;
 use crate::image::Image;
-use crate::renderer::{Backend, DeviceInfo, RenderJob};
+use crate::renderer::RenderJob;
 use crate::select::RendererOptions;
 
 mod cpu;

@@ -3,8 +3,9 @@
 //! or fails, as [`crate::select::AutoRenderer`] does.
 
 use crate::backend::wgpu::WgpuRenderer;
+use crate::device::{Backend, DeviceInfo};
 use crate::error::RenderError;
-use crate::renderer::{Backend, DeviceInfo, Renderer};
+use crate::renderer::Renderer;
 use crate::select::{self, BackendChoice, RendererOptions};
 
 /// The renderer in use.

@@ -9,8 +9,9 @@ use super::path_file::load_camera_path;
 use super::screenshot::write_png;
 use super::{ViewerError, ViewerOptions, ViewerScene};
 use crate::camera::Pose;
+use crate::device::DeviceInfo;
 use crate::frame::{Frame, ParamValues};
-use crate::renderer::{DeviceInfo, RenderJob};
+use crate::renderer::RenderJob;
 
 /// `Ok` when an X11 or Wayland display is named in the environment (on other systems the window system is always
 /// there); otherwise why not.

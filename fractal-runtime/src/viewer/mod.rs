@@ -57,8 +57,8 @@ use std::time::Duration;
 use fractal_dsl::{CompiledScene, Scene};
 
 use crate::camera::Pose;
+use crate::device::DeviceInfo;
 use crate::frame::ParamValues;
-use crate::renderer::DeviceInfo;
 use crate::select::{BackendChoice, RendererOptions};
 
 pub use controls::{Action, Move};

@@ -17,10 +17,10 @@ use wgpu::util::DeviceExt;
 use winit::window::Window;
 
 use crate::backend::wgpu::{capture, map_read, read_back, WgpuRenderer, RENDER_WORKGROUP};
+use crate::device::Backend;
 use crate::error::RenderError;
 use crate::frame::Frame;
 use crate::image::Image;
-use crate::renderer::Backend;
 
 /// The source pixel shown at window pixel `d` when `src` pixels are stretched over `dst`.
 pub fn source_index(d: u32, dst: u32, src: u32) -> u32 {

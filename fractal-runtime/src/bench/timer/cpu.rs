@@ -6,8 +6,9 @@ use std::time::Instant;
 use super::{millis, KernelClock, Timed, Timer, Work};
 use crate::backend::cpu::CpuRenderer;
 use crate::bench::baseline_cpu;
+use crate::device::DeviceInfo;
 use crate::error::RenderError;
-use crate::renderer::{DeviceInfo, Renderer};
+use crate::renderer::Renderer;
 
 pub(crate) struct CpuTimer {
     renderer: CpuRenderer,

@@ -11,9 +11,10 @@ use ocl::{Buffer, Event, Kernel};
 use super::{millis, KernelClock, Timed, Timer, Work};
 use crate::backend::opencl::{device_error, image_buffer, rejected, OpenClRenderer};
 use crate::bench::BASELINE_OPENCL;
+use crate::device::{Backend, DeviceInfo};
 use crate::error::RenderError;
 use crate::image::Image;
-use crate::renderer::{Backend, DeviceInfo, Renderer};
+use crate::renderer::Renderer;
 
 pub(crate) struct OpenClTimer {
     /// Owns the device, context, profiling queue and program cache.

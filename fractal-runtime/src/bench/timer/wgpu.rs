@@ -11,9 +11,10 @@ use wgpu::util::DeviceExt;
 use super::{millis, KernelClock, Timed, Timer, Work};
 use crate::backend::wgpu::{capture, read_back, WgpuRenderer};
 use crate::bench::BASELINE_WGSL;
+use crate::device::{Backend, DeviceInfo};
 use crate::error::RenderError;
 use crate::image::Image;
-use crate::renderer::{Backend, DeviceInfo, Renderer};
+use crate::renderer::Renderer;
 
 const WORKGROUP: u32 = 8;
 
