@@ -211,12 +211,7 @@ fn escape_estimate<F: Num>(r: F, dr: F) -> F {
 /// within `escape` and dr below [`DR_MAX`]; returns the distance estimate and the orbit trap (closest approach to the
 /// origin, at most 1).
 #[inline(always)]
-fn escape_time<F: Num>(
-    p: V3<F>,
-    iterations: F::Count,
-    escape: F,
-    map: impl Fn(V3<F>, F, F) -> (V3<F>, F),
-) -> [F; 2] {
+fn escape_time<F: Num>(p: V3<F>, iterations: F::Count, escape: F, map: impl Fn(V3<F>, F, F) -> (V3<F>, F)) -> [F; 2] {
     let r0 = length(p);
     let (_, dr, r, trap) = F::iterate(
         iterations,
