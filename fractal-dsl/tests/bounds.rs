@@ -52,6 +52,8 @@ fn distance(interp: &Interpreter, p: [f64; 3], time: f64, params: &[f64]) -> f64
 
 fn primitive() -> impl Strategy<Value = Node> {
     prop_oneof![
+        // Every declared exact primitive, so a new one is checked without being listed here.
+        exact_bounded_primitive(),
         (0.1..1.5f64).prop_map(sphere),
         Just(sphere(param("radius", 0.6, 0.2..1.4))),
         vec3_in(0.05, 1.2).prop_map(box3),

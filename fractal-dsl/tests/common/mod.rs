@@ -3,10 +3,12 @@
 // Each test crate compiles its own copy of this module and uses only part of it.
 #![allow(dead_code)]
 
-use fractal_dsl::builder::*;
 use fractal_dsl::eval::interp::Interpreter;
 use fractal_dsl::eval::Env;
+use fractal_dsl::geom::Interval;
+use fractal_dsl::ir::prim::{ArgRange, ArgShape, Rule};
 use fractal_dsl::math::v3;
+use fractal_dsl::prims::decl::PRIMS;
 use fractal_dsl::*;
 use proptest::prelude::*;
 
@@ -44,14 +46,59 @@ pub fn unit_axis() -> impl Strategy<Value = [f64; 3]> {
     })
 }
 
-/// Primitives whose leaf function is the exact distance (no plane: it would make a child unbounded and unguarded).
+/// Whether a declared primitive is bounded with an exact distance (reach 1): not the plane (unbounded, so a child
+/// holding it is unguarded) nor the ellipsoid (a lower bound). Judged by the declaration's own bound, at unequal
+/// argument values (an ellipsoid with equal radii is a sphere, and exact).
+fn exactly_bounded(decl: &PrimDecl) -> bool {
+    let ranges: Vec<ArgRange> = decl
+        .args
+        .iter()
+        .enumerate()
+        .map(|(i, a)| match a.shape {
+            ArgShape::Number => ArgRange::Num(Interval::point(0.5 + 0.1 * i as f64)),
+            ArgShape::Vec3 => ArgRange::Vec3([0.5, 0.75, 1.0].map(Interval::point)),
+        })
+        .collect();
+    matches!((decl.bound)(&ranges), Some(b) if b.reach >= 1.0)
+}
+
+/// Valid constant arguments for `decl`, drawn by the rule its declaration gives each argument.
+fn declared_args(decl: &'static PrimDecl) -> BoxedStrategy<Vec<ArgValue>> {
+    let draws: Vec<BoxedStrategy<[f64; 3]>> = decl
+        .args
+        .iter()
+        .map(|a| match a.rule {
+            Rule::Positive => vec3_in(0.05, 1.2).boxed(),
+            Rule::NonNegative => vec3_in(0.0, 1.0).boxed(),
+            Rule::Finite => vec3_in(-1.0, 1.0).boxed(),
+            Rule::Direction => unit_axis().boxed(),
+            // A fraction of the smallest extent it rounds, scaled below.
+            Rule::RoundingOf(_) => vec3_in(0.0, 1.0).boxed(),
+        })
+        .collect();
+    draws
+        .prop_map(move |draws| {
+            decl.args
+                .iter()
+                .zip(&draws)
+                .map(|(a, v)| {
+                    let v = match a.rule {
+                        Rule::RoundingOf(of) => [v[0] * draws[of].iter().copied().fold(f64::INFINITY, f64::min); 3],
+                        _ => *v,
+                    };
+                    match a.shape {
+                        ArgShape::Number => ArgValue::Num(Expr::Lit(v[0])),
+                        ArgShape::Vec3 => ArgValue::Vec3(v.into()),
+                    }
+                })
+                .collect()
+        })
+        .boxed()
+}
+
+/// Every declared primitive whose distance is exact and bounded (`fractal_dsl::prims`), with valid constant
+/// arguments: a new primitive is in every test that draws from here without being listed.
 pub fn exact_bounded_primitive() -> impl Strategy<Value = Node> {
-    prop_oneof![
-        (0.1..1.5f64).prop_map(sphere),
-        vec3_in(0.05, 1.2).prop_map(box3),
-        (0.2..1.2f64, 0.05..0.5f64).prop_map(|(a, b)| torus(a, b)),
-        (vec3_in(-1.0, 1.0), vec3_in(-1.0, 1.0), 0.05..0.6f64).prop_map(|(a, b, r)| capsule(a, b, r)),
-        (0.1..1.0f64, 0.0..1.0f64, 0.0..1.0f64).prop_map(|(h, a, b)| cone(h, a, b)),
-        (0.1..1.5f64).prop_map(octahedron),
-    ]
+    let kinds: Vec<PrimKind> = PRIMS.iter().copied().filter(|d| exactly_bounded(d)).map(PrimKind).collect();
+    prop::sample::select(kinds).prop_flat_map(|k| declared_args(k.0).prop_map(move |args| k.0.node(args)))
 }
