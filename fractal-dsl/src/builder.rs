@@ -61,25 +61,9 @@ pub fn vec4(x: impl Into<Expr>, y: impl Into<Expr>, z: impl Into<Expr>, w: impl 
 
 pub use crate::prims::*;
 
-// ---- fractals ----------------------------------------------------------------------------------------------------
+// ---- fractals: declared with their builder functions in `crate::fractals` -------------------------------------
 
-/// Mandelbulb of the given power (may animate; an integer 8 compiles to the trig-free polynomial form).
-pub fn mandelbulb(power: impl Into<Expr>) -> Fractal {
-    Fractal::new(FractalKind::Mandelbulb { power: power.into() })
-}
-pub fn menger(levels: u32) -> Fractal {
-    Fractal { iterations: Some(levels), ..Fractal::new(FractalKind::Menger) }
-}
-pub fn sierpinski_tetrahedron(levels: u32) -> Fractal {
-    Fractal { iterations: Some(levels), ..Fractal::new(FractalKind::Sierpinski) }
-}
-/// Quaternion Julia set for the constant `c`.
-pub fn julia(c: impl Into<Vec4Expr>) -> Fractal {
-    Fractal::new(FractalKind::Julia { c: c.into() })
-}
-pub fn mandelbox(scale: impl Into<Expr>) -> Fractal {
-    Fractal::new(FractalKind::Mandelbox { scale: scale.into() })
-}
+pub use crate::fractals::*;
 
 impl Fractal {
     pub fn iterations(mut self, n: u32) -> Fractal {

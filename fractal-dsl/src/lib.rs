@@ -31,6 +31,7 @@ pub mod back;
 pub mod builder;
 pub mod compiled;
 pub mod eval;
+pub mod fractals;
 pub mod geom;
 pub mod ir;
 pub mod leaf;

@@ -12,6 +12,7 @@
 use std::fmt::Write;
 
 use crate::builder::{self as b, ShapeExt};
+use crate::ir::fractal::{FractalArgValue, Setting};
 use crate::ir::prim::{normalised, Rule};
 use crate::ir::*;
 
@@ -214,22 +215,20 @@ fn prim(p: &Prim) -> String {
 }
 
 fn fractal(f: &Fractal) -> String {
-    let mut s = match &f.kind {
-        FractalKind::Mandelbulb { power } => format!("mandelbulb({})", expr(power)),
-        FractalKind::Menger => format!("menger({})", f.iterations_or_default()),
-        FractalKind::Sierpinski => format!("sierpinski_tetrahedron({})", f.iterations_or_default()),
-        FractalKind::Julia { c } => {
-            format!("julia(vec4({}, {}, {}, {}))", expr(&c.0[0]), expr(&c.0[1]), expr(&c.0[2]), expr(&c.0[3]))
+    let arg = match &f.arg {
+        FractalArgValue::Num(e) => expr(e),
+        FractalArgValue::Vec4(c) => {
+            format!("vec4({}, {}, {}, {})", expr(&c.0[0]), expr(&c.0[1]), expr(&c.0[2]), expr(&c.0[3]))
         }
-        FractalKind::Mandelbox { scale } => format!("mandelbox({})", expr(scale)),
+        FractalArgValue::Levels => f.iterations_or_default().to_string(),
     };
-    let levels_in_call = matches!(f.kind, FractalKind::Menger | FractalKind::Sierpinski);
-    if let (Some(n), false) = (f.iterations, levels_in_call) {
+    let mut s = format!("{}({arg})", f.name());
+    if let (Some(n), false) = (f.iterations, f.arg == FractalArgValue::Levels) {
         let _ = write!(s, ".iterations({n})");
     }
-    for (name, value) in [("bailout", &f.bailout), ("min_radius", &f.min_radius), ("fold_limit", &f.fold_limit)] {
-        if let Some(v) = value {
-            let _ = write!(s, ".{name}({})", expr(v));
+    for setting in Setting::ALL {
+        if let Some(v) = f.setting(setting) {
+            let _ = write!(s, ".{}({})", setting.name(), expr(v));
         }
     }
     s

@@ -12,6 +12,8 @@
 use std::fmt;
 
 use crate::analyse::interval::{range, Interval};
+use crate::fractals::families::FRACTALS;
+use crate::ir::fractal::{FractalArg, FractalArgShape, FractalArgValue, FractalRule, Setting};
 use crate::ir::prim::Rule;
 use crate::ir::*;
 
@@ -29,14 +31,6 @@ pub const MAX_LIGHTS: usize = 16;
 pub const MAX_MARCH_STEPS: u32 = 10_000;
 /// Largest cell count per axis of `repeat_limited`.
 pub const MAX_REPEAT_COUNT: u32 = 1000;
-/// Menger sponge levels allowed: each level multiplies the detail by 3, and 8 is already below f32 resolution.
-pub const MENGER_LEVELS: (u32, u32) = (1, 8);
-/// Sierpinski tetrahedron levels allowed: each halves the detail; 24 reaches f32 resolution.
-pub const SIERPINSKI_LEVELS: (u32, u32) = (1, 24);
-/// Mandelbulb powers allowed.
-pub const MANDELBULB_POWER: (f64, f64) = (2.0, 64.0);
-/// Mandelbox |scale| allowed: below 1.05 the estimator's convergence breaks down; above 8 it leaves f32 range.
-pub const MANDELBOX_SCALE: (f64, f64) = (1.05, 8.0);
 
 /// A broken rule in a scene, located by the path of the node (or the scene part) it concerns.
 #[derive(Clone, Debug, PartialEq)]
@@ -142,7 +136,7 @@ fn walk(node: &Node, path: &mut Vec<String>, errors: &mut Vec<ValidationError>) 
 pub fn node_label(node: &Node) -> &'static str {
     match node {
         Node::Prim(p) => prim_name(p),
-        Node::Fractal(f) => f.kind.name(),
+        Node::Fractal(f) => f.name(),
         Node::Union(_) => "union",
         Node::Intersect(_) => "intersect",
         Node::Subtract(..) => "subtract",
@@ -209,12 +203,7 @@ pub fn own_exprs(node: &Node) -> Vec<&Expr> {
     match node {
         Node::Prim(p) => out.extend(p.exprs()),
         Node::Fractal(f) => {
-            match &f.kind {
-                FractalKind::Mandelbulb { power } => out.push(power),
-                FractalKind::Julia { c } => out.extend(&c.0),
-                FractalKind::Mandelbox { scale } => out.push(scale),
-                FractalKind::Menger | FractalKind::Sierpinski => {}
-            }
+            out.extend(f.arg_exprs());
             out.extend([&f.bailout, &f.min_radius, &f.fold_limit].into_iter().flatten());
         }
         Node::Union(_) | Node::Intersect(_) | Node::Subtract(..) => {}
@@ -523,73 +512,69 @@ pub fn check_prim(p: &Prim) -> Vec<Problem> {
     out
 }
 
-/// Rules of a fractal's settings, including which settings its family has at all.
+/// Rules of a fractal, as its family's declaration states them: the constructor argument, the iteration count, and
+/// which settings the family has at all.
 pub fn check_fractal(f: &Fractal) -> Vec<Problem> {
     let mut out = Vec::new();
     let o = &mut out;
-    let name = f.kind.name();
-    match &f.kind {
-        FractalKind::Mandelbulb { power } => {
-            let (lo, hi) = MANDELBULB_POWER;
-            number(o, "power", "mandelbulb power", power, ge_le(lo, hi));
-        }
-        FractalKind::Julia { c } => finite(o, "c", "julia constant c", &c.0.iter().collect::<Vec<_>>()),
-        FractalKind::Mandelbox { scale } => mandelbox_scale(o, scale),
-        FractalKind::Menger | FractalKind::Sierpinski => {}
+    let decl = f.decl();
+    let (name, arg) = (decl.name, decl.arg);
+    match (arg.rule, &f.arg) {
+        (FractalRule::Between(lo, hi), FractalArgValue::Num(e)) => number(o, arg.name, arg.what, e, ge_le(lo, hi)),
+        (FractalRule::AbsBetween(lo, hi), FractalArgValue::Num(e)) => abs_between(o, name, arg, e, lo, hi),
+        (FractalRule::Finite, _) => finite(o, arg.name, arg.what, &f.arg_exprs().iter().collect::<Vec<_>>()),
+        _ => {}
     }
     if let Some(n) = f.iterations {
-        match f.kind {
-            FractalKind::Menger => integer(o, "levels", "menger levels", n, MENGER_LEVELS.0, MENGER_LEVELS.1),
-            FractalKind::Sierpinski => {
-                let (lo, hi) = SIERPINSKI_LEVELS;
-                integer(o, "levels", "sierpinski_tetrahedron levels", n, lo, hi)
-            }
-            _ => integer(o, "iterations", &format!("{name} iterations"), n, 1, MAX_ITERATIONS),
+        let it = decl.iterations;
+        match arg.shape {
+            FractalArgShape::Levels => integer(o, arg.name, arg.what, n, it.min, it.max),
+            _ => integer(o, "iterations", &format!("{name} iterations"), n, it.min, it.max),
         }
     }
-    let escape_time = matches!(f.kind, FractalKind::Mandelbulb { .. } | FractalKind::Julia { .. });
-    let mandelbox = matches!(f.kind, FractalKind::Mandelbox { .. });
-    if let Some(b) = &f.bailout {
-        if escape_time {
-            number(o, "bailout", &format!("{name} bailout"), b, gt(0.0));
+    for setting in Setting::ALL {
+        let Some(value) = f.setting(setting) else { continue };
+        let method = setting.name();
+        if f.applies(setting) {
+            let lim = match setting {
+                Setting::MinRadius => within(0.0, false, 1.0, false),
+                Setting::Bailout | Setting::FoldLimit => gt(0.0),
+            };
+            number(o, method, &format!("{name} {method}"), value, lim);
         } else {
-            o.push(Problem::new("", format!("`bailout` applies only to mandelbulb and julia, not {name}")));
-        }
-    }
-    for (setting, value, lim) in
-        [("min_radius", &f.min_radius, within(0.0, false, 1.0, false)), ("fold_limit", &f.fold_limit, gt(0.0))]
-    {
-        if let Some(v) = value {
-            if mandelbox {
-                number(o, setting, &format!("mandelbox {setting}"), v, lim);
-            } else {
-                o.push(Problem::new("", format!("`{setting}` applies only to mandelbox, not {name}")));
-            }
+            let having: Vec<&str> =
+                FRACTALS.iter().filter(|d| d.settings.iter().any(|(s, _)| *s == setting)).map(|d| d.name).collect();
+            let having = match having.split_last() {
+                Some((last, [])) => last.to_string(),
+                Some((last, rest)) => format!("{} and {last}", rest.join(", ")),
+                None => "no family".to_string(),
+            };
+            o.push(Problem::new("", format!("`{method}` applies only to {having}, not {name}")));
         }
     }
     out
 }
 
-fn mandelbox_scale(o: &mut Vec<Problem>, scale: &Expr) {
-    let (lo, hi) = MANDELBOX_SCALE;
-    if let Some(m) = literal_problem(scale) {
-        o.push(Problem::new("scale", format!("mandelbox scale: {m}")));
+/// Checks lo ≤ |value| ≤ hi over the value's whole range ("mandelbox |scale| must be in [1.05, 8]").
+fn abs_between(o: &mut Vec<Problem>, family: &str, arg: FractalArg, e: &Expr, lo: f64, hi: f64) {
+    if let Some(m) = literal_problem(e) {
+        o.push(Problem::new(arg.name, format!("{}: {m}", arg.what)));
         return;
     }
-    let (r, constant) = value_range(scale);
-    let rule = format!("|scale| must be in [{}, {}]", num(lo), num(hi));
+    let (r, constant) = value_range(e);
+    let rule = format!("|{}| must be in [{}, {}]", arg.name, num(lo), num(hi));
     let fits = |a: f64, b: f64| (a >= lo && b <= hi) || (a >= -hi && b <= -lo);
     if fits(r.lo, r.hi) {
         return;
     }
     let message = if constant {
-        format!("mandelbox {rule}, found {}", num(r.lo))
+        format!("{family} {rule}, found {}", num(r.lo))
     } else if !r.lo.is_finite() || !r.hi.is_finite() {
-        format!("mandelbox {rule}, but no bound is known for its value, so it may leave that range")
+        format!("{family} {rule}, but no bound is known for its value, so it may leave that range")
     } else {
-        format!("mandelbox {rule}, but its range is {}..{}", num(r.lo), num(r.hi))
+        format!("{family} {rule}, but its range is {}..{}", num(r.lo), num(r.hi))
     };
-    o.push(Problem::new("scale", message));
+    o.push(Problem::new(arg.name, message));
 }
 
 /// Rules of one node's own values (not its children's): the primitive or fractal for a leaf; blend radii, scale

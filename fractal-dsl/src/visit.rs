@@ -1,19 +1,14 @@
 //! Walks over every expression of a scene, for analyses that only care about the numbers, and the facts they give:
 //! the scene's parameters ([`Scene::params`]) and whether it reads the time ([`Scene::uses_time`]).
 
-use crate::ir::{Albedo, CameraPlacement, Expr, FractalKind, LightKind, Material, Node, ParamDecl, Scene};
+use crate::ir::{Albedo, CameraPlacement, Expr, LightKind, Material, Node, ParamDecl, Scene};
 
 /// Calls `f` on every expression in the distance tree (geometry and materials), in tree order.
 pub fn visit_node_exprs<'a>(node: &'a Node, f: &mut dyn FnMut(&'a Expr)) {
     match node {
         Node::Prim(p) => p.exprs().for_each(&mut *f),
         Node::Fractal(fr) => {
-            match &fr.kind {
-                FractalKind::Mandelbulb { power } => f(power),
-                FractalKind::Julia { c } => c.0.iter().for_each(&mut *f),
-                FractalKind::Mandelbox { scale } => f(scale),
-                FractalKind::Menger | FractalKind::Sierpinski => {}
-            }
+            fr.arg_exprs().iter().for_each(&mut *f);
             for e in [&fr.bailout, &fr.min_radius, &fr.fold_limit].into_iter().flatten() {
                 f(e)
             }

@@ -192,7 +192,7 @@ fn fractal_leaves_call_the_leaf_functions_times_the_step_factor() {
         (mandelbox(-1.5).min_radius(0.4).fold_limit(1.2), sdf::de_mandelbox(p, -1.5, 12, 0.4, 1.2)[0]),
     ];
     for (f, raw) in cases {
-        let step = f.kind.step_factor() as f32;
+        let step = f.step_factor() as f32;
         let i = Interpreter::new(&scene(f.clone()));
         assert_eq!(i.distance_in(p, &env), raw * step, "{f:?}");
     }

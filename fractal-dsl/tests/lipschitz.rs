@@ -1,5 +1,5 @@
 //! Distances are lower bounds: exact primitives, CSG and rigid transforms are 1-Lipschitz, and each fractal's
-//! estimator times its step factor ([`FractalKind::step_factor`]) stays within the Lipschitz bound on sampled pairs.
+//! estimator times its step factor ([`fractal_dsl::Fractal::step_factor`]) stays within the Lipschitz bound on sampled pairs.
 //! The fractal tests print the measured ratios; the step factors in the IR are set from them.
 
 use fractal_dsl::builder::*;
@@ -144,7 +144,7 @@ fn julia_escapes(p: [f64; 3], c: [f64; 4], iterations: u32, bailout: f64) -> boo
 /// largest ratio grow without limit as the sample count grows (measured: 49 at 1e-4 for the default Mandelbulb);
 /// at the step scale it settles.
 fn measured_ratio(fractal: Fractal, half: f64, exterior: &dyn Fn([f64; 3]) -> bool, pairs: usize, seed: u64) -> f64 {
-    let step = fractal.kind.step_factor();
+    let step = fractal.step_factor();
     let interp = Interpreter::new(&scene(fractal));
     let mut rng = Rng(seed);
     let h = 0.01 * half;
@@ -185,7 +185,7 @@ fn variant(label: String, fractal: Fractal, half: f64, exterior: impl Fn([f64; 3
 }
 
 fn check_family(name: &str, variants: Vec<Variant>) {
-    let step = variants[0].fractal.kind.step_factor();
+    let step = variants[0].fractal.step_factor();
     let mut worst = 0.0f64;
     for (i, Variant { label, fractal, half, exterior }) in variants.into_iter().enumerate() {
         let scaled = measured_ratio(fractal, half, &*exterior, 200_000, 0x5eed + i as u64);
@@ -231,7 +231,7 @@ fn mandelbulb_step_factor_keeps_the_estimate_within_the_lipschitz_bound() {
             50_000,
             7,
         );
-        eprintln!("mandelbulb power {power}: raw ratio {:.3} (not asserted)", ratio / mandelbulb(8).kind.step_factor());
+        eprintln!("mandelbulb power {power}: raw ratio {:.3} (not asserted)", ratio / mandelbulb(8).step_factor());
     }
 }
 
@@ -275,7 +275,7 @@ fn menger_and_sierpinski_estimators_are_1_lipschitz() {
         ("sierpinski 8", sierpinski_tetrahedron(8)),
         ("sierpinski 3", sierpinski_tetrahedron(3)),
     ] {
-        assert_eq!(fractal.kind.step_factor(), 1.0);
+        assert_eq!(fractal.step_factor(), 1.0);
         let interp = Interpreter::new(&scene(fractal));
         let mut rng = Rng(42);
         let mut worst = 0.0f64;

@@ -254,6 +254,29 @@ fn every_declared_primitive_reads_back_from_its_printed_source() {
     }
 }
 
+/// Fractal families are read from their declarations (`fractal_dsl::fractals`) too.
+#[test]
+fn every_declared_fractal_family_reads_back_from_its_printed_source() {
+    use fractal_dsl::ir::fractal::{FractalArgShape, FractalArgValue, FractalRule};
+    for decl in fractal_dsl::fractals::families::FRACTALS {
+        let value = match decl.arg.rule {
+            FractalRule::Between(lo, hi) | FractalRule::AbsBetween(lo, hi) => 0.5 * (lo + hi),
+            FractalRule::Finite | FractalRule::Count => 0.25,
+        };
+        let fractal = match decl.arg.shape {
+            FractalArgShape::Number => Fractal::new(decl, FractalArgValue::Num(Expr::Lit(value))),
+            FractalArgShape::Vec4 => Fractal::new(decl, FractalArgValue::Vec4(vec4(value, -value, 0.5 * value, 0.0))),
+            FractalArgShape::Levels => {
+                Fractal { iterations: Some(decl.iterations.min + 1), ..Fractal::new(decl, FractalArgValue::Levels) }
+            }
+        };
+        let written = scene(fractal);
+        let src = fractal_dsl::print::to_source(&written);
+        assert!(src.contains(&format!("{}(", decl.name)), "{src}");
+        assert_eq!(parse(&src), written, "{src}");
+    }
+}
+
 #[test]
 fn the_cases_use_every_word_of_the_vocabulary() {
     let sources: String = cases().into_iter().map(|(src, _)| src).collect::<Vec<_>>().join("\n");
@@ -261,8 +284,9 @@ fn the_cases_use_every_word_of_the_vocabulary() {
     assert!(words.len() > 70, "vocabulary unexpectedly small: {}", words.len());
     for sig in &words {
         let head = sig.split(['(', ' ']).next().unwrap_or_default();
-        if fractal_dsl::prims::decl::by_name(head).is_some() {
-            continue; // covered for every declaration by the test above
+        if fractal_dsl::prims::decl::by_name(head).is_some() || fractal_dsl::fractals::families::by_name(head).is_some()
+        {
+            continue; // covered for every declaration by the tests above
         }
         let (needle, word) = match head.split_once('.') {
             Some((_, method)) => (format!(".{method}("), method),

@@ -13,7 +13,7 @@
 use super::interval::{range, Interval};
 pub use crate::geom::Aabb;
 use crate::ir::prim::ArgRange;
-use crate::ir::{ArgValue, Axis, Fractal, FractalKind, Node, Prim, Vec3Expr};
+use crate::ir::{ArgValue, Axis, Fractal, Node, Prim, Vec3Expr};
 
 /// Signed distance from `p` to the box, by the same formula as [`crate::sdf::sd_box`] (so a guard computed here and one
 /// computed in a kernel agree).
@@ -39,9 +39,6 @@ pub struct Bound {
 
 impl Bound {
     const UNBOUNDED: Bound = Bound { aabb: None, reach: 0.0, exact_guard: false };
-    fn exact(b: Aabb) -> Bound {
-        Bound { aabb: Some(b), reach: 1.0, exact_guard: true }
-    }
     fn map(self, f: impl FnOnce(Aabb) -> Option<Aabb>) -> Bound {
         match self.aabb.and_then(f) {
             Some(b) if b.is_finite() => Bound { aabb: Some(b), ..self },
@@ -316,40 +313,10 @@ pub fn mandelbox_half_extent(scale: Interval, fold_limit: f64) -> Option<f64> {
     Some(extent * 1.01 + 0.02)
 }
 
+/// A fractal's bound, as its family's declaration computes it.
 fn fractal_bound(f: &Fractal) -> Bound {
-    let step = f.kind.step_factor();
-    match &f.kind {
-        // Escape-time estimators: outside the box the raw estimate is at least 0.67 (Mandelbulb, powers 2–32) and
-        // 0.67 (Julia) times the distance to the box, measured (0.50 and 0.57 after the factors 0.75 and 0.85); the
-        // reach takes 0.6 × the step factor. Inside the set the estimate is not a distance, so union guards over
-        // them are not exact (they stay safe: the box holds the surface).
-        FractalKind::Mandelbulb { power } => match mandelbulb_radius(range(power).lo) {
-            Some(r) => Bound { aabb: Some(Aabb::cube(r)), reach: 0.6 * step, exact_guard: false },
-            None => Bound::UNBOUNDED,
-        },
-        // The sponge's estimate is max(box, cuts) with the box [-1, 1]³: exact.
-        FractalKind::Menger => Bound::exact(Aabb::cube(1.0)),
-        // The folds keep points in the tetrahedron's symmetry; far away the estimate is a plane distance, measured at
-        // no less than 0.334 × the distance to the cube along the diagonals.
-        FractalKind::Sierpinski => Bound { reach: 0.32 * step, exact_guard: false, ..Bound::exact(Aabb::cube(1.0)) },
-        FractalKind::Julia { c } => {
-            let norm = c.0.iter().map(|e| range(e).max_abs().powi(2)).sum::<f64>().sqrt();
-            match julia_radius(norm) {
-                Some(r) => Bound { aabb: Some(Aabb::cube(r)), reach: 0.6 * step, exact_guard: false },
-                None => Bound::UNBOUNDED,
-            }
-        }
-        FractalKind::Mandelbox { scale } => {
-            let scale = range(scale);
-            let fold = range(&f.fold_limit_or_default()).max_abs();
-            match mandelbox_half_extent(scale, fold) {
-                Some(e) => {
-                    // Measured far-field ratio of estimate to box distance: (s − 1)/(s + 1) for s > 1, 1 for s < −1.
-                    let ratio = if scale.lo > 1.0 { (scale.lo - 1.0) / (scale.lo + 1.0) } else { 1.0 };
-                    Bound { reach: 0.95 * ratio * step, exact_guard: false, ..Bound::exact(Aabb::cube(e)) }
-                }
-                None => Bound::UNBOUNDED,
-            }
-        }
+    match (f.decl().bound)(f) {
+        Some(b) => Bound { aabb: Some(b.aabb), reach: b.reach, exact_guard: b.reach >= 1.0 }.map(Some),
+        None => Bound::UNBOUNDED,
     }
 }

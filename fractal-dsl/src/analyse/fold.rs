@@ -1,6 +1,7 @@
 //! Constant folding: literal arithmetic becomes one literal, and identity nodes (translate by zero, rotate by zero,
 //! scale by one, one-child unions) disappear, so kernels carry only the work that changes the result.
 
+use crate::ir::fractal::Setting;
 use crate::ir::*;
 
 /// Folds an expression bottom-up.
@@ -122,19 +123,16 @@ fn fold_prim(p: &Prim) -> Prim {
 }
 
 fn fold_fractal(fr: &Fractal) -> Fractal {
-    let kind = match &fr.kind {
-        FractalKind::Mandelbulb { power } => FractalKind::Mandelbulb { power: fold_expr(power) },
-        FractalKind::Julia { c } => FractalKind::Julia { c: Vec4Expr(c.0.clone().map(|e| fold_expr(&e))) },
-        FractalKind::Mandelbox { scale } => FractalKind::Mandelbox { scale: fold_expr(scale) },
-        k @ (FractalKind::Menger | FractalKind::Sierpinski) => k.clone(),
-    };
-    Fractal {
-        kind,
-        iterations: fr.iterations,
-        bailout: fr.bailout.as_ref().map(fold_expr),
-        min_radius: fr.min_radius.as_ref().map(fold_expr),
-        fold_limit: fr.fold_limit.as_ref().map(fold_expr),
+    let mut folded = fr.clone();
+    for e in folded.arg_exprs_mut() {
+        *e = fold_expr(e);
     }
+    for s in Setting::ALL {
+        if let Some(e) = folded.setting_mut(s) {
+            *e = fold_expr(e);
+        }
+    }
+    folded
 }
 
 fn fold_material(m: &Material) -> Material {

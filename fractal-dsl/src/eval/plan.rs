@@ -5,6 +5,7 @@
 
 use crate::analyse::{fold, guarded_bound, union_order};
 use crate::eval::Env;
+use crate::ir::fractal::CallArg;
 use crate::ir::*;
 use crate::leaf::LeafArg;
 use crate::math::{v3, V3};
@@ -234,7 +235,7 @@ impl Compiler<'_> {
     fn node(&self, n: &Node) -> Step {
         match n {
             Node::Prim(p) => Step::Leaf(self.prim(p)),
-            Node::Fractal(f) => Step::Fractal { call: self.fractal(f), step: f.kind.step_factor() },
+            Node::Fractal(f) => Step::Fractal { call: self.fractal(f), step: f.step_factor() },
             Node::Union(children) if children.is_empty() => Step::Empty,
             Node::Union(children) => Step::Union(
                 union_order(children)
@@ -292,25 +293,14 @@ impl Compiler<'_> {
     }
 
     fn fractal(&self, f: &Fractal) -> LeafCall {
-        let n = |e: &Expr| ArgTerm::Num(self.num(e));
-        let iterations = ArgTerm::Count(f.iterations_or_default());
-        let bailout = n(&f.bailout_or_default());
-        match &f.kind {
-            FractalKind::Mandelbulb { power } if power.as_lit() == Some(8.0) => {
-                self.call(Leaf::DeMandelbulb8, vec![iterations, bailout])
-            }
-            FractalKind::Mandelbulb { power } => self.call(Leaf::DeMandelbulb, vec![n(power), iterations, bailout]),
-            FractalKind::Menger => self.call(Leaf::DeMenger, vec![iterations]),
-            FractalKind::Sierpinski => self.call(Leaf::DeSierpinski, vec![iterations]),
-            FractalKind::Julia { c } => {
-                let mut args: Vec<ArgTerm> = c.0.iter().map(n).collect();
-                args.extend([iterations, bailout]);
-                self.call(Leaf::DeJulia, args)
-            }
-            FractalKind::Mandelbox { scale } => self.call(
-                Leaf::DeMandelbox,
-                vec![n(scale), iterations, n(&f.min_radius_or_default()), n(&f.fold_limit_or_default())],
-            ),
-        }
+        let (leaf, args) = f.call();
+        let args = args
+            .into_iter()
+            .map(|a| match a {
+                CallArg::Num(e) => ArgTerm::Num(self.num(&e)),
+                CallArg::Count(n) => ArgTerm::Count(n),
+            })
+            .collect();
+        self.call(leaf, args)
     }
 }

@@ -5,81 +5,12 @@
 //! Numbers are [`Expr`]s so that `t` and `param(..)` can stand wherever a literal can.
 
 mod expr;
+pub mod fractal;
 pub mod prim;
 
 pub use expr::{BinOp, Expr, Func, ParamDecl, Vec3Expr, Vec4Expr};
+pub use fractal::{Fractal, FractalDecl, FractalKind, MAX_ITERATIONS};
 pub use prim::{ArgValue, Prim, PrimDecl, PrimKind};
-
-/// The fractal families. Their distance estimators are not exactly 1-Lipschitz, so each carries a measured step
-/// factor ([`FractalKind::step_factor`], set by `analyse`).
-#[derive(Clone, Debug, PartialEq)]
-pub enum FractalKind {
-    /// Power-`power` Mandelbulb, polar axis z (theta = acos(z/r), phi = atan2(y, x)).
-    Mandelbulb { power: Expr },
-    /// Menger sponge in the cube [-1, 1]³; `iterations` is the number of levels.
-    Menger,
-    /// Sierpinski tetrahedron with vertices (1,1,1), (-1,-1,1), (1,-1,-1), (-1,1,-1); `iterations` = levels.
-    Sierpinski,
-    /// Quaternion Julia set z ← z² + c in the slice w = 0.
-    Julia { c: Vec4Expr },
-    /// Mandelbox of `scale` (box fold at `fold_limit`, sphere fold with `min_radius` and fixed radius 1).
-    Mandelbox { scale: Expr },
-}
-
-/// A fractal leaf with its iteration settings. `None` means the family's default ([`Fractal::iterations`] etc.).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Fractal {
-    pub kind: FractalKind,
-    pub iterations: Option<u32>,
-    pub bailout: Option<Expr>,
-    pub min_radius: Option<Expr>,
-    pub fold_limit: Option<Expr>,
-}
-
-/// The cap on fractal iterations (validation refuses more).
-pub const MAX_ITERATIONS: u32 = 64;
-
-impl FractalKind {
-    pub fn name(&self) -> &'static str {
-        match self {
-            FractalKind::Mandelbulb { .. } => "mandelbulb",
-            FractalKind::Menger => "menger",
-            FractalKind::Sierpinski => "sierpinski_tetrahedron",
-            FractalKind::Julia { .. } => "julia",
-            FractalKind::Mandelbox { .. } => "mandelbox",
-        }
-    }
-    pub fn default_iterations(&self) -> u32 {
-        match self {
-            FractalKind::Mandelbulb { .. } => 8,
-            FractalKind::Menger => 4,
-            FractalKind::Sierpinski => 8,
-            FractalKind::Julia { .. } => 11,
-            FractalKind::Mandelbox { .. } => 12,
-        }
-    }
-}
-
-impl Fractal {
-    pub fn new(kind: FractalKind) -> Fractal {
-        Fractal { kind, iterations: None, bailout: None, min_radius: None, fold_limit: None }
-    }
-    pub fn iterations_or_default(&self) -> u32 {
-        self.iterations.unwrap_or_else(|| self.kind.default_iterations())
-    }
-    pub fn bailout_or_default(&self) -> Expr {
-        self.bailout.clone().unwrap_or(Expr::Lit(match self.kind {
-            FractalKind::Julia { .. } => 4.0,
-            _ => 2.0,
-        }))
-    }
-    pub fn min_radius_or_default(&self) -> Expr {
-        self.min_radius.clone().unwrap_or(Expr::Lit(0.5))
-    }
-    pub fn fold_limit_or_default(&self) -> Expr {
-        self.fold_limit.clone().unwrap_or(Expr::Lit(1.0))
-    }
-}
 
 /// Axis of a rotation. Arbitrary axes are normalised constants; angles may animate.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -7,6 +7,8 @@ use std::collections::VecDeque;
 use std::sync::OnceLock;
 
 use crate::builder::{self as b, Color, ShapeExt};
+use crate::fractals::families::FRACTALS;
+use crate::ir::fractal::{FractalArgShape, FractalArgValue};
 use crate::ir::prim::ArgShape;
 use crate::ir::*;
 use crate::prims::decl::PRIMS;
@@ -152,10 +154,12 @@ const fn many(name: &'static str, ty: Ty) -> Param {
 /// Builds the value of a call from its coerced arguments (the receiver first, for methods).
 pub(crate) type BuildFn = fn(&mut Args) -> Result<Value, String>;
 
-/// What gives a call its meaning: a builder call, or a declared primitive ([`crate::prims`]).
+/// What gives a call its meaning: a builder call, a declared primitive ([`crate::prims`]) or a declared fractal
+/// family ([`crate::fractals`]).
 pub(crate) enum Build {
     Fn(BuildFn),
     Prim(&'static PrimDecl),
+    Fractal(&'static FractalDecl),
 }
 
 /// A function (`receiver: None`) or a method of the language.
@@ -191,6 +195,23 @@ fn prim_entry(decl: &'static PrimDecl) -> Entry {
     Entry { name: decl.name, receiver: None, params: Cow::Owned(params), result: Ty::Shape, build: Build::Prim(decl) }
 }
 
+/// The signature of a declared fractal family: its constructor argument as the declaration types it.
+fn fractal_entry(decl: &'static FractalDecl) -> Entry {
+    let ty = match decl.arg.shape {
+        FractalArgShape::Number => Ty::Number,
+        FractalArgShape::Vec4 => Ty::Vec4,
+        FractalArgShape::Levels => Ty::Int,
+    };
+    let params = vec![Param { name: decl.arg.name, ty, many: false }];
+    Entry {
+        name: decl.name,
+        receiver: None,
+        params: Cow::Owned(params),
+        result: Ty::Fractal,
+        build: Build::Fractal(decl),
+    }
+}
+
 impl Entry {
     /// Builds the value of a call from its coerced arguments (the receiver first, for methods).
     pub(crate) fn build(&self, args: &mut Args) -> Result<Value, String> {
@@ -206,6 +227,17 @@ impl Entry {
                     });
                 }
                 Ok(Value::Shape(decl.node(values)))
+            }
+            Build::Fractal(decl) => {
+                let fractal = match args.0.pop_front() {
+                    Some(Value::Number(e)) => Fractal::new(decl, FractalArgValue::Num(e)),
+                    Some(Value::Vec4(v)) => Fractal::new(decl, FractalArgValue::Vec4(v)),
+                    Some(Value::Int(n)) => {
+                        Fractal { iterations: Some(n), ..Fractal::new(decl, FractalArgValue::Levels) }
+                    }
+                    _ => return Err(mismatch()),
+                };
+                Ok(Value::Fractal(fractal))
             }
         }
     }
@@ -257,7 +289,6 @@ takers!(
     vec3 Vec3 Vec3Expr,
     const_vec3 ConstVec3 [f64; 3],
     int_vec3 IntVec3 [u32; 3],
-    vec4 Vec4 Vec4Expr,
     color Color Color,
     material Material Material,
     shape Shape Node,
@@ -360,12 +391,6 @@ pub(crate) static FUNCTIONS: &[Entry] = &[
     fun("rgb", &[p("r", T::Number), p("g", T::Number), p("b", T::Number)], T::Color, |a| {
         Ok(Value::Color(b::rgb(a.num()?, a.num()?, a.num()?)))
     }),
-    // ---- fractals
-    fun("mandelbulb", &[p("power", T::Number)], T::Fractal, |a| fractal(b::mandelbulb(a.num()?))),
-    fun("menger", &[p("levels", T::Int)], T::Fractal, |a| fractal(b::menger(a.int()?))),
-    fun("sierpinski_tetrahedron", &[p("levels", T::Int)], T::Fractal, |a| fractal(b::sierpinski_tetrahedron(a.int()?))),
-    fun("julia", &[p("c", T::Vec4)], T::Fractal, |a| fractal(b::julia(a.vec4()?))),
-    fun("mandelbox", &[p("scale", T::Number)], T::Fractal, |a| fractal(b::mandelbox(a.num()?))),
     // ---- CSG: n-ary unions take one or more shapes; smooth variants take the blend radius k last
     fun("union", &[many("shapes", T::Shape)], T::Shape, |a| shape(b::union_all(a.shapes()))),
     fun("intersect", &[many("shapes", T::Shape)], T::Shape, |a| shape(b::intersect_all(a.shapes()))),
@@ -507,10 +532,13 @@ pub(crate) static METHODS: &[Entry] = &[
 /// Names that stand alone (not called).
 pub(crate) const NAMES: &[&str] = &["t", "PI"];
 
-/// Every free function: the table above, then the declared primitives.
+/// Every free function: the table above, then the declared primitives and fractal families.
 pub(crate) fn functions() -> impl Iterator<Item = &'static Entry> {
-    static PRIM_ENTRIES: OnceLock<Vec<Entry>> = OnceLock::new();
-    FUNCTIONS.iter().chain(PRIM_ENTRIES.get_or_init(|| PRIMS.iter().copied().map(prim_entry).collect()).iter())
+    static DECLARED: OnceLock<Vec<Entry>> = OnceLock::new();
+    let declared = DECLARED.get_or_init(|| {
+        PRIMS.iter().copied().map(prim_entry).chain(FRACTALS.iter().copied().map(fractal_entry)).collect()
+    });
+    FUNCTIONS.iter().chain(declared.iter())
 }
 
 pub(crate) fn function(name: &str) -> Option<&'static Entry> {

@@ -10,6 +10,8 @@
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
+use crate::fractals::families::FRACTALS;
+use crate::ir::fractal::FractalArgValue;
 use crate::ir::*;
 use crate::prims::decl::PRIMS;
 
@@ -307,24 +309,21 @@ impl Writer<'_> {
         quote!(#k::Prim { kind: #k::PrimKind(#k::prims::decl::PRIMS[#index]), args: ::std::vec![#(#args),*] })
     }
 
+    /// A fractal names its family by its place in the table (the same table the macro read).
     fn fractal(&self, f: &Fractal) -> TokenStream {
         let k = self.k;
-        let Fractal { kind, iterations, bailout, min_radius, fold_limit } = f;
-        let kind = match kind {
-            FractalKind::Mandelbulb { power } => {
-                let power = self.expr(power);
-                quote!(#k::FractalKind::Mandelbulb { power: #power })
+        let Fractal { kind, arg, iterations, bailout, min_radius, fold_limit } = f;
+        let index = FRACTALS.iter().position(|d| d.name == kind.0.name).unwrap_or_default();
+        let arg = match arg {
+            FractalArgValue::Num(e) => {
+                let e = self.expr(e);
+                quote!(#k::ir::fractal::FractalArgValue::Num(#e))
             }
-            FractalKind::Menger => quote!(#k::FractalKind::Menger),
-            FractalKind::Sierpinski => quote!(#k::FractalKind::Sierpinski),
-            FractalKind::Julia { c } => {
-                let c = self.vec4(c);
-                quote!(#k::FractalKind::Julia { c: #c })
+            FractalArgValue::Vec4(v) => {
+                let v = self.vec4(v);
+                quote!(#k::ir::fractal::FractalArgValue::Vec4(#v))
             }
-            FractalKind::Mandelbox { scale } => {
-                let scale = self.expr(scale);
-                quote!(#k::FractalKind::Mandelbox { scale: #scale })
-            }
+            FractalArgValue::Levels => quote!(#k::ir::fractal::FractalArgValue::Levels),
         };
         let iterations = self.option(iterations, |&n| {
             let n = u32_lit(n);
@@ -335,7 +334,8 @@ impl Writer<'_> {
         let fold_limit = self.option(fold_limit, |e| self.expr(e));
         quote! {
             #k::Fractal {
-                kind: #kind,
+                kind: #k::FractalKind(#k::fractals::families::FRACTALS[#index]),
+                arg: #arg,
                 iterations: #iterations,
                 bailout: #bailout,
                 min_radius: #min_radius,

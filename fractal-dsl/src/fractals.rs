@@ -1,0 +1,191 @@
+//! The fractal families, each declared once: name, constructor argument with its rule, iteration counts, the settings
+//! that apply, the leaf call, the measured step factor and the bound — and its builder function. The parser, printer,
+//! validation, folding, bounds and evaluation read these declarations ([`crate::ir::fractal`]).
+//!
+//! Step factors are the inverse of the largest |f(p) − f(q)| / |p − q| measured by the Lipschitz tests
+//! (`fractal-dsl/tests/lipschitz.rs`), rounded down to 0.05. Pairs lie outside the set (both orbits escape), near the
+//! surface (estimate below 10% of the bound's half extent) and 1% of the bound's half extent apart: at smaller
+//! separations the escape-time estimators have ever finer detail and the largest ratio keeps growing with the sample
+//! count, and inside the set their values are not distances. Largest ratios over 20 million pairs per variant:
+//! Mandelbulb power 8 at 4–16 iterations and bailout 2 or 256, 1.28 → 0.75; quaternion Julia with connected sets
+//! (c = (−0.2, 0.6, 0.2, 0), (−0.4, 0.6, 0, 0)), 1.15 → 0.85; Mandelbox at scales −2, −1.5, 2, 3, 1.30 → 0.75. Menger
+//! and Sierpinski are 1-Lipschitz: 1. The Mandelbulb's ratio depends on the power (measured: power 3 → 2.7, 4 → 1.4,
+//! 5.5 → 1.5, 8 → 1.28, 16 → 0.93), so its factor follows the lowest power the expression can take.
+
+use crate::ir::fractal::FractalArgValue;
+use crate::ir::{Expr, Fractal, Vec4Expr};
+use families::*;
+
+/// The declarations, and the table the parser looks names up in.
+pub mod families {
+    use crate::analyse::bounds::{julia_radius, mandelbox_half_extent, mandelbulb_radius};
+    use crate::analyse::interval::range;
+    use crate::geom::Aabb;
+    use crate::ir::fractal::{
+        CallArg, FractalArg, FractalArgShape, FractalDecl, FractalRule, Iterations, Setting, MAX_ITERATIONS,
+    };
+    use crate::ir::prim::PrimBound;
+    use crate::ir::Fractal;
+    use crate::sdf::Leaf;
+
+    /// The family called `name` in scene source.
+    pub fn by_name(name: &str) -> Option<&'static FractalDecl> {
+        FRACTALS.iter().copied().find(|f| f.name == name)
+    }
+
+    /// Every family, in the order documentation lists them.
+    pub static FRACTALS: &[&FractalDecl] = &[&MANDELBULB, &MENGER, &SIERPINSKI_TETRAHEDRON, &JULIA, &MANDELBOX];
+
+    fn count(f: &Fractal) -> CallArg {
+        CallArg::Count(f.iterations_or_default())
+    }
+    fn num(e: Expr) -> CallArg {
+        CallArg::Num(e)
+    }
+    use crate::ir::Expr;
+
+    /// Escape-time estimators: outside the box the raw estimate is at least 0.67 (Mandelbulb, powers 2–32; Julia)
+    /// times the distance to the box, measured (0.50 and 0.57 after the factors 0.75 and 0.85); the reach takes 0.6 ×
+    /// the step factor. Inside the set the estimate is not a distance, so union guards over them are not exact (they
+    /// stay safe: the box holds the surface).
+    fn escape_time_bound(f: &Fractal, radius: Option<f64>) -> Option<PrimBound> {
+        radius.map(|r| PrimBound { aabb: Aabb::cube(r), reach: 0.6 * f.step_factor() })
+    }
+
+    pub static MANDELBULB: FractalDecl = FractalDecl {
+        name: "mandelbulb",
+        doc: "the Mandelbulb of `power` (may animate; an integer 8 compiles to the trig-free polynomial form)",
+        arg: FractalArg {
+            name: "power",
+            what: "mandelbulb power",
+            shape: FractalArgShape::Number,
+            rule: FractalRule::Between(2.0, 64.0),
+        },
+        iterations: Iterations { default: 8, min: 1, max: MAX_ITERATIONS },
+        settings: &[(Setting::Bailout, 2.0)],
+        call: |f| {
+            let power = f.number().cloned().unwrap_or(Expr::Lit(8.0));
+            match power.as_lit() {
+                Some(8.0) => (Leaf::DeMandelbulb8, vec![count(f), num(f.bailout_or_default())]),
+                _ => (Leaf::DeMandelbulb, vec![num(power), count(f), num(f.bailout_or_default())]),
+            }
+        },
+        step_factor: |f| {
+            let lowest = f.number().map_or(8.0, |p| range(p).lo);
+            if lowest >= 8.0 {
+                0.75
+            } else if lowest >= 4.0 {
+                0.65
+            } else {
+                0.35
+            }
+        },
+        bound: |f| escape_time_bound(f, mandelbulb_radius(f.number().map_or(8.0, |p| range(p).lo))),
+    };
+
+    pub static MENGER: FractalDecl = FractalDecl {
+        name: "menger",
+        doc: "the Menger sponge of `levels` levels in [-1, 1]³",
+        arg: FractalArg {
+            name: "levels",
+            what: "menger levels",
+            shape: FractalArgShape::Levels,
+            rule: FractalRule::Count,
+        },
+        // Each level multiplies the detail by 3, and 8 is already below f32 resolution.
+        iterations: Iterations { default: 4, min: 1, max: 8 },
+        settings: &[],
+        call: |f| (Leaf::DeMenger, vec![count(f)]),
+        step_factor: |_| 1.0,
+        // The sponge's estimate is max(box, cuts) with the box [-1, 1]³: exact.
+        bound: |_| PrimBound::exact(Aabb::cube(1.0)),
+    };
+
+    pub static SIERPINSKI_TETRAHEDRON: FractalDecl = FractalDecl {
+        name: "sierpinski_tetrahedron",
+        doc: "the Sierpinski tetrahedron of `levels` folds, vertices (1,1,1), (-1,-1,1), (1,-1,-1), (-1,1,-1)",
+        arg: FractalArg {
+            name: "levels",
+            what: "sierpinski_tetrahedron levels",
+            shape: FractalArgShape::Levels,
+            rule: FractalRule::Count,
+        },
+        // Each fold halves the detail; 24 reaches f32 resolution.
+        iterations: Iterations { default: 8, min: 1, max: 24 },
+        settings: &[],
+        call: |f| (Leaf::DeSierpinski, vec![count(f)]),
+        step_factor: |_| 1.0,
+        // The folds keep points in the tetrahedron's symmetry; far away the estimate is a plane distance, measured at
+        // no less than 0.334 × the distance to the cube along the diagonals.
+        bound: |f| Some(PrimBound { aabb: Aabb::cube(1.0), reach: 0.32 * f.step_factor() }),
+    };
+
+    pub static JULIA: FractalDecl = FractalDecl {
+        name: "julia",
+        doc: "the quaternion Julia set z ← z² + c in the slice w = 0",
+        arg: FractalArg {
+            name: "c",
+            what: "julia constant c",
+            shape: FractalArgShape::Vec4,
+            rule: FractalRule::Finite,
+        },
+        iterations: Iterations { default: 11, min: 1, max: MAX_ITERATIONS },
+        settings: &[(Setting::Bailout, 4.0)],
+        call: |f| {
+            let mut args: Vec<CallArg> = f.arg_exprs().iter().cloned().map(num).collect();
+            args.extend([count(f), num(f.bailout_or_default())]);
+            (Leaf::DeJulia, args)
+        },
+        step_factor: |_| 0.85,
+        bound: |f| {
+            let norm = f.arg_exprs().iter().map(|e| range(e).max_abs().powi(2)).sum::<f64>().sqrt();
+            escape_time_bound(f, julia_radius(norm))
+        },
+    };
+
+    pub static MANDELBOX: FractalDecl = FractalDecl {
+        name: "mandelbox",
+        doc: "the Mandelbox of `scale` (box fold at fold_limit, sphere fold with min_radius and fixed radius 1)",
+        // Below |scale| 1.05 the estimator's convergence breaks down; above 8 it leaves f32 range.
+        arg: FractalArg {
+            name: "scale",
+            what: "mandelbox scale",
+            shape: FractalArgShape::Number,
+            rule: FractalRule::AbsBetween(1.05, 8.0),
+        },
+        iterations: Iterations { default: 12, min: 1, max: MAX_ITERATIONS },
+        settings: &[(Setting::MinRadius, 0.5), (Setting::FoldLimit, 1.0)],
+        call: |f| {
+            let scale = f.number().cloned().unwrap_or(Expr::Lit(2.0));
+            let args = vec![num(scale), count(f), num(f.min_radius_or_default()), num(f.fold_limit_or_default())];
+            (Leaf::DeMandelbox, args)
+        },
+        step_factor: |_| 0.75,
+        bound: |f| {
+            let scale = range(f.number()?);
+            let fold = range(&f.fold_limit_or_default()).max_abs();
+            let e = mandelbox_half_extent(scale, fold)?;
+            // Measured far-field ratio of estimate to box distance: (s − 1)/(s + 1) for s > 1, 1 for s < −1.
+            let ratio = if scale.lo > 1.0 { (scale.lo - 1.0) / (scale.lo + 1.0) } else { 1.0 };
+            Some(PrimBound { aabb: Aabb::cube(e), reach: 0.95 * ratio * f.step_factor() })
+        },
+    };
+}
+
+/// Mandelbulb of the given power (may animate; an integer 8 compiles to the trig-free polynomial form).
+pub fn mandelbulb(power: impl Into<Expr>) -> Fractal {
+    Fractal::new(&MANDELBULB, FractalArgValue::Num(power.into()))
+}
+pub fn menger(levels: u32) -> Fractal {
+    Fractal { iterations: Some(levels), ..Fractal::new(&MENGER, FractalArgValue::Levels) }
+}
+pub fn sierpinski_tetrahedron(levels: u32) -> Fractal {
+    Fractal { iterations: Some(levels), ..Fractal::new(&SIERPINSKI_TETRAHEDRON, FractalArgValue::Levels) }
+}
+/// Quaternion Julia set for the constant `c`.
+pub fn julia(c: impl Into<Vec4Expr>) -> Fractal {
+    Fractal::new(&JULIA, FractalArgValue::Vec4(c.into()))
+}
+pub fn mandelbox(scale: impl Into<Expr>) -> Fractal {
+    Fractal::new(&MANDELBOX, FractalArgValue::Num(scale.into()))
+}

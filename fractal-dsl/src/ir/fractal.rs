@@ -1,0 +1,209 @@
+//! Fractals in the IR: a [`Fractal`] is a [`FractalDecl`] (the family: name, constructor argument, iteration rule,
+//! which settings apply, the leaf call, step factor and bound) with its values. Families are declared once
+//! (`crate::fractals`); every reader works from the declaration.
+
+use std::fmt;
+
+use super::prim::PrimBound;
+use super::{Expr, Vec4Expr};
+use crate::sdf::Leaf;
+
+/// The constructor argument of a family: `mandelbulb(power)`, `julia(c)`, `menger(levels)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum FractalArgShape {
+    Number,
+    Vec4,
+    /// The iteration count itself (stored in [`Fractal::iterations`]).
+    Levels,
+}
+
+/// The rule the constructor argument keeps.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum FractalRule {
+    /// lo ≤ value ≤ hi.
+    Between(f64, f64),
+    /// lo ≤ |value| ≤ hi.
+    AbsBetween(f64, f64),
+    Finite,
+    /// An iteration count, checked by the family's [`Iterations`].
+    Count,
+}
+
+#[derive(Clone, Copy, Debug)]
+pub struct FractalArg {
+    pub name: &'static str,
+    /// How messages name it: "mandelbulb power".
+    pub what: &'static str,
+    pub shape: FractalArgShape,
+    pub rule: FractalRule,
+}
+
+/// A setting chained onto a fractal (`.bailout(b)`); each family declares which apply and their defaults.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Setting {
+    Bailout,
+    MinRadius,
+    FoldLimit,
+}
+
+impl Setting {
+    pub const ALL: [Setting; 3] = [Setting::Bailout, Setting::MinRadius, Setting::FoldLimit];
+    /// The method's name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Setting::Bailout => "bailout",
+            Setting::MinRadius => "min_radius",
+            Setting::FoldLimit => "fold_limit",
+        }
+    }
+}
+
+/// The iteration counts a family takes.
+#[derive(Clone, Copy, Debug)]
+pub struct Iterations {
+    pub default: u32,
+    pub min: u32,
+    pub max: u32,
+}
+
+/// An argument of the leaf call a fractal becomes (after the point).
+#[derive(Clone, Debug, PartialEq)]
+pub enum CallArg {
+    Num(Expr),
+    Count(u32),
+}
+
+/// What a fractal family is, declared once.
+pub struct FractalDecl {
+    pub name: &'static str,
+    /// One line for the documentation.
+    pub doc: &'static str,
+    pub arg: FractalArg,
+    pub iterations: Iterations,
+    /// The settings that apply, with their defaults.
+    pub settings: &'static [(Setting, f64)],
+    /// The leaf function and its arguments after the point.
+    pub call: fn(&Fractal) -> (Leaf, Vec<CallArg>),
+    /// Factor on the estimate so a step never overshoots the surface (measured; see `crate::fractals`).
+    pub step_factor: fn(&Fractal) -> f64,
+    /// A conservative bound; `None` when no bound is known for the values' ranges.
+    pub bound: fn(&Fractal) -> Option<PrimBound>,
+}
+
+/// A reference to a family's declaration; equal when the names are.
+#[derive(Clone, Copy)]
+pub struct FractalKind(pub &'static FractalDecl);
+
+impl PartialEq for FractalKind {
+    fn eq(&self, o: &Self) -> bool {
+        self.0.name == o.0.name
+    }
+}
+
+impl fmt::Debug for FractalKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.0.name)
+    }
+}
+
+/// The constructor argument's value.
+#[derive(Clone, Debug, PartialEq)]
+pub enum FractalArgValue {
+    Num(Expr),
+    Vec4(Vec4Expr),
+    /// The count is [`Fractal::iterations`].
+    Levels,
+}
+
+/// A fractal leaf with its settings. `None` means the family's default.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Fractal {
+    pub kind: FractalKind,
+    pub arg: FractalArgValue,
+    pub iterations: Option<u32>,
+    pub bailout: Option<Expr>,
+    pub min_radius: Option<Expr>,
+    pub fold_limit: Option<Expr>,
+}
+
+/// The cap on fractal iterations (validation refuses more).
+pub const MAX_ITERATIONS: u32 = 64;
+
+impl Fractal {
+    pub fn new(decl: &'static FractalDecl, arg: FractalArgValue) -> Fractal {
+        Fractal { kind: FractalKind(decl), arg, iterations: None, bailout: None, min_radius: None, fold_limit: None }
+    }
+    pub fn decl(&self) -> &'static FractalDecl {
+        self.kind.0
+    }
+    pub fn name(&self) -> &'static str {
+        self.kind.0.name
+    }
+    /// The constructor argument's expressions.
+    pub fn arg_exprs(&self) -> &[Expr] {
+        match &self.arg {
+            FractalArgValue::Num(e) => std::slice::from_ref(e),
+            FractalArgValue::Vec4(v) => &v.0,
+            FractalArgValue::Levels => &[],
+        }
+    }
+    pub fn arg_exprs_mut(&mut self) -> &mut [Expr] {
+        match &mut self.arg {
+            FractalArgValue::Num(e) => std::slice::from_mut(e),
+            FractalArgValue::Vec4(v) => &mut v.0,
+            FractalArgValue::Levels => &mut [],
+        }
+    }
+    /// The number argument (the power, the scale); `None` for other shapes.
+    pub fn number(&self) -> Option<&Expr> {
+        match &self.arg {
+            FractalArgValue::Num(e) => Some(e),
+            _ => None,
+        }
+    }
+    pub fn iterations_or_default(&self) -> u32 {
+        self.iterations.unwrap_or(self.kind.0.iterations.default)
+    }
+    /// The setting's value as written.
+    pub fn setting(&self, s: Setting) -> Option<&Expr> {
+        match s {
+            Setting::Bailout => self.bailout.as_ref(),
+            Setting::MinRadius => self.min_radius.as_ref(),
+            Setting::FoldLimit => self.fold_limit.as_ref(),
+        }
+    }
+    pub fn setting_mut(&mut self, s: Setting) -> &mut Option<Expr> {
+        match s {
+            Setting::Bailout => &mut self.bailout,
+            Setting::MinRadius => &mut self.min_radius,
+            Setting::FoldLimit => &mut self.fold_limit,
+        }
+    }
+    /// Whether the family has the setting.
+    pub fn applies(&self, s: Setting) -> bool {
+        self.kind.0.settings.iter().any(|(t, _)| *t == s)
+    }
+    /// The setting's value, or the family's default (NaN for a setting the family does not have).
+    pub fn setting_or_default(&self, s: Setting) -> Expr {
+        self.setting(s).cloned().unwrap_or_else(|| {
+            Expr::Lit(self.kind.0.settings.iter().find(|(t, _)| *t == s).map_or(f64::NAN, |(_, d)| *d))
+        })
+    }
+    pub fn bailout_or_default(&self) -> Expr {
+        self.setting_or_default(Setting::Bailout)
+    }
+    pub fn min_radius_or_default(&self) -> Expr {
+        self.setting_or_default(Setting::MinRadius)
+    }
+    pub fn fold_limit_or_default(&self) -> Expr {
+        self.setting_or_default(Setting::FoldLimit)
+    }
+    /// Factor applied to the estimate so a step never overshoots the surface.
+    pub fn step_factor(&self) -> f64 {
+        (self.kind.0.step_factor)(self)
+    }
+    /// The leaf function and its arguments after the point.
+    pub fn call(&self) -> (Leaf, Vec<CallArg>) {
+        (self.kind.0.call)(self)
+    }
+}
