@@ -8,6 +8,13 @@ pub use bounds::{bound, Aabb};
 
 use crate::ir::Node;
 
+/// Whether some material of the tree may have a specular term (a literal 0 is the only certain "no"): the kernels
+/// and the CPU renderer both leave the specular term out when not.
+pub fn has_specular(node: &Node) -> bool {
+    let own = matches!(node, Node::Material(_, m) if m.specular.as_lit() != Some(0.0));
+    own || node.children().into_iter().any(has_specular)
+}
+
 /// The order a union evaluates its children in: everything without a fractal first, then the fractal subtrees, each
 /// group in source order. Cheap children first make the nearest-so-far distance small before an expensive child's
 /// bound is tested against it.

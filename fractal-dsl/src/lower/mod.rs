@@ -105,8 +105,6 @@ pub fn lower(scene: &Scene) -> Program {
             _ => {}
         });
     }
-    let mut specular = false;
-    visit_materials(&folded.root, &mut |m| specular |= m.specular.as_lit() != Some(0.0));
 
     Program {
         functions: used.into_iter().map(trace_leaf).collect(),
@@ -122,7 +120,7 @@ pub fn lower(scene: &Scene) -> Program {
         distance_reads_frame: reads[0],
         sample_reads_frame: reads[1],
         bound: analyse::bound(&folded.root),
-        specular,
+        specular: analyse::has_specular(&folded.root),
         settings: folded.settings.clone(),
         distance,
         distance_result,
@@ -135,13 +133,4 @@ pub fn lower(scene: &Scene) -> Program {
 fn scene_inputs(params: usize) -> (crate::math::V3<Sym>, Vec<Sym>) {
     let p = Sym::components(Sym::arg_of("p", Ty::V3));
     (p, (0..params).map(Sym::param).collect())
-}
-
-fn visit_materials(n: &Node, f: &mut dyn FnMut(&Material)) {
-    if let Node::Material(_, m) = n {
-        f(m)
-    }
-    for c in n.children() {
-        visit_materials(c, f)
-    }
 }

@@ -4,12 +4,12 @@
 //! It reads the camera, lights, time and parameters from the same [`Frame`] uniforms the kernels read, so the three
 //! renderers draw the same pose from the same numbers.
 
-use fractal_dsl::analyse::{bound, fold::fold_node, Aabb};
+use fractal_dsl::analyse::{bound, fold::fold_node, has_specular, Aabb};
 use fractal_dsl::back::render::{AO_SAMPLES, AO_SPAN, AO_START, GLOW_FALLOFF, GLOW_NORM, MIN_DIRECTION, T_SPACING};
 use fractal_dsl::back::FrameLayout;
 use fractal_dsl::eval::{Env, Evaluator};
 use fractal_dsl::math::{dot, length, normalize, v3, Real, V3};
-use fractal_dsl::{HitEpsilon, Node, RenderSettings, Scene, Shadows};
+use fractal_dsl::{HitEpsilon, RenderSettings, Scene, Shadows};
 use rayon::prelude::*;
 
 use crate::device::{Backend, DeviceInfo};
@@ -87,12 +87,6 @@ fn render_with_bound<F: Real, E: Evaluator<F> + ?Sized>(
         }
     });
     Ok(Image { width: frame.width(), height: frame.height(), pixels })
-}
-
-/// Whether some material may have a specular term (a literal 0 is the only certain "no").
-pub fn has_specular(node: &Node) -> bool {
-    let own = matches!(node, Node::Material(_, m) if m.specular.as_lit() != Some(0.0));
-    own || node.children().into_iter().any(has_specular)
 }
 
 struct View<F> {
@@ -178,7 +172,7 @@ impl<F: Real> View<F> {
             params: frame.params().into_iter().map(|p| c(p as f64)).collect(),
             lights,
             bound: scene_bound.map(|b| (d3(b.min), d3(b.max))),
-            specular: has_specular(&scene.root),
+            specular: has_specular(&fold_node(&scene.root)),
             max_steps,
             max_distance: c(max_distance),
             epsilon,
