@@ -2,8 +2,6 @@
 //! which settings apply, the leaf call, step factor and bound) with its values. Families are declared once
 //! (`crate::fractals`); every reader works from the declaration.
 
-use std::fmt;
-
 use super::prim::PrimBound;
 use super::{Expr, Vec4Expr};
 use crate::sdf::Leaf;
@@ -94,17 +92,7 @@ pub struct FractalDecl {
 #[derive(Clone, Copy)]
 pub struct FractalKind(pub &'static FractalDecl);
 
-impl PartialEq for FractalKind {
-    fn eq(&self, o: &Self) -> bool {
-        self.0.name == o.0.name
-    }
-}
-
-impl fmt::Debug for FractalKind {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.0.name)
-    }
-}
+super::named_by_declaration!(FractalKind);
 
 /// The constructor argument's value.
 #[derive(Clone, Debug, PartialEq)]

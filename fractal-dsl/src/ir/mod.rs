@@ -4,6 +4,25 @@
 //! ([`Prim`]) and fractals ([`Fractal`]); inner nodes are CSG, transforms, domain operations and materials.
 //! Numbers are [`Expr`]s so that `t` and `param(..)` can stand wherever a literal can.
 
+/// `PartialEq` and `Debug` for a reference to a vocabulary declaration: equal when the names are, printed as the
+/// name.
+macro_rules! named_by_declaration {
+    ($kind:ident) => {
+        impl PartialEq for $kind {
+            fn eq(&self, o: &Self) -> bool {
+                self.0.name == o.0.name
+            }
+        }
+
+        impl std::fmt::Debug for $kind {
+            fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                f.write_str(self.0.name)
+            }
+        }
+    };
+}
+use named_by_declaration;
+
 mod expr;
 pub mod fractal;
 pub mod prim;

@@ -3,8 +3,6 @@
 //! evaluators and the kernels — works from the declaration, so a primitive is declared once (`crate::prims`) and
 //! means the same everywhere.
 
-use std::fmt;
-
 use super::{Expr, Vec3Expr};
 use crate::geom::{Aabb, Interval};
 use crate::sdf::Leaf;
@@ -168,17 +166,7 @@ pub fn normalised(n: [f64; 3]) -> [f64; 3] {
 #[derive(Clone, Copy)]
 pub struct PrimKind(pub &'static PrimDecl);
 
-impl PartialEq for PrimKind {
-    fn eq(&self, o: &Self) -> bool {
-        self.0.name == o.0.name
-    }
-}
-
-impl fmt::Debug for PrimKind {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.0.name)
-    }
-}
+super::named_by_declaration!(PrimKind);
 
 /// An exact signed-distance primitive (1-Lipschitz; the exact Euclidean distance unless its bound says otherwise).
 #[derive(Clone, Debug, PartialEq)]
