@@ -65,6 +65,13 @@ pub use crate::prims::*;
 
 pub use crate::fractals::*;
 
+// ---- operators (CSG, transforms, domain operations): declared with their builders in `crate::ops` -----------
+
+pub use crate::ops::{
+    intersect, intersect_all, smooth_intersect, smooth_intersect_all, smooth_subtract, smooth_union, smooth_union_all,
+    subtract, union, union_all, ShapeExt,
+};
+
 impl Fractal {
     pub fn iterations(mut self, n: u32) -> Fractal {
         self.iterations = Some(n);
@@ -91,117 +98,6 @@ impl From<Fractal> for Node {
         Node::Fractal(f)
     }
 }
-
-// ---- CSG -------------------------------------------------------------------------------------------------------
-
-/// Children of an n-ary node, with nested nodes of the same kind spliced in (`unwrap` returns their children).
-fn flatten(nodes: impl IntoIterator<Item = Node>, unwrap: fn(&mut Node) -> Option<Vec<Node>>) -> Vec<Node> {
-    let mut out = Vec::new();
-    for mut n in nodes {
-        match unwrap(&mut n) {
-            Some(children) => out.extend(children),
-            None => out.push(n),
-        }
-    }
-    out
-}
-
-pub fn union(a: impl Into<Node>, b: impl Into<Node>) -> Node {
-    union_all([a.into(), b.into()])
-}
-/// n-ary union; nested unions flatten into one.
-pub fn union_all(nodes: impl IntoIterator<Item = Node>) -> Node {
-    Node::Union(flatten(nodes, |n| match n {
-        Node::Union(c) => Some(std::mem::take(c)),
-        _ => None,
-    }))
-}
-pub fn intersect(a: impl Into<Node>, b: impl Into<Node>) -> Node {
-    intersect_all([a.into(), b.into()])
-}
-/// n-ary intersection; nested intersections flatten into one.
-pub fn intersect_all(nodes: impl IntoIterator<Item = Node>) -> Node {
-    Node::Intersect(flatten(nodes, |n| match n {
-        Node::Intersect(c) => Some(std::mem::take(c)),
-        _ => None,
-    }))
-}
-/// `a` with `b` cut away.
-pub fn subtract(a: impl Into<Node>, b: impl Into<Node>) -> Node {
-    Node::Subtract(Box::new(a.into()), Box::new(b.into()))
-}
-pub fn smooth_union(a: impl Into<Node>, b: impl Into<Node>, k: impl Into<Expr>) -> Node {
-    smooth_union_all([a.into(), b.into()], k)
-}
-pub fn smooth_union_all(nodes: impl IntoIterator<Item = Node>, k: impl Into<Expr>) -> Node {
-    Node::SmoothUnion(nodes.into_iter().collect(), k.into())
-}
-pub fn smooth_intersect(a: impl Into<Node>, b: impl Into<Node>, k: impl Into<Expr>) -> Node {
-    Node::SmoothIntersect(vec![a.into(), b.into()], k.into())
-}
-/// n-ary smooth intersection, folded left with blend radius `k`.
-pub fn smooth_intersect_all(nodes: impl IntoIterator<Item = Node>, k: impl Into<Expr>) -> Node {
-    Node::SmoothIntersect(nodes.into_iter().collect(), k.into())
-}
-pub fn smooth_subtract(a: impl Into<Node>, b: impl Into<Node>, k: impl Into<Expr>) -> Node {
-    Node::SmoothSubtract(Box::new(a.into()), Box::new(b.into()), k.into())
-}
-
-// ---- transforms, domain operations, materials: methods on anything that is a shape -----------------------------
-
-/// Chained operations on shapes (nodes and fractals).
-pub trait ShapeExt: Into<Node> + Sized {
-    fn translate(self, offset: impl Into<Vec3Expr>) -> Node {
-        Node::Translate(Box::new(self.into()), offset.into())
-    }
-    fn rotate_x(self, angle: impl Into<Expr>) -> Node {
-        Node::Rotate(Box::new(self.into()), Axis::X, angle.into())
-    }
-    fn rotate_y(self, angle: impl Into<Expr>) -> Node {
-        Node::Rotate(Box::new(self.into()), Axis::Y, angle.into())
-    }
-    fn rotate_z(self, angle: impl Into<Expr>) -> Node {
-        Node::Rotate(Box::new(self.into()), Axis::Z, angle.into())
-    }
-    /// Rotation about an arbitrary axis (normalised here; a zero axis is left for validation to report).
-    fn rotate(self, axis: impl Into<glam::DVec3>, angle: impl Into<Expr>) -> Node {
-        let a: glam::DVec3 = axis.into();
-        let unit = if (a.length() - 1.0).abs() <= 4.0 * f64::EPSILON { a } else { a.try_normalize().unwrap_or(a) };
-        Node::Rotate(Box::new(self.into()), Axis::Any(unit.to_array()), angle.into())
-    }
-    /// Uniform scale; distances are scaled back so they stay distances.
-    fn scale(self, factor: impl Into<Expr>) -> Node {
-        Node::Scale(Box::new(self.into()), factor.into())
-    }
-    /// Infinite repetition with `period` per axis (0 leaves that axis alone).
-    fn repeat(self, period: impl Into<Vec3Expr>) -> Node {
-        Node::Repeat(Box::new(self.into()), period.into())
-    }
-    /// Repetition over cells −count..=count per axis.
-    fn repeat_limited(self, period: impl Into<Vec3Expr>, count: [u32; 3]) -> Node {
-        Node::RepeatLimited(Box::new(self.into()), period.into(), count)
-    }
-    fn twist(self, rate: impl Into<Expr>) -> Node {
-        Node::Twist(Box::new(self.into()), rate.into())
-    }
-    fn bend(self, rate: impl Into<Expr>) -> Node {
-        Node::Bend(Box::new(self.into()), rate.into())
-    }
-    fn round(self, radius: impl Into<Expr>) -> Node {
-        Node::Round(Box::new(self.into()), radius.into())
-    }
-    fn onion(self, thickness: impl Into<Expr>) -> Node {
-        Node::Onion(Box::new(self.into()), thickness.into())
-    }
-    fn elongate(self, h: impl Into<Vec3Expr>) -> Node {
-        Node::Elongate(Box::new(self.into()), h.into())
-    }
-    fn material(self, m: impl Into<Material>) -> Node {
-        Node::Material(Box::new(self.into()), m.into())
-    }
-}
-impl ShapeExt for Node {}
-impl ShapeExt for Fractal {}
 
 // ---- materials --------------------------------------------------------------------------------------------------
 

@@ -282,3 +282,111 @@ impl Aabb {
         points.into_iter().map(|p| Aabb { min: p, max: p }).reduce(|a, b| a.union(&b))
     }
 }
+
+impl Aabb {
+    /// The box of this box rotated by any angle in `angle` about the unit axis `k`.
+    pub fn rotated(&self, k: [f64; 3], angle: Interval) -> Option<Aabb> {
+        if angle.is_point() && angle.is_finite() {
+            let (s, c) = angle.lo.sin_cos();
+            return Aabb::of_points(self.corners().map(|p| rodrigues(p, k, s, c)));
+        }
+        // Any angle: the shape sweeps around the axis. For a coordinate axis the swept set is a cylinder; otherwise
+        // a ball.
+        let corners = self.corners();
+        match k.iter().position(|&c| c.abs() == 1.0) {
+            Some(i) => {
+                let radius = corners
+                    .iter()
+                    .map(|p| ((0..3).filter(|&j| j != i).map(|j| p[j] * p[j]).sum::<f64>()).sqrt())
+                    .fold(0.0, f64::max);
+                let mut min = [-radius; 3];
+                let mut max = [radius; 3];
+                min[i] = self.min[i];
+                max[i] = self.max[i];
+                Some(Aabb { min, max })
+            }
+            None => {
+                let radius =
+                    corners.iter().map(|p| (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt()).fold(0.0, f64::max);
+                Some(Aabb::cube(radius))
+            }
+        }
+    }
+}
+
+/// `p` rotated by the angle whose sine and cosine are `s`, `c` about the unit axis `k`.
+fn rodrigues(p: [f64; 3], k: [f64; 3], s: f64, c: f64) -> [f64; 3] {
+    let cross = [k[1] * p[2] - k[2] * p[1], k[2] * p[0] - k[0] * p[2], k[0] * p[1] - k[1] * p[0]];
+    let dot = k[0] * p[0] + k[1] * p[1] + k[2] * p[2];
+    [0, 1, 2].map(|i| p[i] * c + cross[i] * s + k[i] * dot * (1.0 - c))
+}
+
+/// A shape's bound and how its distance relates to it (see `analyse::bounds`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bound {
+    /// The box the shape lies in; `None` when unbounded.
+    pub aabb: Option<Aabb>,
+    /// Outside the box, the node's distance is at least `reach` × the distance to the box (0 < reach ≤ 1; 0 when
+    /// nothing is known). Growing operations divide by it.
+    pub reach: f64,
+    /// Whether the node's distance is at least the box's signed distance everywhere, inside the box too: then a union
+    /// guard that skips the node never changes the union's value.
+    pub exact_guard: bool,
+}
+
+impl Bound {
+    pub const UNBOUNDED: Bound = Bound { aabb: None, reach: 0.0, exact_guard: false };
+
+    /// The bound of an exact distance inside `aabb`.
+    pub fn exact(aabb: Aabb) -> Bound {
+        Bound { aabb: Some(aabb), reach: 1.0, exact_guard: true }.map(Some)
+    }
+    /// The box mapped by `f`, keeping the reach; unbounded when `f` or the result is not a finite box.
+    pub fn map(self, f: impl FnOnce(Aabb) -> Option<Aabb>) -> Bound {
+        match self.aabb.and_then(f) {
+            Some(b) if b.is_finite() => Bound { aabb: Some(b), ..self },
+            _ => Bound::UNBOUNDED,
+        }
+    }
+    /// The bound of `{d − by ≤ 0}`: the box grown by `by`/reach.
+    pub fn grown(self, by: f64) -> Bound {
+        if by <= 0.0 {
+            return self;
+        }
+        if self.reach <= 0.0 || !by.is_finite() {
+            return Bound::UNBOUNDED;
+        }
+        let reach = self.reach;
+        self.map(|b| Some(b.grow(by / reach)))
+    }
+    /// The bound of the union of shapes: the hull of their boxes (unbounded if any is).
+    pub fn hull(all: &[Bound]) -> Bound {
+        let mut out: Option<Bound> = None;
+        for b in all {
+            let Some(bx) = b.aabb else { return Bound::UNBOUNDED };
+            out = Some(match out {
+                None => *b,
+                Some(o) => Bound {
+                    aabb: o.aabb.map(|a| a.union(&bx)),
+                    reach: o.reach.min(b.reach),
+                    exact_guard: o.exact_guard && b.exact_guard,
+                },
+            });
+        }
+        out.unwrap_or(Bound::UNBOUNDED)
+    }
+    /// The bound of the intersection of shapes: the overlap of the bounded ones' boxes.
+    pub fn overlap(all: &[Bound]) -> Bound {
+        let boxes: Vec<(Aabb, f64)> = all.iter().filter_map(|b| b.aabb.map(|a| (a, b.reach))).collect();
+        let Some(&(first, first_reach)) = boxes.first() else { return Bound::UNBOUNDED };
+        let (mut aabb, mut reach) = (first, first_reach);
+        for (b, r) in &boxes[1..] {
+            aabb = aabb.intersection(b);
+            reach = reach.min(*r);
+        }
+        // max(d_i) ≥ reach·max(dist to box_i), and the distance to the overlap of n axis-aligned boxes is at most √n
+        // times the largest distance to one of them (per axis it is the largest of the per-axis gaps).
+        let n = boxes.len() as f64;
+        Bound { aabb: Some(aabb), reach: reach / n.sqrt(), exact_guard: false }
+    }
+}

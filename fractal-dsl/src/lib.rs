@@ -38,6 +38,7 @@ pub mod leaf;
 pub mod lower;
 pub mod math;
 pub mod num;
+pub mod ops;
 pub mod parse;
 pub mod prims;
 pub mod print;

@@ -11,15 +11,10 @@ use decl::*;
 /// The declarations, and the table the parser looks names up in.
 pub mod decl {
     use crate::geom::Aabb;
-    use crate::ir::prim::{ArgShape, PrimArg, PrimBound, PrimDecl, Rule};
+    use crate::ir::arg::{num, vec, Rule};
+    use crate::ir::prim::{PrimBound, PrimDecl};
     use crate::sdf::Leaf;
 
-    const fn num(name: &'static str, what: &'static str, rule: Rule) -> PrimArg {
-        PrimArg { name, what, shape: ArgShape::Number, rule }
-    }
-    const fn vec(name: &'static str, what: &'static str, rule: Rule) -> PrimArg {
-        PrimArg { name, what, shape: ArgShape::Vec3, rule }
-    }
     use Rule::*;
 
     /// The primitive called `name` in scene source.

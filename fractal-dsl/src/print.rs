@@ -11,9 +11,9 @@
 
 use std::fmt::Write;
 
-use crate::builder::{self as b, ShapeExt};
+use crate::ir::arg::{normalised, ArgDecl, ArgShape, Rule};
 use crate::ir::fractal::{FractalArgValue, Setting};
-use crate::ir::prim::{normalised, Rule};
+use crate::ir::op::Operands;
 use crate::ir::*;
 
 const INDENT: &str = "    ";
@@ -104,15 +104,6 @@ fn const_rgb(v: [f64; 3]) -> String {
     format!("rgb({}, {}, {})", lit(v[0]), lit(v[1]), lit(v[2]))
 }
 
-/// An axis the builder's `rotate` turns into exactly `unit` (see [`preimage`]).
-fn axis_preimage(unit: [f64; 3]) -> [f64; 3] {
-    let normalised = |a: [f64; 3]| match b::sphere(1.0).rotate(glam::DVec3::from_array(a), 0.0) {
-        Node::Rotate(_, Axis::Any(u), _) => Some(u),
-        _ => None,
-    };
-    preimage(unit, normalised)
-}
-
 /// A vector that `normalised` maps to exactly `unit`. The builder normalises axes and normals, and normalising a
 /// unit vector again rounds differently for about a third of them, so writing `unit` itself would not read back.
 /// The search starts from multiples of `unit` (they round differently from one another) and nudges each component
@@ -152,66 +143,50 @@ fn preimage(unit: [f64; 3], normalised: impl Fn([f64; 3]) -> Option<[f64; 3]>) -
 
 /// Writes a node; `level` is the indentation of the line the node starts on.
 fn node(n: &Node, level: usize) -> String {
-    let list = |name: &str, children: &[&Node], extra: Option<String>| {
+    let list = |name: &str, children: &[Node], args: String| {
         let pad = INDENT.repeat(level + 1);
         let mut s = format!("{name}(\n");
         for c in children {
             let _ = writeln!(s, "{pad}{},", node(c, level + 1));
         }
-        if let Some(k) = extra {
-            let _ = writeln!(s, "{pad}{k},");
+        if !args.is_empty() {
+            let _ = writeln!(s, "{pad}{args},");
         }
         s.push_str(&INDENT.repeat(level));
         s.push(')');
         s
     };
-    let method = |child: &Node, call: String| format!("{}.{call}", node(child, level));
     match n {
-        Node::Prim(p) => prim(p),
+        Node::Prim(p) => format!("{}({})", p.name(), args(p.declared_args())),
         Node::Fractal(f) => fractal(f),
-        Node::Union(c) => list("union", &c.iter().collect::<Vec<_>>(), None),
-        Node::Intersect(c) => list("intersect", &c.iter().collect::<Vec<_>>(), None),
-        Node::Subtract(a, c) => list("subtract", &[a, c], None),
-        Node::SmoothUnion(c, k) => list("smooth_union", &c.iter().collect::<Vec<_>>(), Some(expr(k))),
-        Node::SmoothIntersect(c, k) => list("smooth_intersect", &c.iter().collect::<Vec<_>>(), Some(expr(k))),
-        Node::SmoothSubtract(a, c, k) => list("smooth_subtract", &[a, c], Some(expr(k))),
-        Node::Translate(c, v) => method(c, format!("translate({})", vec3(v))),
-        Node::Rotate(c, axis, angle) => {
-            let call = match axis {
-                Axis::X => format!("rotate_x({})", expr(angle)),
-                Axis::Y => format!("rotate_y({})", expr(angle)),
-                Axis::Z => format!("rotate_z({})", expr(angle)),
-                Axis::Any(a) => format!("rotate({}, {})", const_vec3(axis_preimage(*a)), expr(angle)),
-            };
-            method(c, call)
-        }
-        Node::Scale(c, s) => method(c, format!("scale({})", expr(s))),
-        Node::Repeat(c, v) => method(c, format!("repeat({})", vec3(v))),
-        Node::RepeatLimited(c, v, n) => {
-            method(c, format!("repeat_limited({}, vec3({}, {}, {}))", vec3(v), n[0], n[1], n[2]))
-        }
-        Node::Twist(c, r) => method(c, format!("twist({})", expr(r))),
-        Node::Bend(c, r) => method(c, format!("bend({})", expr(r))),
-        Node::Round(c, r) => method(c, format!("round({})", expr(r))),
-        Node::Onion(c, t) => method(c, format!("onion({})", expr(t))),
-        Node::Elongate(c, h) => method(c, format!("elongate({})", vec3(h))),
-        Node::Material(c, m) => method(c, format!("material({})", material(m))),
+        Node::Op(op) => match op.decl().operands {
+            Operands::Receiver => match op.shapes.as_slice() {
+                [child] => format!("{}.{}({})", node(child, level), op.name(), args(op.declared_args())),
+                // Not a scene the builder makes (validation refuses it); written as a call so it still parses.
+                shapes => list(op.name(), shapes, args(op.declared_args())),
+            },
+            Operands::Many | Operands::Two => list(op.name(), &op.shapes, args(op.declared_args())),
+        },
+        Node::Material(c, m) => format!("{}.material({})", node(c, level), material(m)),
     }
 }
 
-fn prim(p: &Prim) -> String {
-    let args: Vec<String> = p
-        .declared_args()
+/// Declared arguments, comma-separated. A constant direction is stored normalised: what is printed normalises to
+/// exactly it.
+fn args<'a>(declared: impl Iterator<Item = (&'static ArgDecl, &'a ArgValue)>) -> String {
+    let args: Vec<String> = declared
         .map(|(decl, value)| match value {
             ArgValue::Num(e) => expr(e),
-            // A constant direction is stored normalised: print what normalises to exactly it.
-            ArgValue::Vec3(v) => match (decl.rule, v.lits()) {
-                (Rule::Direction, Some(n)) => const_vec3(preimage(n, |m| Some(normalised(m)))),
+            ArgValue::Vec3(v) => match (decl.rule, decl.shape, v.lits()) {
+                (Rule::Direction, _, Some(n)) => const_vec3(preimage(n, |m| Some(normalised(m)))),
+                (_, ArgShape::Counts, Some(n)) if n.iter().all(|c| c.fract() == 0.0 && *c >= 0.0) => {
+                    format!("vec3({}, {}, {})", n[0], n[1], n[2])
+                }
                 _ => vec3(v),
             },
         })
         .collect();
-    format!("{}({})", p.name(), args.join(", "))
+    args.join(", ")
 }
 
 fn fractal(f: &Fractal) -> String {

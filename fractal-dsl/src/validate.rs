@@ -13,8 +13,9 @@ use std::fmt;
 
 use crate::analyse::interval::{range, Interval};
 use crate::fractals::families::FRACTALS;
+use crate::ir::arg::{ArgDecl, ArgShape, Rule};
 use crate::ir::fractal::{FractalArg, FractalArgShape, FractalArgValue, FractalRule, Setting};
-use crate::ir::prim::Rule;
+use crate::ir::op::Operands;
 use crate::ir::*;
 
 /// Most nodes a distance tree may have.
@@ -29,8 +30,7 @@ pub const MAX_EXPR_NODES: usize = 100_000;
 pub const MAX_LIGHTS: usize = 16;
 /// Largest `max_steps`.
 pub const MAX_MARCH_STEPS: u32 = 10_000;
-/// Largest cell count per axis of `repeat_limited`.
-pub const MAX_REPEAT_COUNT: u32 = 1000;
+pub use crate::ops::MAX_REPEAT_COUNT;
 
 /// A broken rule in a scene, located by the path of the node (or the scene part) it concerns.
 #[derive(Clone, Debug, PartialEq)]
@@ -118,9 +118,8 @@ fn walk(node: &Node, path: &mut Vec<String>, errors: &mut Vec<ValidationError>) 
         let here = path.join(" > ");
         errors.extend(problems.into_iter().map(|p| ValidationError { path: here.clone(), message: p.message }));
     }
-    let n_ary = matches!(node, Node::Union(_) | Node::Intersect(_) | Node::SmoothUnion(..) | Node::SmoothIntersect(..))
-        || matches!(node, Node::Subtract(..) | Node::SmoothSubtract(..));
-    for (i, child) in node.children().into_iter().enumerate() {
+    let n_ary = node.op().is_some_and(|op| op.decl().combines());
+    for (i, child) in node.children().iter().enumerate() {
         if n_ary {
             path.push(format!("child {}", i + 1));
         }
@@ -135,34 +134,11 @@ fn walk(node: &Node, path: &mut Vec<String>, errors: &mut Vec<ValidationError>) 
 /// The name a node has in scene source (the function or method that makes it).
 pub fn node_label(node: &Node) -> &'static str {
     match node {
-        Node::Prim(p) => prim_name(p),
+        Node::Prim(p) => p.name(),
         Node::Fractal(f) => f.name(),
-        Node::Union(_) => "union",
-        Node::Intersect(_) => "intersect",
-        Node::Subtract(..) => "subtract",
-        Node::SmoothUnion(..) => "smooth_union",
-        Node::SmoothIntersect(..) => "smooth_intersect",
-        Node::SmoothSubtract(..) => "smooth_subtract",
-        Node::Translate(..) => "translate",
-        Node::Rotate(_, Axis::X, _) => "rotate_x",
-        Node::Rotate(_, Axis::Y, _) => "rotate_y",
-        Node::Rotate(_, Axis::Z, _) => "rotate_z",
-        Node::Rotate(_, Axis::Any(_), _) => "rotate",
-        Node::Scale(..) => "scale",
-        Node::Repeat(..) => "repeat",
-        Node::RepeatLimited(..) => "repeat_limited",
-        Node::Twist(..) => "twist",
-        Node::Bend(..) => "bend",
-        Node::Round(..) => "round",
-        Node::Onion(..) => "onion",
-        Node::Elongate(..) => "elongate",
+        Node::Op(op) => op.name(),
         Node::Material(..) => "material",
     }
-}
-
-/// The function that makes a primitive in scene source.
-pub fn prim_name(p: &Prim) -> &'static str {
-    p.name()
 }
 
 // ---- sizes ----------------------------------------------------------------------------------------------------------
@@ -192,7 +168,7 @@ pub fn node_depth(n: &Node) -> usize {
     let mut stack = vec![(n, 1usize)];
     while let Some((n, d)) = stack.pop() {
         deepest = deepest.max(d);
-        stack.extend(n.children().into_iter().map(|c| (c, d + 1)));
+        stack.extend(n.children().iter().map(|c| (c, d + 1)));
     }
     deepest
 }
@@ -206,17 +182,7 @@ pub fn own_exprs(node: &Node) -> Vec<&Expr> {
             out.extend(f.arg_exprs());
             out.extend([&f.bailout, &f.min_radius, &f.fold_limit].into_iter().flatten());
         }
-        Node::Union(_) | Node::Intersect(_) | Node::Subtract(..) => {}
-        Node::SmoothUnion(_, k) | Node::SmoothIntersect(_, k) | Node::SmoothSubtract(_, _, k) => out.push(k),
-        Node::Translate(_, v) | Node::Repeat(_, v) | Node::RepeatLimited(_, v, _) | Node::Elongate(_, v) => {
-            out.extend(&v.0)
-        }
-        Node::Rotate(_, _, e)
-        | Node::Scale(_, e)
-        | Node::Twist(_, e)
-        | Node::Bend(_, e)
-        | Node::Round(_, e)
-        | Node::Onion(_, e) => out.push(e),
+        Node::Op(op) => out.extend(op.exprs()),
         Node::Material(_, m) => crate::visit::material_exprs(m, &mut |e| out.push(e)),
     }
     out
@@ -251,7 +217,7 @@ fn size_problem(scene: &Scene) -> Option<String> {
             return Some(format!("the shape tree has more than {MAX_NODES} nodes"));
         }
         exprs.extend(own_exprs(n));
-        stack.extend(n.children().into_iter().map(|c| (c, d + 1)));
+        stack.extend(n.children().iter().map(|c| (c, d + 1)));
     }
     for l in &scene.lights {
         exprs.extend(light_exprs(l));
@@ -469,47 +435,105 @@ fn constant(out: &mut Vec<Problem>, arg: &'static str, what: &str, v: f64, lim: 
 
 /// Rules of a primitive's arguments, as its declaration states them.
 pub fn check_prim(p: &Prim) -> Vec<Problem> {
+    let decl = p.decl();
+    let mut out = check_args(decl.args, &p.args);
+    if let Some((indices, message)) = decl.not_all_zero {
+        if out.is_empty() && indices.iter().all(|&i| p.args[i].exprs().iter().all(|e| constant_value(e) == Some(0.0))) {
+            out.push(Problem::new("", message.to_string()));
+        }
+    }
+    out
+}
+
+/// Rules of an operator: how many shapes it takes, and its arguments' rules as its declaration states them.
+pub fn check_op(op: &Op) -> Vec<Problem> {
+    let decl = op.decl();
+    let n = op.shapes.len();
+    let shapes = match decl.operands {
+        Operands::Many if n == 0 => Some(format!("{} needs at least 1 shape", decl.name)),
+        Operands::Two if n != 2 => Some(format!("{} takes 2 shapes, found {n}", decl.name)),
+        Operands::Receiver if n != 1 => Some(format!("{} applies to 1 shape, found {n}", decl.name)),
+        _ => None,
+    };
+    if op.args.len() != decl.args.len() {
+        let message = format!("{} takes {} arguments, found {}", decl.name, decl.args.len(), op.args.len());
+        return vec![Problem::new("", message)];
+    }
+    let mut out: Vec<Problem> = shapes.map(|m| Problem::new("shapes", m)).into_iter().collect();
+    out.extend(check_args(decl.args, &op.args));
+    out
+}
+
+/// Rules of declared arguments (a primitive's or an operator's), each as its declaration states it.
+fn check_args(decls: &[ArgDecl], values: &[ArgValue]) -> Vec<Problem> {
     let mut out = Vec::new();
     let o = &mut out;
-    let decl = p.decl();
-    for (arg, value) in p.declared_args() {
+    for (arg, value) in decls.iter().zip(values) {
         let exprs: Vec<&Expr> = value.exprs().iter().collect();
+        let (name, what) = (arg.name, arg.what);
         match (arg.rule, value) {
+            (_, ArgValue::Num(_)) if arg.shape != ArgShape::Number => o.push(Problem::new(name, mismatch(what))),
+            (_, ArgValue::Vec3(_)) if arg.shape == ArgShape::Number => o.push(Problem::new(name, mismatch(what))),
+            (_, _) if arg.shape == ArgShape::ConstVec3 && !exprs.iter().all(|e| is_constant(e)) => o.push(
+                Problem::new(name, format!("{what} must be a constant: `t` and `param(..)` cannot be used here")),
+            ),
             (Rule::Positive | Rule::NonNegative, _) => {
                 let lim = if arg.rule == Rule::Positive { gt(0.0) } else { ge(0.0) };
                 match value {
-                    ArgValue::Num(e) => number(o, arg.name, arg.what, e, lim),
-                    ArgValue::Vec3(v) => vector(o, arg.name, arg.what, v, lim),
+                    ArgValue::Num(e) => number(o, name, what, e, lim),
+                    ArgValue::Vec3(v) => vector(o, name, what, v, lim),
                 }
             }
-            (Rule::Finite, _) => finite(o, arg.name, arg.what, &exprs),
+            (Rule::Finite, _) => finite(o, name, what, &exprs),
             (Rule::Direction, _) => {
                 let before = o.len();
-                finite(o, arg.name, arg.what, &exprs);
+                finite(o, name, what, &exprs);
                 if o.len() == before && value.exprs().iter().all(|e| e.as_lit() == Some(0.0)) {
-                    o.push(Problem::new(arg.name, format!("{} must be non-zero, found vec3(0, 0, 0)", arg.what)));
+                    o.push(Problem::new(name, format!("{what} must be non-zero, found vec3(0, 0, 0)")));
                 }
             }
             (Rule::RoundingOf(of), ArgValue::Num(e)) => {
                 // Checked once the vector it rounds is valid: the rounding cannot turn the shape inside out.
                 if o.is_empty() {
-                    let smallest = p.args[of].exprs().iter().map(|h| value_range(h).0.lo).fold(f64::INFINITY, f64::min);
-                    number(o, arg.name, arg.what, e, within(0.0, true, smallest, true));
+                    let smallest = values[of].exprs().iter().map(|h| value_range(h).0.lo).fold(f64::INFINITY, f64::min);
+                    number(o, name, what, e, within(0.0, true, smallest, true));
                     if let Some(problem) = o.last_mut() {
-                        let of = decl.args[of].name;
+                        let of = decls[of].name;
                         problem.message.push_str(&format!(" (the rounding cannot exceed the smallest {of} extent)"));
                     }
                 }
             }
             (Rule::RoundingOf(_), ArgValue::Vec3(_)) => {}
-        }
-    }
-    if let Some((indices, message)) = decl.not_all_zero {
-        if o.is_empty() && indices.iter().all(|&i| p.args[i].exprs().iter().all(|e| constant_value(e) == Some(0.0))) {
-            o.push(Problem::new("", message.to_string()));
+            (Rule::Period, ArgValue::Vec3(v)) => {
+                let before = o.len();
+                vector(o, name, what, v, ge(0.0));
+                if o.len() == before && v.lits() == Some([0.0; 3]) {
+                    o.push(Problem::new(
+                        name,
+                        format!("{what} must be non-zero on at least one axis (0 leaves an axis unrepeated)"),
+                    ));
+                }
+            }
+            (Rule::Period, ArgValue::Num(e)) => number(o, name, what, e, ge(0.0)),
+            (Rule::AtMost(most), _) => {
+                for (e, axis) in value.exprs().iter().zip(AXES) {
+                    let whole = e.as_lit().filter(|v| v.fract() == 0.0 && *v >= 0.0);
+                    match whole {
+                        Some(v) if v <= most as f64 => {}
+                        Some(v) => {
+                            o.push(Problem::new(name, format!("{what} {axis} must be <= {most}, found {}", num(v))))
+                        }
+                        None => o.push(Problem::new(name, format!("{what} {axis} must be a non-negative integer"))),
+                    }
+                }
+            }
         }
     }
     out
+}
+
+fn mismatch(what: &str) -> String {
+    format!("{what} has the wrong type for its declaration")
 }
 
 /// Rules of a fractal, as its family's declaration states them: the constructor argument, the iteration count, and
@@ -577,66 +601,14 @@ fn abs_between(o: &mut Vec<Problem>, family: &str, arg: FractalArg, e: &Expr, lo
     o.push(Problem::new(arg.name, message));
 }
 
-/// Rules of one node's own values (not its children's): the primitive or fractal for a leaf; blend radii, scale
-/// factors, periods, thicknesses and materials for inner nodes.
+/// Rules of one node's own values (not its children's): the primitive, fractal or operator's arguments, or the
+/// material.
 pub fn check_node(node: &Node) -> Vec<Problem> {
-    let mut out = Vec::new();
-    let o = &mut out;
-    let name = node_label(node);
     match node {
-        Node::Prim(p) => return check_prim(p),
-        Node::Fractal(f) => return check_fractal(f),
-        Node::Union(c) | Node::Intersect(c) | Node::SmoothUnion(c, _) | Node::SmoothIntersect(c, _) if c.is_empty() => {
-            o.push(Problem::new("shapes", format!("{name} needs at least 1 shape")))
-        }
-        _ => {}
-    }
-    match node {
-        Node::SmoothUnion(_, k) | Node::SmoothIntersect(_, k) | Node::SmoothSubtract(_, _, k) => {
-            number(o, "k", &format!("{name} blend radius k"), k, ge(0.0))
-        }
-        Node::Translate(_, v) => finite(o, "offset", "translate offset", &v.0.iter().collect::<Vec<_>>()),
-        Node::Rotate(_, axis, angle) => {
-            if let Axis::Any(a) = axis {
-                let axis_expr = Vec3Expr::from(*a);
-                finite(o, "axis", "rotate axis", &axis_expr.0.iter().collect::<Vec<_>>());
-                if o.is_empty() && *a == [0.0; 3] {
-                    o.push(Problem::new("axis", "rotate axis must be non-zero, found vec3(0, 0, 0)".into()));
-                }
-            }
-            finite(o, "angle", &format!("{name} angle"), &[angle]);
-        }
-        Node::Scale(_, s) => number(o, "factor", "scale factor", s, gt(0.0)),
-        Node::Repeat(_, period) => repeat_period(o, name, period),
-        Node::RepeatLimited(_, period, count) => {
-            repeat_period(o, name, period);
-            for (n, axis) in count.iter().zip(AXES) {
-                if *n > MAX_REPEAT_COUNT {
-                    o.push(Problem::new(
-                        "count",
-                        format!("repeat_limited count {axis} must be <= {MAX_REPEAT_COUNT}, found {n}"),
-                    ));
-                }
-            }
-        }
-        Node::Twist(_, rate) | Node::Bend(_, rate) => finite(o, "rate", &format!("{name} rate"), &[rate]),
-        Node::Round(_, r) => number(o, "radius", "round radius", r, ge(0.0)),
-        Node::Onion(_, t) => number(o, "thickness", "onion thickness", t, gt(0.0)),
-        Node::Elongate(_, h) => vector(o, "h", "elongate length", h, ge(0.0)),
-        Node::Material(_, m) => o.extend(check_material(m)),
-        _ => {}
-    }
-    out
-}
-
-fn repeat_period(o: &mut Vec<Problem>, name: &str, period: &Vec3Expr) {
-    let before = o.len();
-    vector(o, "period", &format!("{name} period"), period, ge(0.0));
-    if o.len() == before && period.lits() == Some([0.0; 3]) {
-        o.push(Problem::new(
-            "period",
-            format!("{name} period must be non-zero on at least one axis (0 leaves an axis unrepeated)"),
-        ));
+        Node::Prim(p) => check_prim(p),
+        Node::Fractal(f) => check_fractal(f),
+        Node::Op(op) => check_op(op),
+        Node::Material(_, m) => check_material(m),
     }
 }
 

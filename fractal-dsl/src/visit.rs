@@ -13,17 +13,7 @@ pub fn visit_node_exprs<'a>(node: &'a Node, f: &mut dyn FnMut(&'a Expr)) {
                 f(e)
             }
         }
-        Node::Union(_) | Node::Intersect(_) | Node::Subtract(..) => {}
-        Node::SmoothUnion(_, k) | Node::SmoothIntersect(_, k) | Node::SmoothSubtract(_, _, k) => f(k),
-        Node::Translate(_, v) | Node::Repeat(_, v) | Node::RepeatLimited(_, v, _) | Node::Elongate(_, v) => {
-            v.0.iter().for_each(&mut *f)
-        }
-        Node::Rotate(_, _, e)
-        | Node::Scale(_, e)
-        | Node::Twist(_, e)
-        | Node::Bend(_, e)
-        | Node::Round(_, e)
-        | Node::Onion(_, e) => f(e),
+        Node::Op(op) => op.exprs().for_each(&mut *f),
         Node::Material(_, m) => material_exprs(m, f),
     }
     for c in node.children() {

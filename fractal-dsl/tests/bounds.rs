@@ -178,7 +178,7 @@ proptest! {
         let root = fold_node(&root);
         let info = bound_info(&root);
         let has_plane = subtrees(&root).iter().any(|n| matches!(n, Node::Prim(p) if p.name() == "plane"));
-        let grows_twist = subtrees(&root).iter().any(|n| matches!(n, Node::Twist(..) | Node::Bend(..)));
+        let grows_twist = subtrees(&root).iter().any(|n| n.op().is_some_and(|op| ["twist", "bend"].contains(&op.name())));
         if info.aabb.is_none() {
             prop_assert!(has_plane || grows_twist, "no reason for {root:?} to be unbounded");
         }
@@ -233,11 +233,11 @@ proptest! {
     #[test]
     fn bounded_evaluation_never_exceeds_unbounded_evaluation(root in guarded_union(exact_guarded_child()), seed in any::<u64>()) {
         let folded = fold_node(&root);
-        let union_node = match &folded {
-            Node::Translate(u, _) => &**u,
-            other => other,
+        let union_node = match folded.op() {
+            Some(op) if op.name() == "translate" => &op.shapes[0],
+            _ => &folded,
         };
-        if let Node::Union(children) = union_node {
+        if let Some(children) = union_node.op().filter(|op| op.name() == "union").map(|op| &op.shapes) {
             for (pos, _) in children.iter().enumerate() {
                 if fractal_dsl::analyse::guarded_bound(children, pos).is_some() {
                     let child = &children[fractal_dsl::analyse::union_order(children)[pos]];

@@ -255,7 +255,7 @@ fn domain_operations_follow_the_evaluation_rules() {
     // Scale divides the point and multiplies the distance back.
     assert!((at(box3([0.5, 1.0, 0.3]).scale(2.5)) - 2.5 * child(p.map(|v| v / 2.5))).abs() < 1e-12);
     // A union of nothing is no geometry.
-    assert_eq!(at(Node::Union(vec![])), f64::INFINITY);
+    assert_eq!(at(union_all([])), f64::INFINITY);
 }
 
 // ---- f32 against f64 ---------------------------------------------------------------------------------------------
@@ -315,26 +315,31 @@ proptest! {
 /// boundary on a repeated axis.
 fn on_cell_boundary(n: &Node, p: [f64; 3]) -> bool {
     let lit = |e: &Expr| e.as_lit().unwrap_or(0.0);
-    match n {
-        Node::RepeatLimited(c, period, _) => {
+    let Some(op) = n.op() else {
+        return n.children().iter().any(|c| on_cell_boundary(c, p));
+    };
+    let child = &op.shapes[0];
+    let arg = |i: usize| op.args[i].exprs();
+    match op.name() {
+        "repeat_limited" => {
             (0..3).any(|i| {
-                let per = lit(&period.0[i]);
+                let per = lit(&arg(0)[i]);
                 per != 0.0 && {
                     let x = p[i] / per + 0.5;
                     (x - x.round()).abs() < 1e-5
                 }
-            }) || on_cell_boundary(c, p)
+            }) || on_cell_boundary(child, p)
         }
-        Node::Translate(c, v) => on_cell_boundary(c, [0, 1, 2].map(|i| p[i] - lit(&v.0[i]))),
-        Node::Scale(c, s) => on_cell_boundary(c, p.map(|v| v / lit(s))),
+        "translate" => on_cell_boundary(child, [0, 1, 2].map(|i| p[i] - lit(&arg(0)[i]))),
+        "scale" => on_cell_boundary(child, p.map(|v| v / lit(&arg(0)[0]))),
         // Below a rotation, twist or elongation the local point is not tracked here: any boundary counts.
-        Node::Rotate(c, ..) | Node::Twist(c, _) | Node::Elongate(c, _) => contains_repeat(c),
+        "rotate_x" | "rotate_y" | "rotate_z" | "rotate" | "twist" | "elongate" => contains_repeat(child),
         _ => n.children().iter().any(|c| on_cell_boundary(c, p)),
     }
 }
 
 fn contains_repeat(n: &Node) -> bool {
-    matches!(n, Node::RepeatLimited(..)) || n.children().iter().any(|c| contains_repeat(c))
+    n.op().is_some_and(|op| op.name() == "repeat_limited") || n.children().iter().any(contains_repeat)
 }
 
 /// Fractal estimators iterate a chaotic map: near the set, f32 rounding in the first iterations grows like the

@@ -5,6 +5,8 @@ use std::f64::consts::PI;
 use std::str::FromStr;
 
 use fractal_dsl::builder::*;
+use fractal_dsl::ir::arg::{ArgDecl, ArgShape, Rule};
+use fractal_dsl::ir::op::Operands;
 use fractal_dsl::ir::*;
 use fractal_dsl::parse::{parse_str, parse_tokens, vocabulary, SourceError};
 use glam::DVec3;
@@ -120,7 +122,7 @@ fn cases() -> Vec<(&'static str, Scene)> {
         ("smooth_intersect(sphere(1.0), box3(vec3(1.0, 1.0, 1.0)), 0.1)", s(smooth_intersect(ball(), unit_box(), 0.1))),
         (
             "smooth_intersect(sphere(1.0), sphere(2.0), sphere(3.0), 0.1)",
-            s(Node::SmoothIntersect(vec![ball(), sphere(2.0), sphere(3.0)], Expr::Lit(0.1))),
+            s(smooth_intersect_all([ball(), sphere(2.0), sphere(3.0)], 0.1)),
         ),
         (
             "smooth_subtract(box3(vec3(1.0, 1.0, 1.0)), sphere(1.2), 0.1)",
@@ -228,17 +230,36 @@ fn every_case_builds_what_the_builder_builds() {
     }
 }
 
-/// A value each argument rule accepts, for building every declared primitive.
-fn example(arg: &prim::PrimArg, index: usize) -> ArgValue {
+/// A value each argument rule accepts, for building every declared primitive and operator.
+fn example(arg: &ArgDecl, index: usize) -> ArgValue {
     let n = 0.5 + 0.125 * index as f64;
     let value = match arg.rule {
-        prim::Rule::Direction => return ArgValue::Vec3(vec3(0.0, 1.0, 0.0)),
-        prim::Rule::RoundingOf(_) => 0.125,
+        Rule::Direction => return ArgValue::Vec3(vec3(0.0, 1.0, 0.0)),
+        Rule::AtMost(_) => return ArgValue::Vec3(vec3(1.0, 0.0, 2.0)),
+        Rule::RoundingOf(_) => 0.125,
         _ => n,
     };
     match arg.shape {
-        prim::ArgShape::Number => ArgValue::Num(Expr::Lit(value)),
-        prim::ArgShape::Vec3 => ArgValue::Vec3(vec3(value, value + 0.25, value + 0.5)),
+        ArgShape::Number => ArgValue::Num(Expr::Lit(value)),
+        _ => ArgValue::Vec3(vec3(value, value + 0.25, value + 0.5)),
+    }
+}
+
+/// Operators are read from their declarations (`fractal_dsl::ops`) too, each over the shapes it takes.
+#[test]
+fn every_declared_operator_reads_back_from_its_printed_source() {
+    for decl in fractal_dsl::ops::decl::OPS {
+        let shapes = match decl.operands {
+            Operands::Many => vec![sphere(1.0), box3(vec3(1.0, 1.0, 1.0)), torus(1.0, 0.2)],
+            Operands::Two => vec![box3(vec3(1.0, 1.0, 1.0)), sphere(1.2)],
+            Operands::Receiver => vec![box3(vec3(1.0, 1.0, 1.0))],
+        };
+        let node = decl.node(shapes, decl.args.iter().enumerate().map(|(i, a)| example(a, i)).collect());
+        let written = scene(node);
+        let src = fractal_dsl::print::to_source(&written);
+        assert!(src.contains(&format!("{}(", decl.name)), "{src}");
+        assert_eq!(parse(&src), written, "{src}");
+        assert!(fractal_dsl::validate::validate(&written).is_ok(), "{src}");
     }
 }
 

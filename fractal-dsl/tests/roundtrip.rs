@@ -3,8 +3,12 @@
 //! that break a validation rule must be refused by the parser too.
 
 use fractal_dsl::builder::*;
+use fractal_dsl::ir::arg::{ArgDecl, ArgShape, Rule};
+use fractal_dsl::ir::op::Operands;
 use fractal_dsl::ir::*;
+use fractal_dsl::ops::decl::OPS;
 use fractal_dsl::parse::parse_str;
+use fractal_dsl::prims::decl::PRIMS;
 use fractal_dsl::print::to_source;
 use fractal_dsl::validate::validate;
 use glam::DVec3;
@@ -208,19 +212,44 @@ fn material() -> impl Strategy<Value = Material> {
     })
 }
 
+/// A value for a declared argument, drawn by its shape and rule: mostly valid, sometimes not, sometimes animated.
+fn arg_value(a: &ArgDecl) -> BoxedStrategy<ArgValue> {
+    let constant = |lo: f64, hi: f64| (lo..hi, lo..hi, lo..hi).prop_map(|(x, y, z)| vec3(x, y, z));
+    match (a.shape, a.rule) {
+        (ArgShape::Number, Rule::Positive) => positive().prop_map(ArgValue::Num).boxed(),
+        (ArgShape::Number, Rule::NonNegative | Rule::RoundingOf(_)) => non_negative().prop_map(ArgValue::Num).boxed(),
+        (ArgShape::Number, _) => free().prop_map(ArgValue::Num).boxed(),
+        (ArgShape::Counts, _) => {
+            [0..4u32, 0..4u32, 0..4u32].prop_map(|n| ArgValue::Vec3(n.map(f64::from).into())).boxed()
+        }
+        (_, Rule::Direction) => constant(-1.0, 1.0).prop_map(ArgValue::Vec3).boxed(),
+        (_, Rule::Positive) => positive_vec3().prop_map(ArgValue::Vec3).boxed(),
+        (_, Rule::NonNegative | Rule::Period) => non_negative_vec3().prop_map(ArgValue::Vec3).boxed(),
+        (_, _) => free_vec3().prop_map(ArgValue::Vec3).boxed(),
+    }
+}
+
+fn args(decls: &[ArgDecl]) -> Vec<BoxedStrategy<ArgValue>> {
+    decls.iter().map(arg_value).collect()
+}
+
+/// Every declared primitive (`fractal_dsl::prims`): a new one is drawn here without being listed.
 fn primitive() -> impl Strategy<Value = Node> {
-    prop_oneof![
-        positive().prop_map(sphere),
-        positive_vec3().prop_map(box3),
-        (0.5..2.0f64, 0.5..2.0f64, 0.5..2.0f64, 0.0..0.5f64).prop_map(|(x, y, z, r)| round_box(vec3(x, y, z), r)),
-        (non_negative(), positive()).prop_map(|(a, b)| torus(a, b)),
-        (free_vec3(), free_vec3(), positive()).prop_map(|(a, b, r)| capsule(a, b, r)),
-        (positive(), positive()).prop_map(|(r, h)| cylinder(r, h)),
-        (positive(), non_negative(), non_negative()).prop_map(|(h, a, b)| cone(h, a, b)),
-        ((-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64), free()).prop_map(|((x, y, z), o)| plane(vec3(x, y, z), o)),
-        positive().prop_map(octahedron),
-        positive_vec3().prop_map(ellipsoid),
-    ]
+    let kinds: Vec<PrimKind> = PRIMS.iter().copied().map(PrimKind).collect();
+    prop::sample::select(kinds).prop_flat_map(|k| args(k.0.args).prop_map(move |a| k.0.node(a)))
+}
+
+/// Every declared operator (`fractal_dsl::ops`) over shapes drawn from `inner`.
+fn operator(inner: BoxedStrategy<Node>) -> impl Strategy<Value = Node> {
+    let kinds: Vec<OpKind> = OPS.iter().copied().map(OpKind).collect();
+    prop::sample::select(kinds).prop_flat_map(move |OpKind(d)| {
+        let shapes = match d.operands {
+            Operands::Many => prop::collection::vec(inner.clone(), 1..4),
+            Operands::Two => prop::collection::vec(inner.clone(), 2),
+            Operands::Receiver => prop::collection::vec(inner.clone(), 1),
+        };
+        (shapes, args(d.args)).prop_map(move |(s, a)| d.node(s, a))
+    })
 }
 
 fn fractal() -> impl Strategy<Value = Fractal> {
@@ -274,33 +303,9 @@ fn with(
 fn shape() -> impl Strategy<Value = Node> {
     let leaf = prop_oneof![3 => primitive(), 1 => fractal().prop_map(Node::from)];
     leaf.prop_recursive(5, 48, 4, |inner| {
-        let children = prop::collection::vec(inner.clone(), 1..4);
         prop_oneof![
-            children.clone().prop_map(union_all),
-            children.clone().prop_map(intersect_all),
-            (inner.clone(), inner.clone()).prop_map(|(a, b)| subtract(a, b)),
-            (children.clone(), non_negative()).prop_map(|(c, k)| smooth_union_all(c, k)),
-            (inner.clone(), inner.clone(), non_negative()).prop_map(|(a, b, k)| smooth_intersect(a, b, k)),
-            (prop::collection::vec(inner.clone(), 3), non_negative()).prop_map(|(c, k)| Node::SmoothIntersect(c, k)),
-            (inner.clone(), inner.clone(), non_negative()).prop_map(|(a, b, k)| smooth_subtract(a, b, k)),
-            (inner.clone(), free_vec3()).prop_map(|(n, v)| n.translate(v)),
-            (inner.clone(), free(), 0..3usize).prop_map(|(n, a, axis)| match axis {
-                0 => n.rotate_x(a),
-                1 => n.rotate_y(a),
-                _ => n.rotate_z(a),
-            }),
-            (inner.clone(), (-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64), free())
-                .prop_map(|(n, (x, y, z), a)| n.rotate(DVec3::new(x, y, z), a)),
-            (inner.clone(), positive()).prop_map(|(n, s)| n.scale(s)),
-            (inner.clone(), non_negative_vec3()).prop_map(|(n, p)| n.repeat(p)),
-            (inner.clone(), non_negative_vec3(), [0..4u32, 0..4u32, 0..4u32])
-                .prop_map(|(n, p, c)| n.repeat_limited(p, c)),
-            (inner.clone(), free()).prop_map(|(n, r)| n.twist(r)),
-            (inner.clone(), free()).prop_map(|(n, r)| n.bend(r)),
-            (inner.clone(), non_negative()).prop_map(|(n, r)| n.round(r)),
-            (inner.clone(), positive()).prop_map(|(n, t)| n.onion(t)),
-            (inner.clone(), non_negative_vec3()).prop_map(|(n, h)| n.elongate(h)),
-            (inner, material()).prop_map(|(n, m)| n.material(m)),
+            6 => operator(inner.clone().boxed()),
+            1 => (inner, material()).prop_map(|(n, m)| n.material(m)),
         ]
     })
 }

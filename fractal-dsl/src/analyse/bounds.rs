@@ -10,10 +10,9 @@
 //! (round, onion, smooth union) grow the box by that distance divided by κ, which keeps them conservative over
 //! estimators that fall short of the true distance (Sierpinski, Mandelbox, twist, bend).
 
-use super::interval::{range, Interval};
-pub use crate::geom::Aabb;
-use crate::ir::prim::ArgRange;
-use crate::ir::{ArgValue, Axis, Fractal, Node, Prim, Vec3Expr};
+use super::interval::{arg_range, Interval};
+pub use crate::geom::{Aabb, Bound};
+use crate::ir::{Fractal, Node, Prim};
 
 /// Signed distance from `p` to the box, by the same formula as [`crate::sdf::sd_box`] (so a guard computed here and one
 /// computed in a kernel agree).
@@ -22,40 +21,6 @@ pub fn sd_aabb(p: [f64; 3], b: &Aabb) -> f64 {
     let h = b.half_extents();
     let local = crate::math::v3(p[0] - c[0], p[1] - c[1], p[2] - c[2]);
     crate::sdf::sd_box(local, crate::math::v3(h[0], h[1], h[2]))
-}
-
-/// A node's bound and how its distance relates to it.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Bound {
-    /// The box the shape lies in; `None` when unbounded.
-    pub aabb: Option<Aabb>,
-    /// Outside the box, the node's distance is at least `reach` × the distance to the box (0 < reach ≤ 1; 0 when
-    /// nothing is known). Growing operations divide by it.
-    pub reach: f64,
-    /// Whether the node's distance is at least the box's signed distance everywhere, inside the box too: then a union
-    /// guard that skips the node never changes the union's value.
-    pub exact_guard: bool,
-}
-
-impl Bound {
-    const UNBOUNDED: Bound = Bound { aabb: None, reach: 0.0, exact_guard: false };
-    fn map(self, f: impl FnOnce(Aabb) -> Option<Aabb>) -> Bound {
-        match self.aabb.and_then(f) {
-            Some(b) if b.is_finite() => Bound { aabb: Some(b), ..self },
-            _ => Bound::UNBOUNDED,
-        }
-    }
-    /// The bound of `{d − by ≤ 0}`: the box grown by `by`/reach.
-    fn grown(self, by: f64) -> Bound {
-        if by <= 0.0 {
-            return self;
-        }
-        if self.reach <= 0.0 {
-            return Bound::UNBOUNDED;
-        }
-        let reach = self.reach;
-        self.map(|b| Some(b.grow(by / reach)))
-    }
 }
 
 /// The bound of `node`, or `None` when it is unbounded.
@@ -68,204 +33,18 @@ pub fn bound_info(node: &Node) -> Bound {
     match node {
         Node::Prim(p) => prim_bound(p),
         Node::Fractal(f) => fractal_bound(f),
-        Node::Union(children) => {
-            let all: Vec<Bound> = children.iter().map(bound_info).collect();
-            hull(&all)
-        }
-        Node::Intersect(children) | Node::SmoothIntersect(children, _) => {
-            // smooth_max(a, b) ≥ max(a, b): a smooth intersection lies inside the plain one.
-            let all: Vec<Bound> = children.iter().map(bound_info).collect();
-            overlap(&all)
-        }
-        // max(a, −b) ≥ a, and smooth_max(a, −b) ≥ max(a, −b): the left operand bounds both.
-        Node::Subtract(a, _) | Node::SmoothSubtract(a, _, _) => bound_info(a),
-        Node::SmoothUnion(children, k) => {
-            // Each step of the left fold subtracts at most k/4 from the plain minimum (sdf::smooth_min).
-            let all: Vec<Bound> = children.iter().map(bound_info).collect();
-            let k = range(k).hi.max(0.0);
-            let steps = children.len().saturating_sub(1) as f64;
-            let h = hull(&all);
-            if k.is_finite() {
-                h.grown(steps * k * 0.25)
-            } else {
-                Bound::UNBOUNDED
-            }
-        }
-        Node::Translate(c, offset) => {
-            let r = ranges(offset);
-            bound_info(c).map(|b| Some(b.translate(r.map(|i| i.lo), r.map(|i| i.hi))))
-        }
-        Node::Rotate(c, axis, angle) => {
-            let angle = range(angle);
-            bound_info(c).map(|b| rotated(&b, *axis, angle))
-        }
-        Node::Scale(c, s) => {
-            let s = range(s);
-            if s.lo.is_nan() || s.lo <= 0.0 || !s.is_finite() {
-                return Bound::UNBOUNDED;
-            }
-            // child(p / s)·s: the shape is s × the child's; every factor in between is a convex combination.
-            bound_info(c).map(|b| Some(b.scale(s.lo).union(&b.scale(s.hi))))
-        }
-        Node::Repeat(c, period) => {
-            if period.0.iter().all(|e| e.as_lit() == Some(0.0)) {
-                bound_info(c)
-            } else {
-                Bound::UNBOUNDED
-            }
-        }
-        Node::RepeatLimited(c, period, count) => {
-            let widen: [Option<f64>; 3] = [0, 1, 2].map(|i| {
-                if period.0[i].as_lit() == Some(0.0) {
-                    return Some(0.0);
-                }
-                let p = range(&period.0[i]);
-                p.is_finite().then(|| p.max_abs() * count[i] as f64)
-            });
-            match widen {
-                [Some(x), Some(y), Some(z)] => bound_info(c).map(|b| Some(b.grow3([x, y, z]))),
-                _ => Bound::UNBOUNDED,
-            }
-        }
-        Node::Twist(c, k) | Node::Bend(c, k) => {
-            // Both rotate a plane about an axis through the origin: the radius from that axis and the coordinate
-            // along it are kept, so the box is the cylinder of the child's farthest corner. The distance is divided
-            // by the stretch, which far away approaches a constant: nothing is known about its reach.
-            let (a, b, along) = if matches!(node, Node::Twist(..)) { (0, 2, 1) } else { (0, 1, 2) };
-            let inner = bound_info(c);
-            let identity = k.as_lit() == Some(0.0);
-            let out = inner.map(|bx| {
-                let radius = bx.corners().iter().map(|p| p[a].hypot(p[b])).fold(0.0, f64::max);
-                let mut min = [-radius; 3];
-                let mut max = [radius; 3];
-                min[along] = bx.min[along];
-                max[along] = bx.max[along];
-                Some(Aabb { min, max })
-            });
-            if identity {
-                out
-            } else {
-                Bound { reach: 0.0, exact_guard: false, ..out }
-            }
-        }
-        Node::Round(c, r) => {
-            let r = range(r).hi.max(0.0);
-            if !r.is_finite() {
-                return Bound::UNBOUNDED;
-            }
-            let inner = bound_info(c);
-            Bound { exact_guard: inner.exact_guard && inner.reach >= 1.0, ..inner.grown(r) }
-        }
-        Node::Onion(c, th) => {
-            // |d| − th ≤ 0 needs d ≤ th.
-            let th = range(th).hi.max(0.0);
-            if !th.is_finite() {
-                return Bound::UNBOUNDED;
-            }
-            let inner = bound_info(c);
-            Bound { exact_guard: inner.exact_guard && inner.reach >= 1.0, ..inner.grown(th) }
-        }
-        Node::Elongate(c, h) => {
-            // child(p − clamp(p, −h, h)): every point of the shape is a child point moved by at most |h| per axis.
-            let h = ranges(h);
-            if h.iter().any(|i| !i.is_finite()) {
-                return Bound::UNBOUNDED;
-            }
-            bound_info(c).map(|b| Some(b.grow3(h.map(|i| i.max_abs()))))
+        Node::Op(op) => {
+            let shapes: Vec<Bound> = op.shapes.iter().map(bound_info).collect();
+            let ranges: Vec<_> = op.args.iter().map(arg_range).collect();
+            (op.decl().bound)(&shapes, &ranges)
         }
         Node::Material(c, _) => bound_info(c),
     }
 }
 
-fn ranges(v: &Vec3Expr) -> [Interval; 3] {
-    [0, 1, 2].map(|i| range(&v.0[i]))
-}
-
-fn hull(all: &[Bound]) -> Bound {
-    let mut out: Option<Bound> = None;
-    for b in all {
-        let Some(bx) = b.aabb else { return Bound::UNBOUNDED };
-        out = Some(match out {
-            None => *b,
-            Some(o) => Bound {
-                aabb: o.aabb.map(|a| a.union(&bx)),
-                reach: o.reach.min(b.reach),
-                exact_guard: o.exact_guard && b.exact_guard,
-            },
-        });
-    }
-    out.unwrap_or(Bound::UNBOUNDED)
-}
-
-fn overlap(all: &[Bound]) -> Bound {
-    let bounded: Vec<&Bound> = all.iter().filter(|b| b.aabb.is_some()).collect();
-    let Some(first) = bounded.first() else { return Bound::UNBOUNDED };
-    let mut aabb = first.aabb.unwrap_or_else(|| unreachable!("filtered to bounded"));
-    let mut reach = first.reach;
-    for b in &bounded[1..] {
-        aabb = aabb.intersection(&b.aabb.unwrap_or_else(|| unreachable!("filtered to bounded")));
-        reach = reach.min(b.reach);
-    }
-    // max(d_i) ≥ reach·max(dist to box_i), and the distance to the overlap of n axis-aligned boxes is at most √n times
-    // the largest distance to one of them (per axis it is the largest of the per-axis gaps).
-    let n = bounded.len() as f64;
-    Bound { aabb: Some(aabb), reach: reach / n.sqrt(), exact_guard: false }
-}
-
-/// The box of the shape rotated by any angle in `angle` about `axis`.
-fn rotated(b: &Aabb, axis: Axis, angle: Interval) -> Option<Aabb> {
-    let k = axis.unit();
-    if angle.is_point() && angle.is_finite() {
-        let (s, c) = angle.lo.sin_cos();
-        return Aabb::of_points(b.corners().map(|p| rodrigues(p, k, s, c)));
-    }
-    // Any angle: the shape sweeps around the axis. For a coordinate axis the swept set is a cylinder; otherwise a ball.
-    let corners = b.corners();
-    let along = |p: &[f64; 3]| p[0] * k[0] + p[1] * k[1] + p[2] * k[2];
-    match axis {
-        Axis::X | Axis::Y | Axis::Z => {
-            let i = match axis {
-                Axis::X => 0,
-                Axis::Y => 1,
-                _ => 2,
-            };
-            let radius = corners
-                .iter()
-                .map(|p| {
-                    let t = along(p);
-                    ((0..3).map(|j| (p[j] - t * k[j]).powi(2)).sum::<f64>()).sqrt()
-                })
-                .fold(0.0, f64::max);
-            let mut min = [-radius; 3];
-            let mut max = [radius; 3];
-            min[i] = b.min[i];
-            max[i] = b.max[i];
-            Some(Aabb { min, max })
-        }
-        Axis::Any(_) => {
-            let radius = corners.iter().map(|p| (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt()).fold(0.0, f64::max);
-            Some(Aabb::cube(radius))
-        }
-    }
-}
-
-/// `p` rotated by the angle whose sine and cosine are `s`, `c` about the unit axis `k`.
-fn rodrigues(p: [f64; 3], k: [f64; 3], s: f64, c: f64) -> [f64; 3] {
-    let cross = [k[1] * p[2] - k[2] * p[1], k[2] * p[0] - k[0] * p[2], k[0] * p[1] - k[1] * p[0]];
-    let dot = k[0] * p[0] + k[1] * p[1] + k[2] * p[2];
-    [0, 1, 2].map(|i| p[i] * c + cross[i] * s + k[i] * dot * (1.0 - c))
-}
-
 /// A primitive's bound, as its declaration computes it from the arguments' ranges.
 fn prim_bound(p: &Prim) -> Bound {
-    let ranges: Vec<ArgRange> = p
-        .args
-        .iter()
-        .map(|a| match a {
-            ArgValue::Num(e) => ArgRange::Num(range(e)),
-            ArgValue::Vec3(v) => ArgRange::Vec3(ranges(v)),
-        })
-        .collect();
+    let ranges: Vec<_> = p.args.iter().map(arg_range).collect();
     match (p.decl().bound)(&ranges) {
         Some(b) => Bound { aabb: Some(b.aabb), reach: b.reach, exact_guard: b.reach >= 1.0 }.map(Some),
         None => Bound::UNBOUNDED,

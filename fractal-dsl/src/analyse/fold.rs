@@ -30,91 +30,26 @@ fn fold_v3(v: &Vec3Expr) -> Vec3Expr {
     Vec3Expr(v.0.clone().map(|e| fold_expr(&e)))
 }
 
-fn is_lit(e: &Expr, v: f64) -> bool {
-    e.as_lit() == Some(v)
-}
-
-/// Folds every expression of the tree and removes identity nodes.
+/// Folds every expression of the tree and removes identity nodes (a one-shape union, a translation by zero, ... as
+/// each operator's declaration states).
 pub fn fold_node(n: &Node) -> Node {
-    let b = |c: &Node| Box::new(fold_node(c));
-    let all = |c: &[Node]| c.iter().map(fold_node).collect::<Vec<_>>();
     match n {
-        Node::Prim(p) => Node::Prim(fold_prim(p)),
+        Node::Prim(p) => Node::Prim(Prim { args: fold_args(&p.args), ..p.clone() }),
         Node::Fractal(f) => Node::Fractal(fold_fractal(f)),
-        Node::Union(c) | Node::Intersect(c) if c.len() == 1 => fold_node(&c[0]),
-        Node::SmoothUnion(c, _) | Node::SmoothIntersect(c, _) if c.len() == 1 => fold_node(&c[0]),
-        Node::Union(c) => Node::Union(all(c)),
-        Node::Intersect(c) => Node::Intersect(all(c)),
-        Node::Subtract(a, c) => Node::Subtract(b(a), b(c)),
-        Node::SmoothUnion(c, k) => Node::SmoothUnion(all(c), fold_expr(k)),
-        Node::SmoothIntersect(c, k) => Node::SmoothIntersect(all(c), fold_expr(k)),
-        Node::SmoothSubtract(a, c, k) => Node::SmoothSubtract(b(a), b(c), fold_expr(k)),
-        Node::Translate(c, v) => {
-            let v = fold_v3(v);
-            if v.lits() == Some([0.0; 3]) {
-                fold_node(c)
-            } else {
-                Node::Translate(b(c), v)
+        Node::Op(op) => {
+            let args = fold_args(&op.args);
+            match op.shapes.as_slice() {
+                [only] if op.decl().is_identity(1, &args) => fold_node(only),
+                shapes => Node::Op(Op { kind: op.kind, shapes: shapes.iter().map(fold_node).collect(), args }),
             }
         }
-        Node::Rotate(c, axis, a) => {
-            let a = fold_expr(a);
-            if is_lit(&a, 0.0) {
-                fold_node(c)
-            } else {
-                Node::Rotate(b(c), *axis, a)
-            }
-        }
-        Node::Scale(c, s) => {
-            let s = fold_expr(s);
-            if is_lit(&s, 1.0) {
-                fold_node(c)
-            } else {
-                Node::Scale(b(c), s)
-            }
-        }
-        Node::Repeat(c, v) => Node::Repeat(b(c), fold_v3(v)),
-        Node::RepeatLimited(c, v, n) => Node::RepeatLimited(b(c), fold_v3(v), *n),
-        Node::Twist(c, r) => {
-            let r = fold_expr(r);
-            if is_lit(&r, 0.0) {
-                fold_node(c)
-            } else {
-                Node::Twist(b(c), r)
-            }
-        }
-        Node::Bend(c, r) => {
-            let r = fold_expr(r);
-            if is_lit(&r, 0.0) {
-                fold_node(c)
-            } else {
-                Node::Bend(b(c), r)
-            }
-        }
-        Node::Round(c, r) => {
-            let r = fold_expr(r);
-            if is_lit(&r, 0.0) {
-                fold_node(c)
-            } else {
-                Node::Round(b(c), r)
-            }
-        }
-        Node::Onion(c, t) => Node::Onion(b(c), fold_expr(t)),
-        Node::Elongate(c, h) => {
-            let h = fold_v3(h);
-            if h.lits() == Some([0.0; 3]) {
-                fold_node(c)
-            } else {
-                Node::Elongate(b(c), h)
-            }
-        }
-        Node::Material(c, m) => Node::Material(b(c), fold_material(m)),
+        Node::Material(c, m) => Node::Material(Box::new(fold_node(c)), fold_material(m)),
     }
 }
 
-fn fold_prim(p: &Prim) -> Prim {
-    let mut folded = p.clone();
-    for a in &mut folded.args {
+fn fold_args(args: &[ArgValue]) -> Vec<ArgValue> {
+    let mut folded = args.to_vec();
+    for a in &mut folded {
         for e in a.exprs_mut() {
             *e = fold_expr(e);
         }

@@ -43,3 +43,12 @@ pub fn range(e: &Expr) -> Interval {
         }
     }
 }
+
+/// The range of a declared argument's value.
+pub fn arg_range(a: &crate::ir::ArgValue) -> crate::ir::arg::ArgRange {
+    use crate::ir::{arg::ArgRange, ArgValue};
+    match a {
+        ArgValue::Num(e) => ArgRange::Num(range(e)),
+        ArgValue::Vec3(v) => ArgRange::Vec3([0, 1, 2].map(|i| range(&v.0[i]))),
+    }
+}

@@ -12,7 +12,7 @@ use crate::ir::Node;
 /// and the CPU renderer both leave the specular term out when not.
 pub fn has_specular(node: &Node) -> bool {
     let own = matches!(node, Node::Material(_, m) if m.specular.as_lit() != Some(0.0));
-    own || node.children().into_iter().any(has_specular)
+    own || node.children().iter().any(has_specular)
 }
 
 /// The order a union evaluates its children in: everything without a fractal first, then the fractal subtrees, each

@@ -6,6 +6,7 @@
 use crate::analyse::{fold, guarded_bound, union_order};
 use crate::eval::Env;
 use crate::ir::fractal::CallArg;
+use crate::ir::op::Meaning;
 use crate::ir::*;
 use crate::leaf::LeafArg;
 use crate::math::{v3, V3};
@@ -69,6 +70,13 @@ impl Term3 {
     fn compile(v: &Vec3Expr, params: &[ParamDecl]) -> Term3 {
         Term3([0, 1, 2].map(|i| Term::compile(&v.0[i], params)))
     }
+    /// The vector's value when every component is a literal.
+    pub fn constant(&self) -> Option<[f64; 3]> {
+        match &self.0 {
+            [Term::Lit(x), Term::Lit(y), Term::Lit(z)] => Some([*x, *y, *z]),
+            _ => None,
+        }
+    }
     #[inline]
     pub fn eval<F: Num>(&self, env: &Env<F>) -> V3<F> {
         v3(self.0[0].eval(env), self.0[1].eval(env), self.0[2].eval(env))
@@ -84,6 +92,12 @@ pub enum ArgTerm {
 }
 
 impl ArgTerm {
+    fn compile(a: &ArgValue, params: &[ParamDecl]) -> ArgTerm {
+        match a {
+            ArgValue::Num(e) => ArgTerm::Num(Term::compile(e, params)),
+            ArgValue::Vec3(v) => ArgTerm::Vec(Term3::compile(v, params)),
+        }
+    }
     #[inline]
     pub fn eval<F: Num>(&self, env: &Env<F>) -> LeafArg<F> {
         match self {
@@ -99,13 +113,6 @@ impl ArgTerm {
 pub struct LeafCall {
     pub leaf: Leaf,
     pub args: Vec<ArgTerm>,
-}
-
-/// Per axis: `None` where the expression folded to the literal 0 (the axis is left alone).
-pub type PerAxis = [Option<Term>; 3];
-
-fn per_axis(v: &Vec3Expr, params: &[ParamDecl]) -> PerAxis {
-    [0, 1, 2].map(|i| (v.0[i].as_lit() != Some(0.0)).then(|| Term::compile(&v.0[i], params)))
 }
 
 #[derive(Clone, Debug)]
@@ -158,33 +165,59 @@ pub enum Step {
     },
     /// A union or intersection of nothing: no geometry.
     Empty,
-    /// Children in evaluation order, each with its guard (never on the first).
-    Union(Vec<(Step, Option<Guard>)>),
-    Intersect(Vec<Step>),
-    Subtract(Box<Step>, Box<Step>),
-    SmoothUnion(Vec<Step>, Term),
-    SmoothIntersect(Vec<Step>, Term),
-    SmoothSubtract(Box<Step>, Box<Step>, Term),
-    Translate(Box<Step>, Term3),
-    /// Unit axis, its outer product k·kᵀ and cross-product matrix [k]×, and the angle.
-    Rotate {
-        child: Box<Step>,
-        outer: [[f64; 3]; 3],
-        cross: [[f64; 3]; 3],
-        angle: Term,
-    },
-    Scale(Box<Step>, Term),
-    Repeat {
-        child: Box<Step>,
-        period: PerAxis,
-        count: Option<[u32; 3]>,
-    },
-    Twist(Box<Step>, Term),
-    Bend(Box<Step>, Term),
-    Round(Box<Step>, Term),
-    Onion(Box<Step>, Term),
-    Elongate(Box<Step>, PerAxis),
+    Op(OpStep),
     Material(Box<Step>, Box<Mat>),
+}
+
+/// An operator: what it means, its shapes and its arguments.
+#[derive(Clone, Debug)]
+pub struct OpStep {
+    pub meaning: Meaning,
+    /// The shapes in evaluation order (a union takes cheap ones first), each with its guard (union shapes only,
+    /// never the first).
+    pub shapes: Vec<(Step, Option<Guard>)>,
+    pub args: Vec<ArgTerm>,
+}
+
+impl OpStep {
+    /// The argument at `i` as a number.
+    #[inline]
+    pub fn num<F: Num>(&self, i: usize, env: &Env<F>) -> F {
+        match &self.args[i] {
+            ArgTerm::Num(t) => t.eval(env),
+            ArgTerm::Vec(v) => v.0[0].eval(env),
+            ArgTerm::Count(n) => F::lit(*n as f64),
+        }
+    }
+    /// The argument at `i` as a vector.
+    #[inline]
+    pub fn vec<F: Num>(&self, i: usize, env: &Env<F>) -> V3<F> {
+        match &self.args[i] {
+            ArgTerm::Vec(v) => v.eval(env),
+            _ => V3::splat(self.num(i, env)),
+        }
+    }
+    /// The argument at `i` as a vector, with `None` on axes whose expression folded to the literal 0.
+    pub fn per_axis(&self, i: usize) -> [Option<&Term>; 3] {
+        match &self.args[i] {
+            ArgTerm::Vec(v) => [0, 1, 2].map(|k| (!matches!(v.0[k], Term::Lit(z) if z == 0.0)).then_some(&v.0[k])),
+            ArgTerm::Num(t) => [Some(t); 3],
+            ArgTerm::Count(_) => [None; 3],
+        }
+    }
+    /// The argument at `i` as a vector of constants (a rotation axis, repeat counts).
+    pub fn constant3(&self, i: usize) -> [f64; 3] {
+        match &self.args[i] {
+            ArgTerm::Vec(v) => v.constant().unwrap_or([0.0; 3]),
+            ArgTerm::Num(Term::Lit(x)) => [*x; 3],
+            _ => [0.0; 3],
+        }
+    }
+    /// The shape at `i` in evaluation order.
+    #[inline]
+    pub fn shape(&self, i: usize) -> &Step {
+        &self.shapes[i].0
+    }
 }
 
 /// A scene prepared for evaluation: the folded tree as [`Step`]s, the default material and the parameter slots.
@@ -222,12 +255,6 @@ impl Compiler<'_> {
     fn num(&self, e: &Expr) -> Term {
         Term::compile(e, self.params)
     }
-    fn num3(&self, v: &Vec3Expr) -> Term3 {
-        Term3::compile(v, self.params)
-    }
-    fn boxed(&self, n: &Node) -> Box<Step> {
-        Box::new(self.node(n))
-    }
     fn call(&self, leaf: Leaf, args: Vec<ArgTerm>) -> LeafCall {
         LeafCall { leaf, args }
     }
@@ -236,59 +263,31 @@ impl Compiler<'_> {
         match n {
             Node::Prim(p) => Step::Leaf(self.prim(p)),
             Node::Fractal(f) => Step::Fractal { call: self.fractal(f), step: f.step_factor() },
-            Node::Union(children) if children.is_empty() => Step::Empty,
-            Node::Union(children) => Step::Union(
-                union_order(children)
-                    .into_iter()
-                    .enumerate()
-                    .map(|(pos, i)| {
-                        let guard =
-                            guarded_bound(children, pos).map(|b| Guard { center: b.center(), half: b.half_extents() });
-                        (self.node(&children[i]), guard)
-                    })
-                    .collect(),
-            ),
-            Node::Intersect(c) | Node::SmoothUnion(c, _) | Node::SmoothIntersect(c, _) if c.is_empty() => Step::Empty,
-            Node::Intersect(c) => Step::Intersect(c.iter().map(|c| self.node(c)).collect()),
-            Node::Subtract(a, b) => Step::Subtract(self.boxed(a), self.boxed(b)),
-            Node::SmoothUnion(c, k) => Step::SmoothUnion(c.iter().map(|c| self.node(c)).collect(), self.num(k)),
-            Node::SmoothIntersect(c, k) => Step::SmoothIntersect(c.iter().map(|c| self.node(c)).collect(), self.num(k)),
-            Node::SmoothSubtract(a, b, k) => Step::SmoothSubtract(self.boxed(a), self.boxed(b), self.num(k)),
-            Node::Translate(c, v) => Step::Translate(self.boxed(c), self.num3(v)),
-            Node::Rotate(c, axis, angle) => {
-                let k = axis.unit();
-                Step::Rotate {
-                    child: self.boxed(c),
-                    outer: [0, 1, 2].map(|i| [0, 1, 2].map(|j| k[i] * k[j])),
-                    cross: [[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]],
-                    angle: self.num(angle),
-                }
+            Node::Op(op) if op.shapes.is_empty() => Step::Empty,
+            Node::Op(op) => {
+                let meaning = op.decl().meaning;
+                let shapes = if meaning == Meaning::Union {
+                    union_order(&op.shapes)
+                        .into_iter()
+                        .enumerate()
+                        .map(|(pos, i)| {
+                            let guard = guarded_bound(&op.shapes, pos)
+                                .map(|b| Guard { center: b.center(), half: b.half_extents() });
+                            (self.node(&op.shapes[i]), guard)
+                        })
+                        .collect()
+                } else {
+                    op.shapes.iter().map(|s| (self.node(s), None)).collect()
+                };
+                let args = op.args.iter().map(|a| ArgTerm::compile(a, self.params)).collect();
+                Step::Op(OpStep { meaning, shapes, args })
             }
-            Node::Scale(c, s) => Step::Scale(self.boxed(c), self.num(s)),
-            Node::Repeat(c, period) => {
-                Step::Repeat { child: self.boxed(c), period: per_axis(period, self.params), count: None }
-            }
-            Node::RepeatLimited(c, period, count) => {
-                Step::Repeat { child: self.boxed(c), period: per_axis(period, self.params), count: Some(*count) }
-            }
-            Node::Twist(c, k) => Step::Twist(self.boxed(c), self.num(k)),
-            Node::Bend(c, k) => Step::Bend(self.boxed(c), self.num(k)),
-            Node::Round(c, r) => Step::Round(self.boxed(c), self.num(r)),
-            Node::Onion(c, t) => Step::Onion(self.boxed(c), self.num(t)),
-            Node::Elongate(c, h) => Step::Elongate(self.boxed(c), per_axis(h, self.params)),
-            Node::Material(c, m) => Step::Material(self.boxed(c), Box::new(Mat::compile(m, self.params))),
+            Node::Material(c, m) => Step::Material(Box::new(self.node(c)), Box::new(Mat::compile(m, self.params))),
         }
     }
 
     fn prim(&self, p: &Prim) -> LeafCall {
-        let args = p
-            .args
-            .iter()
-            .map(|a| match a {
-                ArgValue::Num(e) => ArgTerm::Num(self.num(e)),
-                ArgValue::Vec3(v) => ArgTerm::Vec(self.num3(v)),
-            })
-            .collect();
+        let args = p.args.iter().map(|a| ArgTerm::compile(a, self.params)).collect();
         self.call(p.decl().leaf, args)
     }
 

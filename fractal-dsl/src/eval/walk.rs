@@ -3,8 +3,9 @@
 //! values to record the kernels' `scene_de` and `scene_sample` ([`crate::lower`]). The rules are listed in
 //! [`crate::eval`].
 
-use crate::eval::plan::{Guard, LeafCall, Mat, Paint, PerAxis, Plan, Step};
+use crate::eval::plan::{Guard, LeafCall, Mat, OpStep, Paint, Plan, Step, Term};
 use crate::eval::{Env, Sample};
+use crate::ir::op::Meaning;
 use crate::leaf::{LeafArg, LeafOut};
 use crate::math::*;
 use crate::sdf::{CallLeaf, Leaf};
@@ -121,13 +122,18 @@ impl Walk<'_> {
     }
 
     fn dist<F: CallLeaf>(&self, step: &Step, p: V3<F>, env: &Env<F>) -> F {
-        match step {
-            Step::Leaf(call) => leaf(call, p, env).distance(),
-            Step::Fractal { call, step } => leaf(call, p, env).distance() * c(*step),
-            Step::Empty => c(f64::INFINITY),
-            Step::Union(children) => {
-                let mut d = self.dist(&children[0].0, p, env);
-                for (child, guard) in &children[1..] {
+        let op = match step {
+            Step::Leaf(call) => return leaf(call, p, env).distance(),
+            Step::Fractal { call, step } => return leaf(call, p, env).distance() * c(*step),
+            Step::Empty => return c(f64::INFINITY),
+            Step::Material(child, _) => return self.dist(child, p, env),
+            Step::Op(op) => op,
+        };
+        let rest = || op.shapes[1..].iter();
+        match op.meaning {
+            Meaning::Union => {
+                let mut d = self.dist(op.shape(0), p, env);
+                for (child, guard) in rest() {
                     d = match self.guard(guard, p, d) {
                         Some(worth_it) => F::when(worth_it, d, |d| min(d, self.dist(child, p, env))),
                         None => min(d, self.dist(child, p, env)),
@@ -135,46 +141,40 @@ impl Walk<'_> {
                 }
                 d
             }
-            Step::Intersect(children) => {
-                let mut d = self.dist(&children[0], p, env);
-                for child in &children[1..] {
-                    d = max(d, self.dist(child, p, env));
-                }
-                d
+            Meaning::Intersect => rest().fold(self.dist(op.shape(0), p, env), |d, (s, _)| max(d, self.dist(s, p, env))),
+            Meaning::Subtract => max(self.dist(op.shape(0), p, env), -self.dist(op.shape(1), p, env)),
+            Meaning::SmoothUnion | Meaning::SmoothIntersect => {
+                let blend = if op.meaning == Meaning::SmoothUnion { Leaf::SmoothMin } else { Leaf::SmoothMax };
+                let k = op.num(0, env);
+                rest().fold(self.dist(op.shape(0), p, env), |d, (s, _)| leaf3(blend, d, self.dist(s, p, env), k))
             }
-            Step::Subtract(a, b) => max(self.dist(a, p, env), -self.dist(b, p, env)),
-            Step::SmoothUnion(children, k) | Step::SmoothIntersect(children, k) => {
-                let blend = if matches!(step, Step::SmoothUnion(..)) { Leaf::SmoothMin } else { Leaf::SmoothMax };
-                let k = k.eval(env);
-                let mut d = self.dist(&children[0], p, env);
-                for child in &children[1..] {
-                    d = leaf3(blend, d, self.dist(child, p, env), k);
-                }
-                d
+            Meaning::SmoothSubtract => {
+                let k = op.num(0, env);
+                leaf3(Leaf::SmoothMax, self.dist(op.shape(0), p, env), -self.dist(op.shape(1), p, env), k)
             }
-            Step::SmoothSubtract(a, b, k) => {
-                let k = k.eval(env);
-                leaf3(Leaf::SmoothMax, self.dist(a, p, env), -self.dist(b, p, env), k)
-            }
-            Step::Material(child, _) => self.dist(child, p, env),
             _ => {
-                let (child, q, post) = domain(step, p, env);
-                post.apply(self.dist(child, q, env))
+                let (q, post) = domain(op, p, env);
+                post.apply(self.dist(op.shape(0), q, env))
             }
         }
     }
 
     fn surf<F: CallLeaf>(&self, step: &Step, p: V3<F>, env: &Env<F>, m: &Mat) -> (F, Fields<F>) {
-        match step {
-            Step::Leaf(call) => (leaf(call, p, env).distance(), leaf_fields(m, env, None)),
+        let op = match step {
+            Step::Leaf(call) => return (leaf(call, p, env).distance(), leaf_fields(m, env, None)),
             Step::Fractal { call, step } => {
                 let out = leaf(call, p, env);
-                (out.distance() * c(*step), leaf_fields(m, env, out.trap()))
+                return (out.distance() * c(*step), leaf_fields(m, env, out.trap()));
             }
-            Step::Empty => (c(f64::INFINITY), leaf_fields(m, env, None)),
-            Step::Union(children) => {
-                let mut acc = self.surf(&children[0].0, p, env, m);
-                for (child, guard) in &children[1..] {
+            Step::Empty => return (c(f64::INFINITY), leaf_fields(m, env, None)),
+            Step::Material(child, inner) => return self.surf(child, p, env, inner),
+            Step::Op(op) => op,
+        };
+        let rest = || op.shapes[1..].iter();
+        match op.meaning {
+            Meaning::Union => {
+                let mut acc = self.surf(op.shape(0), p, env, m);
+                for (child, guard) in rest() {
                     let nearest = |(d, f): (F, Fields<F>)| {
                         let (ds, fs) = self.surf(child, p, env, m);
                         (min(d, ds), Fields::select(lt(ds, d), fs, f))
@@ -186,42 +186,35 @@ impl Walk<'_> {
                 }
                 acc
             }
-            Step::Intersect(children) => {
-                let mut acc = self.surf(&children[0], p, env, m);
-                for child in &children[1..] {
-                    let (ds, fs) = self.surf(child, p, env, m);
-                    acc = (max(acc.0, ds), Fields::select(lt(acc.0, ds), fs, acc.1));
-                }
-                acc
+            Meaning::Intersect => rest().fold(self.surf(op.shape(0), p, env, m), |acc, (s, _)| {
+                let (ds, fs) = self.surf(s, p, env, m);
+                (max(acc.0, ds), Fields::select(lt(acc.0, ds), fs, acc.1))
+            }),
+            Meaning::Subtract => {
+                let (d, f) = self.surf(op.shape(0), p, env, m);
+                (max(d, -self.dist(op.shape(1), p, env)), f)
             }
-            Step::Subtract(a, b) => {
-                let (d, f) = self.surf(a, p, env, m);
-                (max(d, -self.dist(b, p, env)), f)
-            }
-            Step::SmoothUnion(children, k) | Step::SmoothIntersect(children, k) => {
-                let union = matches!(step, Step::SmoothUnion(..));
-                let k = k.eval(env);
-                let mut acc = self.surf(&children[0], p, env, m);
-                for child in &children[1..] {
-                    let (ds, fs) = self.surf(child, p, env, m);
+            Meaning::SmoothUnion | Meaning::SmoothIntersect => {
+                let union = op.meaning == Meaning::SmoothUnion;
+                let k = op.num(0, env);
+                rest().fold(self.surf(op.shape(0), p, env, m), |acc, (s, _)| {
+                    let (ds, fs) = self.surf(s, p, env, m);
                     let (d, w) = if union {
                         (leaf3(Leaf::SmoothMin, acc.0, ds, k), leaf3(Leaf::BlendWeight, acc.0, ds, k))
                     } else {
                         (leaf3(Leaf::SmoothMax, acc.0, ds, k), leaf3(Leaf::BlendWeight, ds, acc.0, k))
                     };
-                    acc = (d, acc.1.mix(fs, w));
-                }
-                acc
+                    (d, acc.1.mix(fs, w))
+                })
             }
-            Step::SmoothSubtract(a, b, k) => {
-                let k = k.eval(env);
-                let (d, f) = self.surf(a, p, env, m);
-                (leaf3(Leaf::SmoothMax, d, -self.dist(b, p, env), k), f)
+            Meaning::SmoothSubtract => {
+                let k = op.num(0, env);
+                let (d, f) = self.surf(op.shape(0), p, env, m);
+                (leaf3(Leaf::SmoothMax, d, -self.dist(op.shape(1), p, env), k), f)
             }
-            Step::Material(child, inner) => self.surf(child, p, env, inner),
             _ => {
-                let (child, q, post) = domain(step, p, env);
-                let (d, f) = self.surf(child, q, env, m);
+                let (q, post) = domain(op, p, env);
+                let (d, f) = self.surf(op.shape(0), q, env, m);
                 (post.apply(d), f)
             }
         }
@@ -263,24 +256,29 @@ fn leaf_fields<F: CallLeaf>(m: &Mat, env: &Env<F>, trap: Option<F>) -> Fields<F>
 
 /// Each axis of `p` moved by `f(axis, coordinate, term)`, or left alone where the term folded to 0.
 #[inline]
-fn per_axis<F: Num>(p: V3<F>, terms: &PerAxis, env: &Env<F>, f: impl Fn(usize, F, F) -> F) -> V3<F> {
+fn per_axis<F: Num>(p: V3<F>, terms: [Option<&Term>; 3], env: &Env<F>, f: impl Fn(usize, F, F) -> F) -> V3<F> {
     let pc = [p.x, p.y, p.z];
-    let q = [0, 1, 2].map(|i| match &terms[i] {
+    let q = [0, 1, 2].map(|i| match terms[i] {
         None => pc[i],
         Some(t) => f(i, pc[i], t.eval(env)),
     });
     v3(q[0], q[1], q[2])
 }
 
-/// The single-child operations that move the point and then adjust the child's distance.
-fn domain<'a, F: Num>(step: &'a Step, p: V3<F>, env: &Env<F>) -> (&'a Step, V3<F>, Post<F>) {
-    match step {
-        Step::Translate(child, offset) => (child, p - offset.eval(env), Post::Keep),
-        Step::Rotate { child, outer, cross, angle } => {
+/// The single-shape operations: where they move the point, and what they then do to the shape's distance.
+fn domain<F: Num>(op: &OpStep, p: V3<F>, env: &Env<F>) -> (V3<F>, Post<F>) {
+    match op.meaning {
+        Meaning::Translate => (p - op.vec(0, env), Post::Keep),
+        Meaning::Rotate(axis) => {
             // p rotated by −angle (so the shape turns by +angle): Rodrigues' matrix c·I + (1 − c)·k·kᵀ − s·[k]×.
-            let a = angle.eval(env);
-            let co = cos(a);
-            let s = -sin(a);
+            let (k, angle) = match axis {
+                Some(k) => (k, op.num(0, env)),
+                None => (op.constant3(0), op.num(1, env)),
+            };
+            let outer = [0, 1, 2].map(|i| [0, 1, 2].map(|j| k[i] * k[j]));
+            let cross = [[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]];
+            let co = cos(angle);
+            let s = -sin(angle);
             let one_minus_c = c::<F>(1.0) - co;
             let pc = [p.x, p.y, p.z];
             let q = [0, 1, 2].map(|i| {
@@ -292,29 +290,30 @@ fn domain<'a, F: Num>(step: &'a Step, p: V3<F>, env: &Env<F>) -> (&'a Step, V3<F
                 }
                 sum
             });
-            (child, v3(q[0], q[1], q[2]), Post::Keep)
+            (v3(q[0], q[1], q[2]), Post::Keep)
         }
-        Step::Scale(child, s) => {
-            let s = s.eval(env);
-            (child, p / s, Post::Mul(s))
+        Meaning::Scale => {
+            let s = op.num(0, env);
+            (p / s, Post::Mul(s))
         }
-        Step::Repeat { child, period, count } => {
-            let q = per_axis(p, period, env, |axis, x, per| {
+        Meaning::Repeat { limited } => {
+            let count = limited.then(|| op.constant3(1));
+            let q = per_axis(p, op.per_axis(0), env, |axis, x, per| {
                 let cell = floor(x / per + c(0.5));
                 let cell = match count {
-                    Some(n) => clamp(cell, c(-(n[axis] as f64)), c(n[axis] as f64)),
+                    Some(n) => clamp(cell, c(-n[axis]), c(n[axis])),
                     None => cell,
                 };
                 x - per * cell
             });
-            (child, q, Post::Keep)
+            (q, Post::Keep)
         }
-        Step::Twist(child, k) | Step::Bend(child, k) => {
+        Meaning::Twist | Meaning::Bend => {
             // Twist turns the xz plane by k·y; bend turns the xy plane by k·x. At radius ρ from the axis the map
             // stretches space by up to (v + sqrt(v² + 4))/2 with v = |k|·ρ (the Jacobian's largest singular value), so
             // the child's distance is divided by that to stay a lower bound.
-            let twist = matches!(step, Step::Twist(..));
-            let k = k.eval(env);
+            let twist = op.meaning == Meaning::Twist;
+            let k = op.num(0, env);
             let (a, b, driver) = if twist { (p.x, p.z, p.y) } else { (p.x, p.y, p.x) };
             let angle = k * driver;
             let (si, co) = (sin(angle), cos(angle));
@@ -323,11 +322,16 @@ fn domain<'a, F: Num>(step: &'a Step, p: V3<F>, env: &Env<F>) -> (&'a Step, V3<F
             let q = if twist { v3(ra, p.y, rb) } else { v3(ra, rb, p.z) };
             let v = abs(k) * sqrt(a * a + b * b);
             let stretch = (v + sqrt(v * v + c(4.0))) * c(0.5);
-            (child, q, Post::Div(stretch))
+            (q, Post::Div(stretch))
         }
-        Step::Round(child, r) => (child, p, Post::Sub(r.eval(env))),
-        Step::Onion(child, t) => (child, p, Post::AbsSub(t.eval(env))),
-        Step::Elongate(child, h) => (child, per_axis(p, h, env, |_, x, h| x - clamp(x, -h, h)), Post::Keep),
-        _ => unreachable!("domain() is only called for single-child point operations"),
+        Meaning::Round => (p, Post::Sub(op.num(0, env))),
+        Meaning::Onion => (p, Post::AbsSub(op.num(0, env))),
+        Meaning::Elongate => (per_axis(p, op.per_axis(0), env, |_, x, h| x - clamp(x, -h, h)), Post::Keep),
+        Meaning::Union
+        | Meaning::Intersect
+        | Meaning::Subtract
+        | Meaning::SmoothUnion
+        | Meaning::SmoothIntersect
+        | Meaning::SmoothSubtract => unreachable!("combinations are evaluated by the walker, not as domain operations"),
     }
 }

@@ -1,7 +1,8 @@
 //! The scene IR: the one description every reader (writers, interpreter, analyses) walks.
 //!
 //! A [`Scene`] is a distance tree ([`Node`]) plus what is needed to light and look at it. Leaves are primitives
-//! ([`Prim`]) and fractals ([`Fractal`]); inner nodes are CSG, transforms, domain operations and materials.
+//! ([`Prim`]) and fractals ([`Fractal`]); inner nodes are operators ([`Op`]: CSG, transforms, domain operations) and
+//! materials.
 //! Numbers are [`Expr`]s so that `t` and `param(..)` can stand wherever a literal can.
 
 /// `PartialEq` and `Debug` for a reference to a vocabulary declaration: equal when the names are, printed as the
@@ -23,92 +24,59 @@ macro_rules! named_by_declaration {
 }
 use named_by_declaration;
 
+/// The accessors of an item made from a declaration with arguments (a primitive, an operator): its declaration, name,
+/// and arguments with their declarations.
+macro_rules! declared_item {
+    ($item:ident, $decl:ident) => {
+        impl $item {
+            pub fn decl(&self) -> &'static $decl {
+                self.kind.0
+            }
+            pub fn name(&self) -> &'static str {
+                self.kind.0.name
+            }
+            /// Every expression of every argument, in order.
+            pub fn exprs(&self) -> impl Iterator<Item = &super::Expr> {
+                self.args.iter().flat_map(super::ArgValue::exprs)
+            }
+            /// The declared arguments with their values.
+            pub fn declared_args(&self) -> impl Iterator<Item = (&'static super::arg::ArgDecl, &super::ArgValue)> {
+                self.kind.0.args.iter().zip(&self.args)
+            }
+        }
+    };
+}
+use declared_item;
+
+pub mod arg;
 mod expr;
 pub mod fractal;
+pub mod op;
 pub mod prim;
 
+pub use arg::ArgValue;
 pub use expr::{BinOp, Expr, Func, ParamDecl, Vec3Expr, Vec4Expr};
 pub use fractal::{Fractal, FractalDecl, FractalKind, MAX_ITERATIONS};
-pub use prim::{ArgValue, Prim, PrimDecl, PrimKind};
-
-/// Axis of a rotation. Arbitrary axes are normalised constants; angles may animate.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Axis {
-    X,
-    Y,
-    Z,
-    /// A unit vector.
-    Any([f64; 3]),
-}
-
-impl Axis {
-    pub fn unit(self) -> [f64; 3] {
-        match self {
-            Axis::X => [1.0, 0.0, 0.0],
-            Axis::Y => [0.0, 1.0, 0.0],
-            Axis::Z => [0.0, 0.0, 1.0],
-            Axis::Any(a) => a,
-        }
-    }
-}
+pub use op::{Op, OpDecl, OpKind};
+pub use prim::{Prim, PrimDecl, PrimKind};
 
 /// The distance tree.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Node {
     Prim(Prim),
     Fractal(Fractal),
-    /// Minimum of the children; n-ary.
-    Union(Vec<Node>),
-    /// Maximum of the children; n-ary.
-    Intersect(Vec<Node>),
-    /// `a` with `b` cut away: max(a, −b).
-    Subtract(Box<Node>, Box<Node>),
-    /// Polynomial smooth minimum with blend radius `k`, folded left over the children.
-    SmoothUnion(Vec<Node>, Expr),
-    SmoothIntersect(Vec<Node>, Expr),
-    SmoothSubtract(Box<Node>, Box<Node>, Expr),
-    Translate(Box<Node>, Vec3Expr),
-    /// Rotation of the shape by `angle` radians about the axis (right-handed).
-    Rotate(Box<Node>, Axis, Expr),
-    /// Uniform scale; the distance is multiplied back so it stays a true distance.
-    Scale(Box<Node>, Expr),
-    /// Infinite repetition with the given period on each axis (0 = not repeated on that axis). Unbounded.
-    Repeat(Box<Node>, Vec3Expr),
-    /// Repetition limited to cells −count..=count on each axis.
-    RepeatLimited(Box<Node>, Vec3Expr, [u32; 3]),
-    /// Twist about y: the xz plane rotates by `rate`·y radians.
-    Twist(Box<Node>, Expr),
-    /// Bend in the xy plane: x rotates by `rate`·x radians.
-    Bend(Box<Node>, Expr),
-    /// Rounds the shape outward by a radius: d − r.
-    Round(Box<Node>, Expr),
-    /// Hollows the shape to a shell: |d| − thickness.
-    Onion(Box<Node>, Expr),
-    /// Stretches the shape by `h` along each axis, inserting straight sections.
-    Elongate(Box<Node>, Vec3Expr),
+    /// CSG, transforms and domain operations ([`crate::ops`]).
+    Op(Op),
     Material(Box<Node>, Material),
 }
 
 impl Node {
     /// The direct children, in order.
-    pub fn children(&self) -> Vec<&Node> {
+    pub fn children(&self) -> &[Node] {
         match self {
-            Node::Prim(_) | Node::Fractal(_) => vec![],
-            Node::Union(c) | Node::Intersect(c) | Node::SmoothUnion(c, _) | Node::SmoothIntersect(c, _) => {
-                c.iter().collect()
-            }
-            Node::Subtract(a, b) | Node::SmoothSubtract(a, b, _) => vec![a, b],
-            Node::Translate(c, _)
-            | Node::Rotate(c, _, _)
-            | Node::Scale(c, _)
-            | Node::Repeat(c, _)
-            | Node::RepeatLimited(c, _, _)
-            | Node::Twist(c, _)
-            | Node::Bend(c, _)
-            | Node::Round(c, _)
-            | Node::Onion(c, _)
-            | Node::Elongate(c, _)
-            | Node::Material(c, _) => vec![c],
+            Node::Prim(_) | Node::Fractal(_) => &[],
+            Node::Op(op) => &op.shapes,
+            Node::Material(c, _) => std::slice::from_ref(&**c),
         }
     }
     /// Number of nodes in the tree.
@@ -121,6 +89,13 @@ impl Node {
     /// Whether this subtree contains a fractal (the expensive leaves the bound guard protects).
     pub fn has_fractal(&self) -> bool {
         matches!(self, Node::Fractal(_)) || self.children().iter().any(|c| c.has_fractal())
+    }
+    /// The operator at this node, if it is one.
+    pub fn op(&self) -> Option<&Op> {
+        match self {
+            Node::Op(op) => Some(op),
+            _ => None,
+        }
     }
 }
 

@@ -313,8 +313,8 @@ impl Lower {
             let message = if vocab::function(&name).is_some() {
                 format!("`{name}` is a function, not a method: call it as {name}(..)")
             } else {
-                let fitting = vocab::METHODS.iter().filter(|e| e.receiver.is_some_and(|r| accepts(r, found)));
-                let any = vocab::METHODS.iter();
+                let fitting = vocab::methods().filter(|e| e.receiver.is_some_and(|r| accepts(r, found)));
+                let any = vocab::methods();
                 match vocab::suggest(&name, fitting.map(|e| e.name))
                     .or_else(|| vocab::suggest(&name, any.map(|e| e.name)))
                 {

@@ -99,6 +99,6 @@ pub fn parse_tokens(tokens: proc_macro2::TokenStream) -> Result<Scene, syn::Erro
 /// Every function and method of the language with its signature, e.g. `sphere(radius: number) -> shape` and
 /// `shape.translate(offset: vec3) -> shape`, followed by the names `t` and `PI`.
 pub fn vocabulary() -> Vec<String> {
-    let calls = vocab::functions().chain(vocab::METHODS).map(|e| e.signature());
+    let calls = vocab::functions().chain(vocab::methods()).map(|e| e.signature());
     calls.chain(["t -> number".to_string(), "PI -> number".to_string()]).collect()
 }

@@ -8,9 +8,11 @@ use std::sync::OnceLock;
 
 use crate::builder::{self as b, Color, ShapeExt};
 use crate::fractals::families::FRACTALS;
+use crate::ir::arg::{ArgDecl, ArgShape};
 use crate::ir::fractal::{FractalArgShape, FractalArgValue};
-use crate::ir::prim::ArgShape;
+use crate::ir::op::Operands;
 use crate::ir::*;
+use crate::ops::decl::OPS;
 use crate::prims::decl::PRIMS;
 
 /// The type of a value or of an argument slot.
@@ -154,12 +156,13 @@ const fn many(name: &'static str, ty: Ty) -> Param {
 /// Builds the value of a call from its coerced arguments (the receiver first, for methods).
 pub(crate) type BuildFn = fn(&mut Args) -> Result<Value, String>;
 
-/// What gives a call its meaning: a builder call, a declared primitive ([`crate::prims`]) or a declared fractal
-/// family ([`crate::fractals`]).
+/// What gives a call its meaning: a builder call, a declared primitive ([`crate::prims`]), fractal family
+/// ([`crate::fractals`]) or operator ([`crate::ops`]).
 pub(crate) enum Build {
     Fn(BuildFn),
     Prim(&'static PrimDecl),
     Fractal(&'static FractalDecl),
+    Op(&'static OpDecl),
 }
 
 /// A function (`receiver: None`) or a method of the language.
@@ -178,21 +181,33 @@ const fn meth(receiver: Ty, name: &'static str, params: &'static [Param], result
     Entry { name, receiver: Some(receiver), params: Cow::Borrowed(params), result, build: Build::Fn(build) }
 }
 
+/// The parameter of a declared argument, typed as the declaration types it.
+fn declared_param(a: &ArgDecl) -> Param {
+    let ty = match a.shape {
+        ArgShape::Number => Ty::Number,
+        ArgShape::Vec3 => Ty::Vec3,
+        ArgShape::ConstVec3 => Ty::ConstVec3,
+        ArgShape::Counts => Ty::IntVec3,
+    };
+    Param { name: a.name, ty, many: false }
+}
+
 /// The signature of a declared primitive: its arguments as the declaration types them.
 fn prim_entry(decl: &'static PrimDecl) -> Entry {
-    let params = decl
-        .args
-        .iter()
-        .map(|a| Param {
-            name: a.name,
-            ty: match a.shape {
-                ArgShape::Number => Ty::Number,
-                ArgShape::Vec3 => Ty::Vec3,
-            },
-            many: false,
-        })
-        .collect();
+    let params = decl.args.iter().map(declared_param).collect();
     Entry { name: decl.name, receiver: None, params: Cow::Owned(params), result: Ty::Shape, build: Build::Prim(decl) }
+}
+
+/// The signature of a declared operator: its shapes (the receiver, for a method), then its arguments.
+fn op_entry(decl: &'static OpDecl) -> Entry {
+    let shapes = match decl.operands {
+        Operands::Many => vec![many("shapes", Ty::Shape)],
+        Operands::Two => vec![p("a", Ty::Shape), p("b", Ty::Shape)],
+        Operands::Receiver => vec![],
+    };
+    let params = shapes.into_iter().chain(decl.args.iter().map(declared_param)).collect();
+    let receiver = (decl.operands == Operands::Receiver).then_some(Ty::Shape);
+    Entry { name: decl.name, receiver, params: Cow::Owned(params), result: Ty::Shape, build: Build::Op(decl) }
 }
 
 /// The signature of a declared fractal family: its constructor argument as the declaration types it.
@@ -217,16 +232,14 @@ impl Entry {
     pub(crate) fn build(&self, args: &mut Args) -> Result<Value, String> {
         match self.build {
             Build::Fn(f) => f(args),
-            Build::Prim(decl) => {
-                let mut values = Vec::with_capacity(decl.args.len());
-                for _ in decl.args {
-                    values.push(match args.0.pop_front() {
-                        Some(Value::Number(e)) => ArgValue::Num(e),
-                        Some(Value::Vec3(v)) => ArgValue::Vec3(v),
-                        _ => return Err(mismatch()),
-                    });
-                }
-                Ok(Value::Shape(decl.node(values)))
+            Build::Prim(decl) => Ok(Value::Shape(decl.node(args.declared(decl.args)?))),
+            Build::Op(decl) => {
+                let shapes = match decl.operands {
+                    Operands::Many => args.shapes(),
+                    Operands::Two => vec![args.shape()?, args.shape()?],
+                    Operands::Receiver => vec![args.shape()?],
+                };
+                Ok(Value::Shape(decl.node(shapes, args.declared(decl.args)?)))
             }
             Build::Fractal(decl) => {
                 let fractal = match args.0.pop_front() {
@@ -288,7 +301,6 @@ takers!(
     int Int u32,
     vec3 Vec3 Vec3Expr,
     const_vec3 ConstVec3 [f64; 3],
-    int_vec3 IntVec3 [u32; 3],
     color Color Color,
     material Material Material,
     shape Shape Node,
@@ -299,6 +311,20 @@ takers!(
 );
 
 impl Args {
+    /// The values of declared arguments, in the form the IR stores them.
+    fn declared(&mut self, decls: &[ArgDecl]) -> Result<Vec<ArgValue>, String> {
+        let mut values = Vec::with_capacity(decls.len());
+        for _ in decls {
+            values.push(match self.0.pop_front() {
+                Some(Value::Number(e)) => ArgValue::Num(e),
+                Some(Value::Vec3(v)) => ArgValue::Vec3(v),
+                Some(Value::ConstVec3(v)) => ArgValue::Vec3(v.into()),
+                Some(Value::IntVec3(n)) => ArgValue::Vec3(n.map(f64::from).into()),
+                _ => return Err(mismatch()),
+            });
+        }
+        Ok(values)
+    }
     fn scene(&mut self) -> Result<Scene, String> {
         match self.0.pop_front() {
             Some(Value::Scene(s)) => Ok(*s),
@@ -391,25 +417,6 @@ pub(crate) static FUNCTIONS: &[Entry] = &[
     fun("rgb", &[p("r", T::Number), p("g", T::Number), p("b", T::Number)], T::Color, |a| {
         Ok(Value::Color(b::rgb(a.num()?, a.num()?, a.num()?)))
     }),
-    // ---- CSG: n-ary unions take one or more shapes; smooth variants take the blend radius k last
-    fun("union", &[many("shapes", T::Shape)], T::Shape, |a| shape(b::union_all(a.shapes()))),
-    fun("intersect", &[many("shapes", T::Shape)], T::Shape, |a| shape(b::intersect_all(a.shapes()))),
-    fun("subtract", &[p("a", T::Shape), p("b", T::Shape)], T::Shape, |a| shape(b::subtract(a.shape()?, a.shape()?))),
-    fun("smooth_union", &[many("shapes", T::Shape), p("k", T::Number)], T::Shape, |a| {
-        shape(b::smooth_union_all(a.shapes(), a.num()?))
-    }),
-    fun("smooth_intersect", &[many("shapes", T::Shape), p("k", T::Number)], T::Shape, |a| {
-        let shapes = a.shapes();
-        let k = a.num()?;
-        match <[Node; 2]>::try_from(shapes) {
-            Ok([x, y]) => shape(b::smooth_intersect(x, y, k)),
-            // The builder has no n-ary smooth intersection; the IR node is n-ary, folded left like smooth_union.
-            Err(shapes) => shape(Node::SmoothIntersect(shapes, k)),
-        }
-    }),
-    fun("smooth_subtract", &[p("a", T::Shape), p("b", T::Shape), p("k", T::Number)], T::Shape, |a| {
-        shape(b::smooth_subtract(a.shape()?, a.shape()?, a.num()?))
-    }),
     // ---- materials
     fun(
         "phong",
@@ -457,24 +464,7 @@ pub(crate) static METHODS: &[Entry] = &[
     meth(T::Fractal, "fold_limit", &[p("fold_limit", T::Number)], T::Fractal, |a| {
         fractal(a.fractal()?.fold_limit(a.num()?))
     }),
-    // ---- transforms, domain operations, materials
-    meth(T::Shape, "translate", &[p("offset", T::Vec3)], T::Shape, |a| shape(a.shape()?.translate(a.vec3()?))),
-    meth(T::Shape, "rotate_x", &[p("angle", T::Number)], T::Shape, |a| shape(a.shape()?.rotate_x(a.num()?))),
-    meth(T::Shape, "rotate_y", &[p("angle", T::Number)], T::Shape, |a| shape(a.shape()?.rotate_y(a.num()?))),
-    meth(T::Shape, "rotate_z", &[p("angle", T::Number)], T::Shape, |a| shape(a.shape()?.rotate_z(a.num()?))),
-    meth(T::Shape, "rotate", &[p("axis", T::ConstVec3), p("angle", T::Number)], T::Shape, |a| {
-        shape(a.shape()?.rotate(dvec3(a.const_vec3()?), a.num()?))
-    }),
-    meth(T::Shape, "scale", &[p("factor", T::Number)], T::Shape, |a| shape(a.shape()?.scale(a.num()?))),
-    meth(T::Shape, "repeat", &[p("period", T::Vec3)], T::Shape, |a| shape(a.shape()?.repeat(a.vec3()?))),
-    meth(T::Shape, "repeat_limited", &[p("period", T::Vec3), p("count", T::IntVec3)], T::Shape, |a| {
-        shape(a.shape()?.repeat_limited(a.vec3()?, a.int_vec3()?))
-    }),
-    meth(T::Shape, "twist", &[p("rate", T::Number)], T::Shape, |a| shape(a.shape()?.twist(a.num()?))),
-    meth(T::Shape, "bend", &[p("rate", T::Number)], T::Shape, |a| shape(a.shape()?.bend(a.num()?))),
-    meth(T::Shape, "round", &[p("radius", T::Number)], T::Shape, |a| shape(a.shape()?.round(a.num()?))),
-    meth(T::Shape, "onion", &[p("thickness", T::Number)], T::Shape, |a| shape(a.shape()?.onion(a.num()?))),
-    meth(T::Shape, "elongate", &[p("h", T::Vec3)], T::Shape, |a| shape(a.shape()?.elongate(a.vec3()?))),
+    // ---- materials (the operators are declared in `crate::ops`)
     meth(T::Shape, "material", &[p("material", T::Material)], T::Shape, |a| shape(a.shape()?.material(a.material()?))),
     // ---- material terms (a color becomes a material with default terms first)
     meth(T::Material, "ambient", &[p("ambient", T::Number)], T::Material, |a| {
@@ -532,13 +522,24 @@ pub(crate) static METHODS: &[Entry] = &[
 /// Names that stand alone (not called).
 pub(crate) const NAMES: &[&str] = &["t", "PI"];
 
-/// Every free function: the table above, then the declared primitives and fractal families.
-pub(crate) fn functions() -> impl Iterator<Item = &'static Entry> {
+/// The entries made from declarations: primitives, fractal families and operators.
+fn declared() -> &'static [Entry] {
     static DECLARED: OnceLock<Vec<Entry>> = OnceLock::new();
-    let declared = DECLARED.get_or_init(|| {
-        PRIMS.iter().copied().map(prim_entry).chain(FRACTALS.iter().copied().map(fractal_entry)).collect()
-    });
-    FUNCTIONS.iter().chain(declared.iter())
+    DECLARED.get_or_init(|| {
+        let prims = PRIMS.iter().copied().map(prim_entry);
+        let fractals = FRACTALS.iter().copied().map(fractal_entry);
+        prims.chain(fractals).chain(OPS.iter().copied().map(op_entry)).collect()
+    })
+}
+
+/// Every free function: the table above, then the declared primitives, fractal families and combining operators.
+pub(crate) fn functions() -> impl Iterator<Item = &'static Entry> {
+    FUNCTIONS.iter().chain(declared().iter().filter(|e| e.receiver.is_none()))
+}
+
+/// Every method: the table above, then the declared operators that apply to one shape.
+pub(crate) fn methods() -> impl Iterator<Item = &'static Entry> {
+    METHODS.iter().chain(declared().iter().filter(|e| e.receiver.is_some()))
 }
 
 pub(crate) fn function(name: &str) -> Option<&'static Entry> {
@@ -546,7 +547,7 @@ pub(crate) fn function(name: &str) -> Option<&'static Entry> {
 }
 
 pub(crate) fn method(name: &str) -> Option<&'static Entry> {
-    METHODS.iter().find(|e| e.name == name)
+    methods().find(|e| e.name == name)
 }
 
 /// Edit distance (insertions, deletions, substitutions, adjacent swaps) between two short words.

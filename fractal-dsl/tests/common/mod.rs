@@ -6,7 +6,7 @@
 use fractal_dsl::eval::interp::Interpreter;
 use fractal_dsl::eval::Env;
 use fractal_dsl::geom::Interval;
-use fractal_dsl::ir::prim::{ArgRange, ArgShape, Rule};
+use fractal_dsl::ir::arg::{ArgDecl, ArgRange, ArgShape, Rule};
 use fractal_dsl::math::v3;
 use fractal_dsl::prims::decl::PRIMS;
 use fractal_dsl::*;
@@ -56,16 +56,16 @@ fn exactly_bounded(decl: &PrimDecl) -> bool {
         .enumerate()
         .map(|(i, a)| match a.shape {
             ArgShape::Number => ArgRange::Num(Interval::point(0.5 + 0.1 * i as f64)),
-            ArgShape::Vec3 => ArgRange::Vec3([0.5, 0.75, 1.0].map(Interval::point)),
+            _ => ArgRange::Vec3([0.5, 0.75, 1.0].map(Interval::point)),
         })
         .collect();
     matches!((decl.bound)(&ranges), Some(b) if b.reach >= 1.0)
 }
 
-/// Valid constant arguments for `decl`, drawn by the rule its declaration gives each argument.
-fn declared_args(decl: &'static PrimDecl) -> BoxedStrategy<Vec<ArgValue>> {
-    let draws: Vec<BoxedStrategy<[f64; 3]>> = decl
-        .args
+/// Valid constant arguments for declared arguments (a primitive's or an operator's), drawn by the rule the
+/// declaration gives each one.
+pub fn declared_args(decls: &'static [ArgDecl]) -> BoxedStrategy<Vec<ArgValue>> {
+    let draws: Vec<BoxedStrategy<[f64; 3]>> = decls
         .iter()
         .map(|a| match a.rule {
             Rule::Positive => vec3_in(0.05, 1.2).boxed(),
@@ -74,11 +74,13 @@ fn declared_args(decl: &'static PrimDecl) -> BoxedStrategy<Vec<ArgValue>> {
             Rule::Direction => unit_axis().boxed(),
             // A fraction of the smallest extent it rounds, scaled below.
             Rule::RoundingOf(_) => vec3_in(0.0, 1.0).boxed(),
+            Rule::Period => vec3_in(0.5, 3.0).boxed(),
+            Rule::AtMost(_) => [0..4u32, 0..4u32, 0..4u32].prop_map(|n| n.map(f64::from)).boxed(),
         })
         .collect();
     draws
         .prop_map(move |draws| {
-            decl.args
+            decls
                 .iter()
                 .zip(&draws)
                 .map(|(a, v)| {
@@ -88,7 +90,7 @@ fn declared_args(decl: &'static PrimDecl) -> BoxedStrategy<Vec<ArgValue>> {
                     };
                     match a.shape {
                         ArgShape::Number => ArgValue::Num(Expr::Lit(v[0])),
-                        ArgShape::Vec3 => ArgValue::Vec3(v.into()),
+                        _ => ArgValue::Vec3(v.into()),
                     }
                 })
                 .collect()
@@ -100,5 +102,5 @@ fn declared_args(decl: &'static PrimDecl) -> BoxedStrategy<Vec<ArgValue>> {
 /// arguments: a new primitive is in every test that draws from here without being listed.
 pub fn exact_bounded_primitive() -> impl Strategy<Value = Node> {
     let kinds: Vec<PrimKind> = PRIMS.iter().copied().filter(|d| exactly_bounded(d)).map(PrimKind).collect();
-    prop::sample::select(kinds).prop_flat_map(|k| declared_args(k.0).prop_map(move |args| k.0.node(args)))
+    prop::sample::select(kinds).prop_flat_map(|k| declared_args(k.0.args).prop_map(move |args| k.0.node(args)))
 }

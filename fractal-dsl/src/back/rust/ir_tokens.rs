@@ -13,6 +13,7 @@ use quote::quote;
 use crate::fractals::families::FRACTALS;
 use crate::ir::fractal::FractalArgValue;
 use crate::ir::*;
+use crate::ops::decl::OPS;
 use crate::prims::decl::PRIMS;
 
 /// A Rust expression of type `Scene` (named through `krate`) that constructs `scene` exactly.
@@ -89,11 +90,6 @@ fn u32_lit(v: u32) -> Literal {
 
 fn f64_array<const N: usize>(v: &[f64; N]) -> TokenStream {
     let items = v.iter().map(|&x| f64_lit(x));
-    quote!([#(#items),*])
-}
-
-fn u32_array<const N: usize>(v: &[u32; N]) -> TokenStream {
-    let items = v.iter().map(|&x| u32_lit(x));
     quote!([#(#items),*])
 }
 
@@ -194,11 +190,6 @@ impl Writer<'_> {
 
     fn node(&self, n: &Node) -> TokenStream {
         let k = self.k;
-        let child = |c: &Node| self.boxed(self.node(c));
-        let list = |cs: &[Node]| {
-            let cs = cs.iter().map(|c| self.node(c));
-            quote!(::std::vec![#(#cs),*])
-        };
         match n {
             Node::Prim(p) => {
                 let p = self.prim(p);
@@ -208,95 +199,20 @@ impl Writer<'_> {
                 let f = self.fractal(f);
                 quote!(#k::Node::Fractal(#f))
             }
-            Node::Union(cs) => {
-                let cs = list(cs);
-                quote!(#k::Node::Union(#cs))
-            }
-            Node::Intersect(cs) => {
-                let cs = list(cs);
-                quote!(#k::Node::Intersect(#cs))
-            }
-            Node::Subtract(a, b) => {
-                let (a, b) = (child(a), child(b));
-                quote!(#k::Node::Subtract(#a, #b))
-            }
-            Node::SmoothUnion(cs, r) => {
-                let (cs, r) = (list(cs), self.expr(r));
-                quote!(#k::Node::SmoothUnion(#cs, #r))
-            }
-            Node::SmoothIntersect(cs, r) => {
-                let (cs, r) = (list(cs), self.expr(r));
-                quote!(#k::Node::SmoothIntersect(#cs, #r))
-            }
-            Node::SmoothSubtract(a, b, r) => {
-                let (a, b, r) = (child(a), child(b), self.expr(r));
-                quote!(#k::Node::SmoothSubtract(#a, #b, #r))
-            }
-            Node::Translate(c, v) => {
-                let (c, v) = (child(c), self.vec3(v));
-                quote!(#k::Node::Translate(#c, #v))
-            }
-            Node::Rotate(c, axis, angle) => {
-                let (c, axis, angle) = (child(c), self.axis(*axis), self.expr(angle));
-                quote!(#k::Node::Rotate(#c, #axis, #angle))
-            }
-            Node::Scale(c, s) => {
-                let (c, s) = (child(c), self.expr(s));
-                quote!(#k::Node::Scale(#c, #s))
-            }
-            Node::Repeat(c, period) => {
-                let (c, period) = (child(c), self.vec3(period));
-                quote!(#k::Node::Repeat(#c, #period))
-            }
-            Node::RepeatLimited(c, period, count) => {
-                let (c, period, count) = (child(c), self.vec3(period), u32_array(count));
-                quote!(#k::Node::RepeatLimited(#c, #period, #count))
-            }
-            Node::Twist(c, rate) => {
-                let (c, rate) = (child(c), self.expr(rate));
-                quote!(#k::Node::Twist(#c, #rate))
-            }
-            Node::Bend(c, rate) => {
-                let (c, rate) = (child(c), self.expr(rate));
-                quote!(#k::Node::Bend(#c, #rate))
-            }
-            Node::Round(c, r) => {
-                let (c, r) = (child(c), self.expr(r));
-                quote!(#k::Node::Round(#c, #r))
-            }
-            Node::Onion(c, t) => {
-                let (c, t) = (child(c), self.expr(t));
-                quote!(#k::Node::Onion(#c, #t))
-            }
-            Node::Elongate(c, h) => {
-                let (c, h) = (child(c), self.vec3(h));
-                quote!(#k::Node::Elongate(#c, #h))
+            Node::Op(op) => {
+                let op = self.op(op);
+                quote!(#k::Node::Op(#op))
             }
             Node::Material(c, m) => {
-                let (c, m) = (child(c), self.material(m));
+                let (c, m) = (self.boxed(self.node(c)), self.material(m));
                 quote!(#k::Node::Material(#c, #m))
             }
         }
     }
 
-    fn axis(&self, a: Axis) -> TokenStream {
+    fn args(&self, args: &[ArgValue]) -> TokenStream {
         let k = self.k;
-        match a {
-            Axis::X => quote!(#k::Axis::X),
-            Axis::Y => quote!(#k::Axis::Y),
-            Axis::Z => quote!(#k::Axis::Z),
-            Axis::Any(u) => {
-                let u = f64_array(&u);
-                quote!(#k::Axis::Any(#u))
-            }
-        }
-    }
-
-    /// A primitive names its declaration by its place in the table (the same table the macro read).
-    fn prim(&self, p: &Prim) -> TokenStream {
-        let k = self.k;
-        let index = PRIMS.iter().position(|d| d.name == p.name()).unwrap_or_default();
-        let args = p.args.iter().map(|a| match a {
+        let args = args.iter().map(|a| match a {
             ArgValue::Num(e) => {
                 let e = self.expr(e);
                 quote!(#k::ArgValue::Num(#e))
@@ -306,7 +222,26 @@ impl Writer<'_> {
                 quote!(#k::ArgValue::Vec3(#v))
             }
         });
-        quote!(#k::Prim { kind: #k::PrimKind(#k::prims::decl::PRIMS[#index]), args: ::std::vec![#(#args),*] })
+        quote!(::std::vec![#(#args),*])
+    }
+
+    /// A primitive names its declaration by its place in the table (the same table the macro read).
+    fn prim(&self, p: &Prim) -> TokenStream {
+        let k = self.k;
+        let index = PRIMS.iter().position(|d| d.name == p.name()).unwrap_or_default();
+        let args = self.args(&p.args);
+        quote!(#k::Prim { kind: #k::PrimKind(#k::prims::decl::PRIMS[#index]), args: #args })
+    }
+
+    /// An operator names its declaration by its place in the table (the same table the macro read).
+    fn op(&self, op: &Op) -> TokenStream {
+        let k = self.k;
+        let index = OPS.iter().position(|d| d.name == op.name()).unwrap_or_default();
+        let shapes = op.shapes.iter().map(|s| self.node(s));
+        let args = self.args(&op.args);
+        quote! {
+            #k::Op { kind: #k::OpKind(#k::ops::decl::OPS[#index]), shapes: ::std::vec![#(#shapes),*], args: #args }
+        }
     }
 
     /// A fractal names its family by its place in the table (the same table the macro read).
@@ -509,7 +444,7 @@ mod tests {
         let parsed: syn::Expr = syn::parse2(tokens.clone()).expect("the emitted scene is a Rust expression");
         assert!(matches!(parsed, syn::Expr::Struct(_)));
         let written = text(tokens);
-        for part in [":: fractal_dsl :: Scene", ":: fractal_dsl :: Node :: Union", "\"r\"", "1.5f64"] {
+        for part in [":: fractal_dsl :: Scene", ":: fractal_dsl :: ops :: decl :: OPS [0usize]", "\"r\"", "1.5f64"] {
             assert!(written.contains(part), "{part} missing from {written}");
         }
     }

@@ -1,0 +1,136 @@
+//! Operators in the IR: CSG, transforms and domain operations. An [`Op`] is an [`OpDecl`] (what the operator is:
+//! name, how it takes its shapes, typed arguments with their rules, identity, bound, meaning) with its shapes and
+//! argument values. Parser, printer, validation, folding, bounds, the plan and the kernels all read the declaration
+//! (`crate::ops`), so an operator is declared once.
+
+use super::arg::{normalise_directions, ArgDecl, ArgRange, ArgValue};
+use super::Node;
+use crate::geom::Bound;
+
+/// How an operator takes its shapes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Operands {
+    /// One or more shapes, then the arguments: `union(a, b, c)`, `smooth_union(a, b, k)`.
+    Many,
+    /// Exactly two shapes, then the arguments: `subtract(a, b)`.
+    Two,
+    /// A method of one shape: `shape.translate(offset)`.
+    Receiver,
+}
+
+/// What an operator does to distances: the evaluator's formula for it (`crate::eval::walk`), which every backend
+/// traces.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Meaning {
+    /// Minimum of the shapes, with union guards and cheap shapes first.
+    Union,
+    /// Maximum of the shapes.
+    Intersect,
+    /// max(a, −b).
+    Subtract,
+    /// Polynomial smooth minimum with blend radius `k`, folded left over the shapes.
+    SmoothUnion,
+    SmoothIntersect,
+    SmoothSubtract,
+    /// The shape moved by the offset.
+    Translate,
+    /// The shape turned by the angle (radians, right-handed) about this unit axis, or about the axis argument.
+    Rotate(Option<[f64; 3]>),
+    /// Uniform scale; the distance is multiplied back so it stays a distance.
+    Scale,
+    /// Repetition with a period per axis (0 = not repeated on that axis), over cells −count..=count when limited.
+    Repeat {
+        limited: bool,
+    },
+    /// The xz plane rotates by `rate`·y radians.
+    Twist,
+    /// x rotates into y by `rate`·x radians.
+    Bend,
+    /// d − r.
+    Round,
+    /// |d| − thickness.
+    Onion,
+    /// Straight sections of length 2h inserted along each axis.
+    Elongate,
+}
+
+/// When an operator changes nothing (folding removes it).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Identity {
+    Never,
+    /// Every component of the argument at this index is the literal value.
+    When(usize, f64),
+}
+
+/// What an operator is, declared once.
+pub struct OpDecl {
+    /// The function or method that makes it in scene source and in the builder API.
+    pub name: &'static str,
+    /// One line for the documentation.
+    pub doc: &'static str,
+    pub operands: Operands,
+    /// The arguments after the shapes.
+    pub args: &'static [ArgDecl],
+    pub meaning: Meaning,
+    pub identity: Identity,
+    /// Whether nested uses flatten into one: `union(union(a, b), c)` is `union(a, b, c)`.
+    pub flattens: bool,
+    /// Whether the result is 1-Lipschitz wherever its shapes' distances are (so it stays a lower bound of the true
+    /// distance and a step of its value never passes the surface). Repetition is not (a shape wider than its cell is
+    /// cut at the cell wall), nor are twist and bend (their stretch is bounded per point, not globally).
+    pub lipschitz: bool,
+    /// The bound of the result from the shapes' bounds and the arguments' ranges.
+    pub bound: fn(&[Bound], &[ArgRange]) -> Bound,
+}
+
+impl OpDecl {
+    /// The operator over these shapes and arguments, in canonical form: constant directions normalised, nested
+    /// uses of a flattening operator spliced in.
+    pub fn node(&'static self, shapes: Vec<Node>, mut args: Vec<ArgValue>) -> Node {
+        normalise_directions(self.args, &mut args);
+        let shapes = if self.flattens {
+            let mut flat = Vec::with_capacity(shapes.len());
+            for s in shapes {
+                match s {
+                    Node::Op(op) if op.kind.0.name == self.name => flat.extend(op.shapes),
+                    s => flat.push(s),
+                }
+            }
+            flat
+        } else {
+            shapes
+        };
+        Node::Op(Op { kind: OpKind(self), shapes, args })
+    }
+    /// Whether the operator takes several shapes (their path labels are numbered).
+    pub fn combines(&self) -> bool {
+        self.operands != Operands::Receiver
+    }
+    /// Whether the operator changes nothing over `shapes` shapes with these arguments: a combination of one shape,
+    /// or the identity value of its argument.
+    pub fn is_identity(&self, shapes: usize, args: &[ArgValue]) -> bool {
+        match self.identity {
+            _ if self.combines() => shapes == 1,
+            Identity::When(i, v) => shapes == 1 && args.get(i).is_some_and(|a| a.is_all(v)),
+            Identity::Never => false,
+        }
+    }
+}
+
+/// A reference to an operator's declaration; equal when the names are.
+#[derive(Clone, Copy)]
+pub struct OpKind(pub &'static OpDecl);
+
+super::named_by_declaration!(OpKind);
+
+/// An operator applied to shapes.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Op {
+    pub kind: OpKind,
+    /// The shapes it combines or transforms: one for a method, two or more for CSG.
+    pub shapes: Vec<Node>,
+    /// One value per declared argument, in order.
+    pub args: Vec<ArgValue>,
+}
+
+super::declared_item!(Op, OpDecl);
