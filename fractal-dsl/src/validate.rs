@@ -11,6 +11,7 @@
 
 use std::fmt;
 
+use crate::analyse::fold::fold_expr;
 use crate::analyse::interval::{range, Interval};
 use crate::fractals::families::FRACTALS;
 use crate::ir::arg::{ArgDecl, ArgShape, Rule};
@@ -365,7 +366,7 @@ fn value_range(e: &Expr) -> (Interval, bool) {
 
 /// Checks one number against its limits; `what` names it in the message ("sphere radius").
 fn number(out: &mut Vec<Problem>, arg: &'static str, what: &str, e: &Expr, lim: Limits) {
-    if let Some(m) = literal_problem(e) {
+    if let Some(m) = literal_problem(&fold_expr(e)) {
         out.push(Problem::new(arg, format!("{what}: {m}")));
         return;
     }
@@ -414,9 +415,10 @@ fn vector(out: &mut Vec<Problem>, arg: &'static str, what: &str, v: &Vec3Expr, l
     }
 }
 
-/// Checks that the literals of each expression are finite.
+/// Checks that each expression holds no non-finite number, written (`1e999`) or computed from literals (`0.0 / 0.0`,
+/// `t * (1e300 * 1e300)`): folding makes a computed one a literal first.
 fn finite(out: &mut Vec<Problem>, arg: &'static str, what: &str, exprs: &[&Expr]) {
-    if let Some(m) = exprs.iter().find_map(|e| literal_problem(e)) {
+    if let Some(m) = exprs.iter().find_map(|e| literal_problem(&fold_expr(e))) {
         out.push(Problem::new(arg, format!("{what}: {m}")));
     }
 }

@@ -748,3 +748,29 @@ proptest! {
         no_internal_error(&damaged)?;
     }
 }
+
+/// A non-finite number computed from literals is as wrong as a written one: every slot refuses it at the argument,
+/// whatever rule the slot has (it used to slip through slots that only check for finite values).
+#[test]
+fn computed_non_finite_constants_are_refused_in_every_slot() {
+    assert_errors(&[
+        ("julia(vec4(0.0 / 0.0, 0, 0, 0))", "1:7: julia constant c: numbers must be finite, found NaN"),
+        ("sphere(1.0).translate(vec3(0.0 / 0.0, 0, 0))", "1:23: translate offset: numbers must be finite, found NaN"),
+        ("sphere(1.0).rotate_y(0.0 / 0.0)", "1:22: rotate_y angle: numbers must be finite, found NaN"),
+        ("sphere(1.0).twist(1e300 * 1e300)", "1:19: twist rate: numbers must be finite, found inf"),
+        ("sphere(1.0).material(rgb(0.0 / 0.0, 0, 0))", "1:22: material color: numbers must be finite, found NaN"),
+        (
+            "sphere(1.0).translate(vec3(t * (0.0 / 0.0), 0, 0))",
+            "1:23: translate offset: numbers must be finite, found NaN",
+        ),
+        ("sphere(1.0 + 0.0 / 0.0)", "1:8: sphere radius: numbers must be finite, found NaN"),
+        (
+            "scene(sphere(1.0)).light(point_light(vec3(0.0 / 0.0, 1, 0), rgb(1, 1, 1)))",
+            "1:38: light position: numbers must be finite, found NaN",
+        ),
+        (
+            "scene(sphere(1.0)).camera(camera(vec3(0, 0, -1e300 * 1e300), vec3(0, 0, 0)))",
+            "1:34: camera position: numbers must be finite, found -inf",
+        ),
+    ]);
+}

@@ -89,8 +89,13 @@ impl OpDecl {
     pub fn node(&'static self, shapes: Vec<Node>, mut args: Vec<ArgValue>) -> Node {
         normalise_directions(self.args, &mut args);
         let shapes = if self.flattens {
-            let mut flat = Vec::with_capacity(shapes.len());
-            for s in shapes {
+            // The first shape's list is reused, so building `node = union(node, x)` in a loop stays linear.
+            let mut rest = shapes.into_iter();
+            let mut flat = match rest.next() {
+                Some(Node::Op(op)) if op.kind.0.name == self.name => op.shapes,
+                first => first.into_iter().collect(),
+            };
+            for s in rest {
                 match s {
                     Node::Op(op) if op.kind.0.name == self.name => flat.extend(op.shapes),
                     s => flat.push(s),
