@@ -291,11 +291,8 @@ pub mod decl {
 
     /// The bound of `{d − by ≤ 0}` over a shape with bound `inner`, for `by` in `range`.
     fn grown_by(inner: Bound, range: &ArgRange) -> Bound {
-        let by = range.hi();
-        if !by.is_finite() {
-            return Bound::UNBOUNDED;
-        }
-        Bound { exact_guard: inner.exact_guard && inner.reach >= 1.0, ..inner.grown(by) }
+        // `grown` refuses a non-finite amount itself.
+        Bound { exact_guard: inner.exact_guard && inner.reach >= 1.0, ..inner.grown(range.hi()) }
     }
 
     pub static ROUND: OpDecl = OpDecl {

@@ -48,7 +48,8 @@ fn box_distance(p: [f64; 3], h: [f64; 3]) -> f64 {
 
 /// Signed distance to the rectangle [−a, a] × [−b, b] in the plane.
 fn rect_distance(x: f64, y: f64, a: f64, b: f64) -> f64 {
-    box_distance([x, y, 0.0], [a, b, 1.0])
+    // An infinite z extent: a finite one would be the nearest face deep inside a rectangle wider than it.
+    box_distance([x, y, 0.0], [a, b, f64::INFINITY])
 }
 
 proptest! {
