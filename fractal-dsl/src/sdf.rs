@@ -388,17 +388,35 @@ fn mandelbox_step<F: Num>(z: V3<F>, p: V3<F>, scale: F, min_r2: F, fold_limit: F
 
 // ---- membership: each fractal's own definition, with no estimate (the ground truth that checks the estimators) ----
 
-/// A membership value: −1 inside the set, [`TINY`] outside. A sign, not a distance: under min and max (union,
-/// intersection, subtraction, transforms) the sign of a scene holding fractals is still its membership, and the
-/// positive value outside says nothing of how far the set is, so a march over it must take small fixed steps.
+/// A membership value: −1 inside the set; outside, `apart` — a lower bound on the distance to the set that follows
+/// from the set's definition alone (from a ball or box that must hold it), floored at [`TINY`]. Under min and max
+/// (union, intersection, subtraction, transforms) the sign of a scene holding fractals is still its membership. Near
+/// the set the positive value says nothing of how far the set is, so a march over it must take small fixed steps;
+/// away from it the march may step by `apart`.
 #[inline(always)]
-fn membership<F: Num>(inside: F::Mask) -> F {
-    select(inside, c(-1.0), c(TINY))
+fn membership<F: Num>(inside: F::Mask, apart: F) -> F {
+    select(inside, c(-1.0), max(apart, c(TINY)))
 }
 
-/// Whether the orbit z ← map(z, |z|) + p from z = p stays within `escape` for `iterations` steps.
+/// A radius holding every point whose orbit z ← z^power + p survives one step within `bailout`: past it
+/// |z₁| ≥ |p|^power − |p| > bailout. The root of r^power − r = bailout, approached from above by
+/// r ← (bailout + r)^(1/power) from bailout + 1, so every iterate holds the set.
 #[inline(always)]
-fn escape_time_membership<F: Num>(p: V3<F>, iterations: F::Count, escape: F, map: impl Fn(V3<F>, F) -> V3<F>) -> F {
+fn first_step_radius<F: Num>(power: F, bailout: F) -> F {
+    let r = bailout + c(1.0);
+    repeat(F::count(6), r, |r| pow(bailout + r, c::<F>(1.0) / power))
+}
+
+/// Whether the orbit z ← map(z, |z|) + p from z = p stays within `escape` for `iterations` steps; `radius` holds the
+/// set.
+#[inline(always)]
+fn escape_time_membership<F: Num>(
+    p: V3<F>,
+    iterations: F::Count,
+    escape: F,
+    radius: F,
+    map: impl Fn(V3<F>, F) -> V3<F>,
+) -> F {
     let (_, r) = F::iterate(
         iterations,
         (p, length(p)),
@@ -408,19 +426,21 @@ fn escape_time_membership<F: Num>(p: V3<F>, iterations: F::Count, escape: F, map
             (z, length(z))
         },
     );
-    membership(le(r, escape))
+    membership(le(r, escape), length(p) - radius)
 }
 
-/// The Mandelbulb of any power: the orbit stays within `bailout` for `iterations` steps.
+/// The Mandelbulb of any power: the orbit stays within `bailout` for `iterations` (at least 1) steps.
 #[inline(always)]
 pub fn in_mandelbulb<F: Num>(p: V3<F>, power: F, iterations: F::Count, bailout: F) -> F {
-    escape_time_membership(p, iterations, bailout, |z, r| mandelbulb_step(z, r, c(1.0), power).0)
+    let radius = first_step_radius(power, bailout);
+    escape_time_membership(p, iterations, bailout, radius, |z, r| mandelbulb_step(z, r, c(1.0), power).0)
 }
 
-/// The power-8 Mandelbulb: the orbit stays within `bailout` for `iterations` steps.
+/// The power-8 Mandelbulb: the orbit stays within `bailout` for `iterations` (at least 1) steps.
 #[inline(always)]
 pub fn in_mandelbulb8<F: Num>(p: V3<F>, iterations: F::Count, bailout: F) -> F {
-    escape_time_membership(p, iterations, bailout, |z, r| mandelbulb8_step(z, r, c(1.0)).0)
+    let radius = first_step_radius(c(8.0), bailout);
+    escape_time_membership(p, iterations, bailout, radius, |z, r| mandelbulb8_step(z, r, c(1.0)).0)
 }
 
 /// The Menger sponge of `levels` levels in [-1, 1]³: inside the cube, and at no level in the middle third of its cell
@@ -438,7 +458,7 @@ pub fn in_menger<F: Num>(p: V3<F>, levels: F::Count) -> F {
         let cut = ge(middle.x + middle.y + middle.z, c(2.0));
         (s - digit, select(cut, one, removed))
     });
-    membership(in_cube & lt(removed, c(0.5)))
+    membership(in_cube & lt(removed, c(0.5)), sd_box(p, V3::splat(one)))
 }
 
 /// The Sierpinski tetrahedron of `levels` levels (vertices (1,1,1), (-1,-1,1), (1,-1,-1), (-1,1,-1)): inside the
@@ -458,11 +478,13 @@ pub fn in_sierpinski<F: Num>(p: V3<F>, levels: F::Count) -> F {
         let v = select3(
             ge(l[0], largest),
             vertices[0],
-            select3(ge(l[1], largest), vertices[1], { select3(ge(l[2], largest), vertices[2], vertices[3]) }),
+            select3(ge(l[1], largest), vertices[1], select3(ge(l[2], largest), vertices[2], vertices[3])),
         );
         (z * c::<F>(2.0) - v, select(ge(largest, half), kept, zero))
     });
-    membership(gt(kept, half))
+    // Outside a face plane vᵢ·p = −1 (λᵢ < 0) the tetrahedron is at least (−1 − vᵢ·p)/√3 = −4λᵢ/√3 away.
+    let apart = -c::<F>(4.0 * INV_SQRT3) * min(min(l[0], l[1]), min(l[2], l[3]));
+    membership(gt(kept, half), apart)
 }
 
 /// The quaternion Julia set in the slice w = 0: the orbit z ← z² + c from (p, 0) stays within `bailout` for
@@ -481,7 +503,9 @@ pub fn in_julia<F: Num>(p: V3<F>, cx: F, cy: F, cz: F, cw: F, iterations: F::Cou
             (z, dot4(z))
         },
     );
-    membership(le(m, escape2))
+    // Past √(bailout + |c|), |z₁| ≥ |p|² − |c| > bailout.
+    let radius = sqrt(bailout + sqrt(cx * cx + cy * cy + cz * cz + cw * cw));
+    membership(le(m, escape2), length(p) - radius)
 }
 
 /// 2√3: the most a box fold at limit f can shorten a vector, in units of f (each axis by at most 2f).
@@ -506,5 +530,6 @@ pub fn in_mandelbox<F: Num>(p: V3<F>, scale: F, iterations: F::Count, min_radius
             (z, length(z))
         },
     );
-    membership(le(r, escape))
+    // No ball is known to hold every Mandelbox from its definition alone: fixed steps everywhere.
+    membership(le(r, escape), c(0.0))
 }

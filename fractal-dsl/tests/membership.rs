@@ -45,14 +45,19 @@ fn with_point(p: [f64; 3], args: &[LeafArg<f64>]) -> Vec<LeafArg<f64>> {
     std::iter::once(LeafArg::V3(v3(p[0], p[1], p[2]))).chain(args.iter().copied()).collect()
 }
 
-/// Whether `p` is in the fractal's set, by its declared membership leaf.
-fn inside(f: &Fractal, p: [f64; 3]) -> bool {
+/// The fractal's membership value at `p` by its declared membership leaf: −1 inside, outside a lower bound on the
+/// distance to the set (or a tiny positive number).
+fn value(f: &Fractal, p: [f64; 3]) -> f64 {
     let (estimator, args) = call_args(f);
     let leaf = f.decl().membership.leaf_for(estimator).expect("a membership leaf");
     match leaf.eval::<f64>(&with_point(p, &args)) {
-        LeafOut::F(v) => v < 0.0,
+        LeafOut::F(v) => v,
         LeafOut::Pair(_) => panic!("{} returns a pair", leaf.name()),
     }
+}
+
+fn inside(f: &Fractal, p: [f64; 3]) -> bool {
+    value(f, p) < 0.0
 }
 
 /// The raw estimate (without the step factor).
@@ -121,6 +126,8 @@ fn membership_stays_in_the_bound_and_outside_where_the_estimate_is_far() {
         let bound = (f.decl().bound)(&f).expect("a bound").aabb;
         let (lo, hi) = (bound.min, bound.max);
         let (mut hits, mut far) = (0, 0);
+        let mut members = Vec::new();
+        let mut apart = Vec::new();
         for _ in 0..20_000 {
             // Points in the bound grown by half its size on every side.
             let p = [0, 1, 2].map(|i| {
@@ -131,6 +138,11 @@ fn membership_stays_in_the_bound_and_outside_where_the_estimate_is_far() {
             let in_bound = (0..3).all(|i| p[i] >= lo[i] && p[i] <= hi[i]);
             assert!(!member || in_bound, "{}: {p:?} is inside the set but outside its bound", f.name());
             hits += member as u32;
+            if member {
+                members.push(p);
+            } else if value(&f, p) > 1e-20 {
+                apart.push((p, value(&f, p)));
+            }
             // The estimate times the step factor is a lower bound on the distance to the surface.
             if estimate(&f, p) * f.step_factor() > 0.05 * (hi[0] - lo[0]) {
                 far += 1;
@@ -138,6 +150,13 @@ fn membership_stays_in_the_bound_and_outside_where_the_estimate_is_far() {
             }
         }
         assert!(hits > 10, "{}: only {hits} of 20000 points inside", f.name());
+        // Outside, the value is a lower bound on the distance to the set: no member is nearer.
+        for (p, v) in apart {
+            for q in &members {
+                let d = ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt();
+                assert!(d >= v, "{}: {q:?} is a member {d} from {p:?}, where the value says {v}", f.name());
+            }
+        }
         assert!(far > 1000, "{}: only {far} points far from the surface", f.name());
     }
 }

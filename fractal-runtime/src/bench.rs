@@ -23,8 +23,8 @@
 //! when it has the background colour; not available when the scene has glow, which tints misses) and the mean
 //! absolute colour difference in 8-bit levels over all pixels and RGB channels.
 
-mod accuracy;
 mod baseline_cpu;
+pub mod precision;
 mod record;
 mod timer;
 
@@ -43,7 +43,7 @@ use crate::frame::{Frame, ParamValues};
 use crate::renderer::{KernelSources, RenderJob};
 use crate::select::{BackendChoice, RendererOptions};
 
-pub use accuracy::Accuracy;
+pub use precision::Accuracy;
 pub use record::BenchRecord;
 pub use timer::KernelClock;
 
@@ -323,14 +323,14 @@ pub fn run(spec: &BenchSpec, progress: &mut dyn FnMut(u64, f64)) -> Result<Bench
     let error_size = error_size(spec.width, spec.height);
     let small = frame_at(spec, motion, 0, error_size)?;
     let image = timer.run(&timer::Work::Generated(RenderJob::new(spec.kernels, &small)))?.image;
-    let reference = accuracy::reference(spec.scene, &small)?;
-    let accuracy = accuracy::compare_scene(spec.scene, &image, &reference);
+    let reference = precision::reference(spec.scene, &small)?;
+    let accuracy = precision::compare_scene(spec.scene, &image, &reference);
     let baseline = match baseline {
         Some(timings) => {
             let accuracy = if spec.baseline_comparable {
                 let work = timer::Work::Baseline { width: error_size.0, height: error_size.1 };
                 let image = timer.run(&work)?.image;
-                Some(accuracy::compare_baseline(spec.scene, &image, &reference))
+                Some(precision::compare_baseline(spec.scene, &image, &reference))
             } else {
                 notes.push(format!(
                     "the baseline draws the Mandelbulb, not {}: the ratio compares against a fixed anchor",

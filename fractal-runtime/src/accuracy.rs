@@ -1,0 +1,6 @@
+//! Speed against true error: renders measured against the ground truth ([`crate::truth`]) — [`metrics`] — and sweeps
+//! of the quality settings ([`crate::quality`]) behind `fractal accuracy`.
+
+pub mod metrics;
+
+pub use metrics::{measure, Observed, Spread, TracedError, TrueError};
