@@ -88,9 +88,12 @@ fn every_estimator_leaf_has_a_membership_leaf_of_the_same_arguments() {
     }
 }
 
+/// A fractal with points inside and points outside it.
+type Known = (Fractal, Vec<[f64; 3]>, Vec<[f64; 3]>);
+
 #[test]
 fn known_points_are_where_the_definitions_put_them() {
-    let cases: Vec<(Fractal, Vec<[f64; 3]>, Vec<[f64; 3]>)> = vec![
+    let cases: Vec<Known> = vec![
         // z = 0 is a fixed point; on the negative z axis the power-8 map sends (0, 0, −1) to (0, 0, 1) − 1 = 0.
         (mandelbulb(8), vec![[0.0; 3], [0.0, 0.0, -1.0], [0.3, -0.2, 0.1]], vec![[1.5, 0.0, 0.0], [0.0, 0.0, 0.9]]),
         (mandelbulb(7), vec![[0.0; 3], [0.2, 0.2, 0.1]], vec![[1.5, 0.0, 0.0], [0.0, 1.3, 0.0]]),

@@ -2,5 +2,8 @@
 //! of the quality settings ([`crate::quality`]) behind `fractal accuracy`.
 
 pub mod metrics;
+pub mod sweep;
+pub mod table;
 
 pub use metrics::{measure, Observed, Spread, TracedError, TrueError};
+pub use sweep::{Budget, SweepPoint};

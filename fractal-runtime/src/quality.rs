@@ -68,7 +68,9 @@ impl fmt::Display for Quality {
             parts.push(format!("iter {n}"));
         }
         if let Some(s) = self.step_scale {
-            parts.push(format!("step x{s}"));
+            // Three decimals at most: 4/3 reads 1.333.
+            let text = format!("{s:.3}");
+            parts.push(format!("step x{}", text.trim_end_matches('0').trim_end_matches('.')));
         }
         if parts.is_empty() {
             write!(f, "scene default")

@@ -212,7 +212,7 @@ impl Truth {
         let dy = across(self.neighbour(px, py - d, t), self.neighbour(px, py + d, t))?;
         let n = fractal_dsl::math::cross(dx, dy);
         let len = fractal_dsl::math::length(n);
-        if !(len > 0.0) {
+        if len.is_nan() || len <= 0.0 {
             return None;
         }
         let n = n / len;

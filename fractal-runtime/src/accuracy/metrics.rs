@@ -195,11 +195,14 @@ fn angle_degrees(a: [f64; 3], b: [f64; 3]) -> f64 {
     (dot / (len(a) * len(b))).clamp(-1.0, 1.0).acos().to_degrees()
 }
 
+/// One pixel's (thin, cone, interior) depth errors where both hit, normal error, and whether it overshot.
+type PixelError = (Option<(f64, f64, bool)>, Option<f64>, bool);
+
 fn traced_error(truth: &Truth, traces: &[PixelTrace]) -> TracedError {
     use rayon::prelude::*;
     let n = traces.len().max(1) as f64;
     // Per pixel: (thin, cone, interior) depth errors where both hit, normal error, overshoot.
-    let per_pixel: Vec<(Option<(f64, f64, bool)>, Option<f64>, bool)> = traces
+    let per_pixel: Vec<PixelError> = traces
         .par_iter()
         .enumerate()
         .map(|(i, r)| {
