@@ -77,7 +77,7 @@ fn help_lists_the_commands() {
     let out = run_in(&scratch("help"), &["--help"]);
     assert_ok(&out);
     let text = stdout(&out);
-    for command in ["render", "bench", "export", "list"] {
+    for command in ["render", "bench", "accuracy", "export", "list"] {
         assert!(text.contains(command), "--help does not mention {command}:\n{text}");
     }
 }
@@ -367,7 +367,9 @@ fn bench_appends_a_csv_row_and_a_json_line() {
         let out = run_in(&dir, &args);
         assert_ok(&out);
         let report = stdout(&out);
-        for word in ["median", "FPS", "error vs f64 interpreter", "hit/miss differs"] {
+        for word in
+            ["median", "FPS", "precision (vs f64 interpreter", "hit/miss differs", "true error (vs ground truth"]
+        {
             assert!(report.contains(word), "no `{word}` in the report:\n{report}");
         }
     }
@@ -389,11 +391,41 @@ fn bench_appends_a_csv_row_and_a_json_line() {
     assert_eq!(lines.len(), 2, "{json}");
     for line in lines {
         assert!(line.starts_with('{') && line.ends_with('}'), "{line}");
-        for field in
-            ["\"scene\":\"hello_world\"", "\"backend\":\"cpu\"", "\"frames\":2", "\"max_steps\":", "\"hit_mismatch\":"]
-        {
+        for field in [
+            "\"scene\":\"hello_world\"",
+            "\"backend\":\"cpu\"",
+            "\"frames\":2",
+            "\"max_steps\":",
+            "\"hit_mismatch\":",
+            "\"false_hits\":",
+        ] {
             assert!(line.contains(field), "no {field} in {line}");
         }
+    }
+}
+
+#[test]
+fn accuracy_sweeps_settings_against_the_truth_and_writes_a_report() {
+    let dir = scratch("accuracy");
+    let out = run_in(&dir, &["accuracy", "mandelbulb", "--size", "24x14", "--truth-step", "0.05", "--csv", "a.csv"]);
+    assert_ok(&out);
+    let text = stdout(&out);
+    for word in ["truth at 1x the iterations", "truth at 2x the iterations", "scene default against", "steps 512"] {
+        assert!(text.contains(word), "no `{word}` in\n{text}");
+    }
+    assert!(text.contains("fastest within budget") || text.contains("no setting tried"), "{text}");
+    // Too few steps leave rays out of steps: the budget says so.
+    let starved = text.lines().find(|l| l.trim_start().starts_with("steps 32")).expect("a 32-step row");
+    assert!(starved.contains("out of steps"), "{starved}");
+    let csv = fs::read_to_string(dir.join("a.csv")).unwrap();
+    let rows: Vec<&str> = csv.lines().collect();
+    assert!(rows[0].starts_with("scene,backend,size,setting,ms"), "{}", rows[0]);
+    assert!(rows.len() > 15 && rows[1..].iter().all(|r| r.starts_with("mandelbulb,cpu,24x14,")), "{csv}");
+    let out = run_in(&dir, &["accuracy", "--report", "--size", "16x9", "--truth-step", "0.05", "--out", "r.md"]);
+    assert_ok(&out);
+    let report = fs::read_to_string(dir.join("r.md")).unwrap();
+    for name in scenes::names() {
+        assert!(report.contains(&format!("## {name}")), "no section for {name}:\n{report}");
     }
 }
 
@@ -426,6 +458,10 @@ fn bad_input_is_one_clear_line_and_the_right_exit_status() {
         (vec!["bench", "hello_world", "--frames", "0"], 2, "invalid value '0'".into()),
         (vec!["export", "hello_world", "--target", "dxil"], 2, "unknown export target `dxil`".into()),
         (vec!["bench", "hello_world", "--csv", "a-file/b.csv"], 1, "cannot write a-file/b.csv".into()),
+        (vec!["accuracy", "hello_world", "--backend", "auto"], 2, "accuracy needs one backend".into()),
+        (vec!["accuracy", "hello_world", "--report"], 2, "give no scene with it".into()),
+        (vec!["accuracy", "hello_world", "--truth-step", "0"], 2, "the truth step is a number of footprints".into()),
+        (vec!["accuracy", "hello_world", "--csv", "a-file/a.csv"], 1, "cannot write a-file/a.csv".into()),
     ];
     for (args, code, message) in &cases {
         let out = run_in(&dir, args);

@@ -1,6 +1,7 @@
 //! The fractal families, each declared once: name, constructor argument with its rule, iteration counts, the settings
-//! that apply, the leaf call, the measured step factor and the bound — and its builder function. The parser, printer,
-//! validation, folding, bounds and evaluation read these declarations ([`crate::ir::fractal`]).
+//! that apply, the leaf call, the measured step factor, the bound and the membership test — and its builder function.
+//! The parser, printer, validation, folding, bounds, evaluation and the ground truth read these declarations
+//! ([`crate::ir::fractal`]).
 //!
 //! Step factors are the inverse of the largest |f(p) − f(q)| / |p − q| measured by the Lipschitz tests
 //! (`fractal-dsl/tests/lipschitz.rs`), rounded down to 0.05. Pairs lie outside the set (both orbits escape), near the
@@ -22,7 +23,7 @@ pub mod families {
     use crate::analyse::interval::range;
     use crate::geom::Aabb;
     use crate::ir::fractal::{
-        CallArg, FractalArg, FractalArgShape, FractalDecl, FractalRule, Iterations, Setting, MAX_ITERATIONS,
+        CallArg, FractalArg, FractalArgShape, FractalDecl, FractalRule, Iterations, Membership, Setting, MAX_ITERATIONS,
     };
     use crate::ir::prim::PrimBound;
     use crate::ir::Fractal;
@@ -81,6 +82,10 @@ pub mod families {
             }
         },
         bound: |f| escape_time_bound(f, mandelbulb_radius(f.number().map_or(8.0, |p| range(p).lo))),
+        membership: Membership {
+            leaves: &[(Leaf::DeMandelbulb8, Leaf::InMandelbulb8), (Leaf::DeMandelbulb, Leaf::InMandelbulb)],
+            approaches_limit: true,
+        },
     };
 
     pub static MENGER: FractalDecl = FractalDecl {
@@ -99,6 +104,7 @@ pub mod families {
         step_factor: |_| 1.0,
         // The sponge's estimate is max(box, cuts) with the box [-1, 1]³: exact.
         bound: |_| PrimBound::exact(Aabb::cube(1.0)),
+        membership: Membership { leaves: &[(Leaf::DeMenger, Leaf::InMenger)], approaches_limit: false },
     };
 
     pub static SIERPINSKI_TETRAHEDRON: FractalDecl = FractalDecl {
@@ -118,6 +124,7 @@ pub mod families {
         // The folds keep points in the tetrahedron's symmetry; far away the estimate is a plane distance, measured at
         // no less than 0.334 × the distance to the cube along the diagonals.
         bound: |f| Some(PrimBound { aabb: Aabb::cube(1.0), reach: 0.32 * f.step_factor() }),
+        membership: Membership { leaves: &[(Leaf::DeSierpinski, Leaf::InSierpinski)], approaches_limit: false },
     };
 
     pub static JULIA: FractalDecl = FractalDecl {
@@ -141,6 +148,7 @@ pub mod families {
             let norm = f.arg_exprs().iter().map(|e| range(e).max_abs().powi(2)).sum::<f64>().sqrt();
             escape_time_bound(f, julia_radius(norm))
         },
+        membership: Membership { leaves: &[(Leaf::DeJulia, Leaf::InJulia)], approaches_limit: true },
     };
 
     pub static MANDELBOX: FractalDecl = FractalDecl {
@@ -169,6 +177,7 @@ pub mod families {
             let ratio = if scale.lo > 1.0 { (scale.lo - 1.0) / (scale.lo + 1.0) } else { 1.0 };
             Some(PrimBound { aabb: Aabb::cube(e), reach: 0.95 * ratio * f.step_factor() })
         },
+        membership: Membership { leaves: &[(Leaf::DeMandelbox, Leaf::InMandelbox)], approaches_limit: true },
     };
 }
 

@@ -29,6 +29,12 @@ leaves! {
     DeSierpinski => de_sierpinski(p: V3, levels: Count) -> Pair;
     DeJulia => de_julia(p: V3, cx: F, cy: F, cz: F, cw: F, iterations: Count, bailout: F) -> Pair;
     DeMandelbox => de_mandelbox(p: V3, scale: F, iterations: Count, min_radius: F, fold_limit: F) -> Pair;
+    InMandelbulb => in_mandelbulb(p: V3, power: F, iterations: Count, bailout: F) -> F;
+    InMandelbulb8 => in_mandelbulb8(p: V3, iterations: Count, bailout: F) -> F;
+    InMenger => in_menger(p: V3, levels: Count) -> F;
+    InSierpinski => in_sierpinski(p: V3, levels: Count) -> F;
+    InJulia => in_julia(p: V3, cx: F, cy: F, cz: F, cw: F, iterations: Count, bailout: F) -> F;
+    InMandelbox => in_mandelbox(p: V3, scale: F, iterations: Count, min_radius: F, fold_limit: F) -> F;
 }
 
 /// How a number type calls a leaf function: directly (the default), or — when tracing — as a call of the named
@@ -230,47 +236,56 @@ fn escape_time<F: Num>(p: V3<F>, iterations: F::Count, escape: F, map: impl Fn(V
 /// Mandelbulb of any power by the trigonometric form; the derivative uses the same `power` as the iteration.
 #[inline(always)]
 pub fn de_mandelbulb<F: Num>(p: V3<F>, power: F, iterations: F::Count, bailout: F) -> [F; 2] {
-    escape_time(p, iterations, mandelbulb_escape(power, bailout), |z, r, dr| {
-        let theta = acos(clamp(z.z / max(r, c(TINY)), c(-1.0), c(1.0))) * power;
-        let phi = atan2(z.y, z.x) * power;
-        let dr = power * pow(r, power - c(1.0)) * dr + c(1.0);
-        let zr = pow(r, power);
-        let (st, ct) = (sin(theta), cos(theta));
-        let (sp, cp) = (sin(phi), cos(phi));
-        (v3(st * cp, sp * st, ct) * zr, dr)
-    })
+    escape_time(p, iterations, mandelbulb_escape(power, bailout), |z, r, dr| mandelbulb_step(z, r, dr, power))
+}
+
+/// One step of the Mandelbulb map of any power, z ↦ z^power in spherical coordinates (r = |z|), with the derivative
+/// dr ↦ power·r^(power−1)·dr + 1.
+#[inline(always)]
+fn mandelbulb_step<F: Num>(z: V3<F>, r: F, dr: F, power: F) -> (V3<F>, F) {
+    let theta = acos(clamp(z.z / max(r, c(TINY)), c(-1.0), c(1.0))) * power;
+    let phi = atan2(z.y, z.x) * power;
+    let dr = power * pow(r, power - c(1.0)) * dr + c(1.0);
+    let zr = pow(r, power);
+    let (st, ct) = (sin(theta), cos(theta));
+    let (sp, cp) = (sin(phi), cos(phi));
+    (v3(st * cp, sp * st, ct) * zr, dr)
 }
 
 /// Power-8 Mandelbulb without trigonometry: the same map as [`de_mandelbulb`] at power 8, by
 /// (z + iρ)^8 and ((x + iy)/ρ)^8 expanded as polynomials.
 #[inline(always)]
 pub fn de_mandelbulb8<F: Num>(p: V3<F>, iterations: F::Count, bailout: F) -> [F; 2] {
-    escape_time(p, iterations, mandelbulb_escape(c(8.0), bailout), |z, r, dr| {
-        let x2 = z.x * z.x;
-        let y2 = z.y * z.y;
-        let a = z.z * z.z;
-        let b = x2 + y2;
-        let r2 = a + b;
-        let dr = c::<F>(8.0) * r2 * r2 * r2 * r * dr + c(1.0);
-        let a2 = a * a;
-        let b2 = b * b;
-        let cos_part =
-            a2 * a2 - c::<F>(28.0) * a2 * a * b + c::<F>(70.0) * a2 * b2 - c::<F>(28.0) * a * b2 * b + b2 * b2;
-        let sin_part = c::<F>(8.0) * z.z * (a2 * a - c::<F>(7.0) * a2 * b + c::<F>(7.0) * a * b2 - b2 * b);
-        // On the polar axis ρ = 0 and the azimuth is undefined; the map sends x and y to 0 there. The threshold is
-        // TINY, not 0: fast-math GPU code flushes subnormal b to 0 inside sqrt, and 1/sqrt(0) would be Inf.
-        let inv_rho = select(gt(b, c(TINY)), c::<F>(1.0) / sqrt(max(b, c(TINY))), c(0.0));
-        let ux = z.x * inv_rho;
-        let uy = z.y * inv_rho;
-        let u2x = ux * ux - uy * uy;
-        let u2y = c::<F>(2.0) * ux * uy;
-        let u4x = u2x * u2x - u2y * u2y;
-        let u4y = c::<F>(2.0) * u2x * u2y;
-        let u8x = u4x * u4x - u4y * u4y;
-        let u8y = c::<F>(2.0) * u4x * u4y;
-        let rho_sin = b * inv_rho * sin_part;
-        (v3(rho_sin * u8x, rho_sin * u8y, cos_part), dr)
-    })
+    escape_time(p, iterations, mandelbulb_escape(c(8.0), bailout), mandelbulb8_step)
+}
+
+/// One step of the power-8 Mandelbulb map without trigonometry, z ↦ z^8 (r = |z|), with the derivative
+/// dr ↦ 8·r^7·dr + 1.
+#[inline(always)]
+fn mandelbulb8_step<F: Num>(z: V3<F>, r: F, dr: F) -> (V3<F>, F) {
+    let x2 = z.x * z.x;
+    let y2 = z.y * z.y;
+    let a = z.z * z.z;
+    let b = x2 + y2;
+    let r2 = a + b;
+    let dr = c::<F>(8.0) * r2 * r2 * r2 * r * dr + c(1.0);
+    let a2 = a * a;
+    let b2 = b * b;
+    let cos_part = a2 * a2 - c::<F>(28.0) * a2 * a * b + c::<F>(70.0) * a2 * b2 - c::<F>(28.0) * a * b2 * b + b2 * b2;
+    let sin_part = c::<F>(8.0) * z.z * (a2 * a - c::<F>(7.0) * a2 * b + c::<F>(7.0) * a * b2 - b2 * b);
+    // On the polar axis ρ = 0 and the azimuth is undefined; the map sends x and y to 0 there. The threshold is
+    // TINY, not 0: fast-math GPU code flushes subnormal b to 0 inside sqrt, and 1/sqrt(0) would be Inf.
+    let inv_rho = select(gt(b, c(TINY)), c::<F>(1.0) / sqrt(max(b, c(TINY))), c(0.0));
+    let ux = z.x * inv_rho;
+    let uy = z.y * inv_rho;
+    let u2x = ux * ux - uy * uy;
+    let u2y = c::<F>(2.0) * ux * uy;
+    let u4x = u2x * u2x - u2y * u2y;
+    let u4y = c::<F>(2.0) * u2x * u2y;
+    let u8x = u4x * u4x - u4y * u4y;
+    let u8y = c::<F>(2.0) * u4x * u4y;
+    let rho_sin = b * inv_rho * sin_part;
+    (v3(rho_sin * u8x, rho_sin * u8y, cos_part), dr)
 }
 
 /// Menger sponge of `levels` levels in [-1, 1]³ (IQ's formulation).
@@ -325,12 +340,7 @@ pub fn de_julia<F: Num>(p: V3<F>, cx: F, cy: F, cz: F, cw: F, iterations: F::Cou
                 two * (z[0] * dz[2] + z[2] * dz[0] + z[3] * dz[1] - z[1] * dz[3]),
                 two * (z[0] * dz[3] + z[3] * dz[0] + z[1] * dz[2] - z[2] * dz[1]),
             ];
-            let z = [
-                z[0] * z[0] - z[1] * z[1] - z[2] * z[2] - z[3] * z[3] + cx,
-                two * z[0] * z[1] + cy,
-                two * z[0] * z[2] + cz,
-                two * z[0] * z[3] + cw,
-            ];
+            let z = julia_step(z, [cx, cy, cz, cw]);
             let m = dot4(z);
             (z, dz, m, min(trap, m))
         },
@@ -339,19 +349,187 @@ pub fn de_julia<F: Num>(p: V3<F>, cx: F, cy: F, cz: F, cw: F, iterations: F::Cou
     [c::<F>(0.25) * ln(max(m, c(TINY))) * sqrt(m / max(dot4(dz), c(TINY))), min(trap, c(1.0))]
 }
 
+/// One step of the quaternion Julia map, z ↦ z² + c.
+#[inline(always)]
+fn julia_step<F: Num>(z: [F; 4], c4: [F; 4]) -> [F; 4] {
+    let two = c::<F>(2.0);
+    [
+        z[0] * z[0] - z[1] * z[1] - z[2] * z[2] - z[3] * z[3] + c4[0],
+        two * z[0] * z[1] + c4[1],
+        two * z[0] * z[2] + c4[2],
+        two * z[0] * z[3] + c4[3],
+    ]
+}
+
 /// Mandelbox: box fold at `fold_limit`, sphere fold with `min_radius` and fixed radius 1, then z ← scale·z + p.
 #[inline(always)]
 pub fn de_mandelbox<F: Num>(p: V3<F>, scale: F, iterations: F::Count, min_radius: F, fold_limit: F) -> [F; 2] {
     let min_r2 = min_radius * min_radius;
     let one = c::<F>(1.0);
     let (z, dr, trap) = repeat(iterations, (p, one, one), |(z, dr, trap)| {
-        let z = z.map(|v| clamp(v, -fold_limit, fold_limit) * c(2.0) - v);
-        let r2 = dot(z, z);
-        // Inside min_radius the fold scales by 1/min_r², between it and 1 by 1/r², outside not at all.
-        let f = select(lt(r2, min_r2), one / min_r2, select(lt(r2, one), one / max(r2, c(TINY)), one));
-        let z = z * f * scale + p;
+        let (z, f, r2) = mandelbox_step(z, p, scale, min_r2, fold_limit);
         let dr = dr * f * abs(scale) + one;
         (z, dr, min(trap, r2))
     });
     [length(z) / abs(dr), trap]
+}
+
+/// One step of the Mandelbox map, z ↦ scale·sphere_fold(box_fold(z)) + p; also gives the sphere fold's factor f (the
+/// derivative's) and |box_fold(z)|² (the orbit trap's).
+#[inline(always)]
+fn mandelbox_step<F: Num>(z: V3<F>, p: V3<F>, scale: F, min_r2: F, fold_limit: F) -> (V3<F>, F, F) {
+    let one = c::<F>(1.0);
+    let z = z.map(|v| clamp(v, -fold_limit, fold_limit) * c(2.0) - v);
+    let r2 = dot(z, z);
+    // Inside min_radius the fold scales by 1/min_r², between it and 1 by 1/r², outside not at all.
+    let f = select(lt(r2, min_r2), one / min_r2, select(lt(r2, one), one / max(r2, c(TINY)), one));
+    (z * f * scale + p, f, r2)
+}
+
+// ---- membership: each fractal's own definition, with no estimate (the ground truth that checks the estimators) ----
+
+/// A membership value: −1 inside the set; outside, `apart` — a lower bound on the distance to the set that follows
+/// from the set's definition alone (from a ball or box that must hold it), floored at [`TINY`]. Under min and max
+/// (union, intersection, subtraction, transforms) the sign of a scene holding fractals is still its membership. Near
+/// the set the positive value says nothing of how far the set is, so a march over it must take small fixed steps;
+/// away from it the march may step by `apart`.
+#[inline(always)]
+fn membership<F: Num>(inside: F::Mask, apart: F) -> F {
+    select(inside, c(-1.0), max(apart, c(TINY)))
+}
+
+/// A radius holding every point whose orbit z ← z^power + p survives one step within `bailout`: past it
+/// |z₁| ≥ |p|^power − |p| > bailout. The root of r^power − r = bailout, approached from above by
+/// r ← (bailout + r)^(1/power) from bailout + 1, so every iterate holds the set.
+#[inline(always)]
+fn first_step_radius<F: Num>(power: F, bailout: F) -> F {
+    let r = bailout + c(1.0);
+    repeat(F::count(6), r, |r| pow(bailout + r, c::<F>(1.0) / power))
+}
+
+/// Whether the orbit z ← map(z, |z|) + p from z = p stays within `escape` for `iterations` steps; `radius` holds the
+/// set.
+#[inline(always)]
+fn escape_time_membership<F: Num>(
+    p: V3<F>,
+    iterations: F::Count,
+    escape: F,
+    radius: F,
+    map: impl Fn(V3<F>, F) -> V3<F>,
+) -> F {
+    let (_, r) = F::iterate(
+        iterations,
+        (p, length(p)),
+        |&(_, r)| le(r, escape),
+        |(z, r)| {
+            let z = map(z, r) + p;
+            (z, length(z))
+        },
+    );
+    membership(le(r, escape), length(p) - radius)
+}
+
+/// The Mandelbulb of any power: the orbit stays within `bailout` for `iterations` (at least 1) steps.
+#[inline(always)]
+pub fn in_mandelbulb<F: Num>(p: V3<F>, power: F, iterations: F::Count, bailout: F) -> F {
+    let radius = first_step_radius(power, bailout);
+    escape_time_membership(p, iterations, bailout, radius, |z, r| mandelbulb_step(z, r, c(1.0), power).0)
+}
+
+/// The power-8 Mandelbulb: the orbit stays within `bailout` for `iterations` (at least 1) steps.
+#[inline(always)]
+pub fn in_mandelbulb8<F: Num>(p: V3<F>, iterations: F::Count, bailout: F) -> F {
+    let radius = first_step_radius(c(8.0), bailout);
+    escape_time_membership(p, iterations, bailout, radius, |z, r| mandelbulb8_step(z, r, c(1.0)).0)
+}
+
+/// The Menger sponge of `levels` levels in [-1, 1]³: inside the cube, and at no level in the middle third of its cell
+/// along two axes or more (the cross each level removes, open, so the sponge is closed).
+#[inline(always)]
+pub fn in_menger<F: Num>(p: V3<F>, levels: F::Count) -> F {
+    let (zero, one, three) = (c::<F>(0.0), c::<F>(1.0), c::<F>(3.0));
+    let in_cube = le(abs(p.x), one) & le(abs(p.y), one) & le(abs(p.z), one);
+    // The point's position in its cell at the current level, in [0, 1]³, and whether a level has removed it.
+    let cell = (p + V3::splat(one)) * c::<F>(0.5);
+    let (_, removed) = repeat(levels, (cell, zero), |(cell, removed)| {
+        let s = cell * three;
+        let digit = s.map(|v| clamp(floor(v), zero, c(2.0)));
+        let middle = s.map(|v| select(gt(v, one) & lt(v, c(2.0)), one, zero));
+        let cut = ge(middle.x + middle.y + middle.z, c(2.0));
+        (s - digit, select(cut, one, removed))
+    });
+    membership(in_cube & lt(removed, c(0.5)), sd_box(p, V3::splat(one)))
+}
+
+/// The Sierpinski tetrahedron of `levels` levels (vertices (1,1,1), (-1,-1,1), (1,-1,-1), (-1,1,-1)): inside the
+/// tetrahedron, and at every level in the half-size copy at one vertex (barycentric coordinate λᵢ = (1 + vᵢ·z)/4 at
+/// least ½), which the map z ← 2z − vᵢ blows up to the whole tetrahedron for the next level.
+#[inline(always)]
+pub fn in_sierpinski<F: Num>(p: V3<F>, levels: F::Count) -> F {
+    let (zero, one, half) = (c::<F>(0.0), c::<F>(1.0), c::<F>(0.5));
+    let vertices = [[1.0, 1.0, 1.0], [-1.0, -1.0, 1.0], [1.0, -1.0, -1.0], [-1.0, 1.0, -1.0]]
+        .map(|[x, y, z]| v3(c::<F>(x), c::<F>(y), c::<F>(z)));
+    let barycentric = |z: V3<F>| vertices.map(|v| (one + dot(v, z)) * c(0.25));
+    let l = barycentric(p);
+    let in_tetrahedron = ge(min(min(l[0], l[1]), min(l[2], l[3])), zero);
+    let (_, kept) = repeat(levels, (p, select(in_tetrahedron, one, zero)), |(z, kept)| {
+        let l = barycentric(z);
+        let largest = max(max(l[0], l[1]), max(l[2], l[3]));
+        let v = select3(
+            ge(l[0], largest),
+            vertices[0],
+            select3(ge(l[1], largest), vertices[1], select3(ge(l[2], largest), vertices[2], vertices[3])),
+        );
+        (z * c::<F>(2.0) - v, select(ge(largest, half), kept, zero))
+    });
+    // Outside a face plane vᵢ·p = −1 (λᵢ < 0) the tetrahedron is at least (−1 − vᵢ·p)/√3 = −4λᵢ/√3 away.
+    let apart = -c::<F>(4.0 * INV_SQRT3) * min(min(l[0], l[1]), min(l[2], l[3]));
+    membership(gt(kept, half), apart)
+}
+
+/// The quaternion Julia set in the slice w = 0: the orbit z ← z² + c from (p, 0) stays within `bailout` for
+/// `iterations` steps.
+#[inline(always)]
+pub fn in_julia<F: Num>(p: V3<F>, cx: F, cy: F, cz: F, cw: F, iterations: F::Count, bailout: F) -> F {
+    let dot4 = |a: [F; 4]| a[0] * a[0] + a[1] * a[1] + a[2] * a[2] + a[3] * a[3];
+    let z0 = [p.x, p.y, p.z, c(0.0)];
+    let escape2 = bailout * bailout;
+    let (_, m) = F::iterate(
+        iterations,
+        (z0, dot4(z0)),
+        |&(_, m)| le(m, escape2),
+        |(z, _)| {
+            let z = julia_step(z, [cx, cy, cz, cw]);
+            (z, dot4(z))
+        },
+    );
+    // Past √(bailout + |c|), |z₁| ≥ |p|² − |c| > bailout.
+    let radius = sqrt(bailout + sqrt(cx * cx + cy * cy + cz * cz + cw * cw));
+    membership(le(m, escape2), length(p) - radius)
+}
+
+/// 2√3: the most a box fold at limit f can shorten a vector, in units of f (each axis by at most 2f).
+const TWO_SQRT3: f64 = 3.464_101_615_137_754_6;
+
+/// The Mandelbox: the orbit stays within the radius past which it provably escapes. Past
+/// R = max((2√3·|s|·f + |p|)/(|s| − 1), 1 + 2√3·f), the box fold shortens z by at most 2√3·f, leaving it outside the
+/// unit sphere where the sphere fold does nothing, so |s·fold(z) + p| > |z| and the orbit grows without bound.
+#[inline(always)]
+pub fn in_mandelbox<F: Num>(p: V3<F>, scale: F, iterations: F::Count, min_radius: F, fold_limit: F) -> F {
+    let one = c::<F>(1.0);
+    let min_r2 = min_radius * min_radius;
+    let shortening = c::<F>(TWO_SQRT3) * abs(fold_limit);
+    let s = abs(scale);
+    let escape = max((s * shortening + length(p)) / max(s - one, c(TINY)), one + shortening);
+    let (_, r) = F::iterate(
+        iterations,
+        (p, length(p)),
+        |&(_, r)| le(r, escape),
+        |(z, _)| {
+            let (z, _, _) = mandelbox_step(z, p, scale, min_r2, fold_limit);
+            (z, length(z))
+        },
+    );
+    // No ball is known to hold every Mandelbox from its definition alone: fixed steps everywhere.
+    membership(le(r, escape), c(0.0))
 }

@@ -21,10 +21,12 @@
 //! (at most [`ERROR_WIDTH`] pixels wide, same aspect) and compared with the CPU renderer running the f64 interpreter
 //! on the same frame uniforms and the same settings: the fraction of pixels whose hit/miss differs (a pixel is a miss
 //! when it has the background colour; not available when the scene has glow, which tints misses) and the mean
-//! absolute colour difference in 8-bit levels over all pixels and RGB channels.
+//! absolute colour difference in 8-bit levels over all pixels and RGB channels. That is the *precision* (f32 rounding
+//! alone). The same image is also measured against the ground truth ([`crate::truth`], which trusts no distance
+//! estimate): the *true error* of the setting timed — hit mask and colour, what an image holds.
 
-mod accuracy;
 mod baseline_cpu;
+pub mod precision;
 mod record;
 mod timer;
 
@@ -36,14 +38,16 @@ use std::time::Instant;
 use fractal_dsl::{CameraPlacement, Scene};
 use glam::{DQuat, DVec3};
 
+use crate::accuracy::{measure, Observed, TrueError};
 use crate::camera::{CameraPath, Pose};
 use crate::device::{Backend, DeviceInfo};
 use crate::error::RenderError;
 use crate::frame::{Frame, ParamValues};
 use crate::renderer::{KernelSources, RenderJob};
 use crate::select::{BackendChoice, RendererOptions};
+use crate::truth::{Truth, TruthSettings};
 
-pub use accuracy::Accuracy;
+pub use precision::Accuracy;
 pub use record::BenchRecord;
 pub use timer::KernelClock;
 
@@ -58,6 +62,9 @@ pub const PATH_FRAMES: u64 = 120;
 pub const ORBIT_FRAME_TIME: f64 = 1.0 / 30.0;
 /// Largest width of the accuracy comparison (the f64 interpreter is slow; 240×135 at 16:9).
 pub const ERROR_WIDTH: u32 = 240;
+/// The ground truth's march step in footprints for the bench's true error: coarser than `fractal accuracy`'s, so the
+/// bench stays quick (it reads a few more false hits on thin sheets of a fractal than a finer truth would).
+pub const TRUTH_STEP: f64 = 1.0 / 64.0;
 
 /// How long to run.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -181,7 +188,10 @@ pub struct BenchReport {
     pub clock: KernelClock,
     pub options: RendererOptions,
     pub generated: Timings,
+    /// Against the f64 interpreter with the same settings: f32 rounding alone.
     pub accuracy: Accuracy,
+    /// Against the ground truth ([`crate::truth`]) at the scene's iteration count.
+    pub true_error: TrueError,
     pub baseline: Option<BaselineFigures>,
     /// Backends skipped by `auto`, and other remarks.
     pub notes: Vec<String>,
@@ -323,14 +333,16 @@ pub fn run(spec: &BenchSpec, progress: &mut dyn FnMut(u64, f64)) -> Result<Bench
     let error_size = error_size(spec.width, spec.height);
     let small = frame_at(spec, motion, 0, error_size)?;
     let image = timer.run(&timer::Work::Generated(RenderJob::new(spec.kernels, &small)))?.image;
-    let reference = accuracy::reference(spec.scene, &small)?;
-    let accuracy = accuracy::compare_scene(spec.scene, &image, &reference);
+    let reference = precision::reference(spec.scene, &small)?;
+    let accuracy = precision::compare_scene(spec.scene, &image, &reference);
+    let truth = Truth::compute(spec.scene, &small, TruthSettings { step_footprints: TRUTH_STEP, iteration_factor: 1 })?;
+    let true_error = measure(spec.scene, &truth, Observed::Image(&image));
     let baseline = match baseline {
         Some(timings) => {
             let accuracy = if spec.baseline_comparable {
                 let work = timer::Work::Baseline { width: error_size.0, height: error_size.1 };
                 let image = timer.run(&work)?.image;
-                Some(accuracy::compare_baseline(spec.scene, &image, &reference))
+                Some(precision::compare_baseline(spec.scene, &image, &reference))
             } else {
                 notes.push(format!(
                     "the baseline draws the Mandelbulb, not {}: the ratio compares against a fixed anchor",
@@ -352,6 +364,7 @@ pub fn run(spec: &BenchSpec, progress: &mut dyn FnMut(u64, f64)) -> Result<Bench
         options: spec.options,
         generated,
         accuracy,
+        true_error,
         baseline,
         notes,
     })
@@ -375,7 +388,15 @@ impl BenchReport {
         stats_row(out, "kernel", g.kernel(), "")?;
         stats_row(out, "frame", g.frame(), &format!("{:.2} FPS", g.fps()))?;
         writeln!(out, "  first frame (incl. kernel build): {:.1} ms", g.first_frame_ms)?;
-        writeln!(out, "  error vs f64 interpreter: {}", self.accuracy.describe())?;
+        writeln!(out, "  precision (vs f64 interpreter, same settings): {}", self.accuracy.describe())?;
+        writeln!(
+            out,
+            "  true error (vs ground truth at {}x{}, truth step 1/{} footprint): {}",
+            self.true_error.width,
+            self.true_error.height,
+            (1.0 / TRUTH_STEP).round(),
+            self.true_error.describe()
+        )?;
         if let Some(b) = &self.baseline {
             stats_row(out, "baseline kernel", b.timings.kernel(), "")?;
             stats_row(out, "baseline frame", b.timings.frame(), &format!("{:.2} FPS", b.timings.fps()))?;

@@ -12,7 +12,11 @@
 //!
 //! The modules form layers, each using only modules listed before it: [`device`] (the [`Backend`] families and
 //! [`DeviceInfo`]), [`image`], [`export`], [`output`], [`error`], [`camera`], [`frame`], [`renderer`], [`backend`],
-//! [`select`](mod@select), [`bench`](mod@bench), [`viewer`], [`cli`].
+//! [`select`](mod@select), [`quality`], [`truth`], [`accuracy`], [`bench`](mod@bench), [`viewer`], [`cli`].
+//!
+//! Accuracy: [`truth`] renders a ground truth that never reads a distance estimate (each fractal's own membership
+//! test, exact distances for primitives), [`accuracy`] measures renders against it and sweeps the [`quality`]
+//! settings for `fractal accuracy`.
 //!
 //! ```
 //! use fractal_dsl::builder::{scene, sphere};
@@ -42,6 +46,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+pub mod accuracy;
 pub mod backend;
 pub mod bench;
 pub mod camera;
@@ -52,8 +57,10 @@ pub mod export;
 pub mod frame;
 pub mod image;
 pub mod output;
+pub mod quality;
 pub mod renderer;
 pub mod select;
+pub mod truth;
 pub mod viewer;
 
 pub use backend::cpu::{render_scene, CpuRenderer};

@@ -86,6 +86,26 @@ pub struct FractalDecl {
     pub step_factor: fn(&Fractal) -> f64,
     /// A conservative bound; `None` when no bound is known for the values' ranges.
     pub bound: fn(&Fractal) -> Option<PrimBound>,
+    /// The set's own membership test, which never reads the estimate (the ground truth renders are checked against).
+    pub membership: Membership,
+}
+
+/// How a family decides membership of its set: by its own iteration, with no distance estimate.
+#[derive(Clone, Copy, Debug)]
+pub struct Membership {
+    /// For each leaf [`FractalDecl::call`] can give, the leaf that is −1 inside the set and positive outside, called
+    /// with the same arguments ([`crate::sdf`], `in_*`).
+    pub leaves: &'static [(Leaf, Leaf)],
+    /// Whether the estimate approximates the limit of the iteration — escape-time sets, where more iterations shrink
+    /// the set towards the limit — rather than the set at the drawn count (IFS levels, where the count is the shape).
+    pub approaches_limit: bool,
+}
+
+impl Membership {
+    /// The membership leaf for an estimator leaf of this family.
+    pub fn leaf_for(&self, estimator: Leaf) -> Option<Leaf> {
+        self.leaves.iter().find(|(e, _)| *e == estimator).map(|&(_, m)| m)
+    }
 }
 
 /// A reference to a family's declaration; equal when the names are.

@@ -11,6 +11,7 @@ use fractal_dsl::eval::{Env, Evaluator};
 use fractal_dsl::math::{dot, length, normalize, v3, Real, V3};
 use fractal_dsl::{HitEpsilon, RenderSettings, Scene, Shadows};
 use rayon::prelude::*;
+use std::cell::Cell;
 
 use crate::device::{Backend, DeviceInfo};
 use crate::error::{FrameError, RenderError};
@@ -83,13 +84,116 @@ fn render_with_bound<F: Real, E: Evaluator<F> + ?Sized>(
     pixels.par_chunks_mut(width).enumerate().for_each(|(y, row)| {
         let env = Env { time: view.time, params: &view.params };
         for (x, px) in row.iter_mut().enumerate() {
-            *px = pack(view.shade_pixel(evaluator, &env, x as u32, y as u32), view.gamma);
+            *px = pack(view.trace_pixel(evaluator, &env, x as u32, y as u32).colour, view.gamma);
         }
     });
     Ok(Image { width: frame.width(), height: frame.height(), pixels })
 }
 
-struct View<F> {
+/// What the render algorithm did at one pixel, beside its colour: the figures accuracy work compares with the truth.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PixelTrace {
+    /// Linear colour before clamping and gamma (NaN or Inf here is a broken pixel even when packing hides it).
+    pub colour: [f64; 3],
+    /// Whether the march hit the surface.
+    pub hit: bool,
+    /// Where the march stopped: the hit, or the last t of a miss (past the end of the ray, or where the steps ran
+    /// out); NaN for a ray that misses the scene bound.
+    pub t: f64,
+    /// March steps taken.
+    pub steps: u32,
+    /// The march used all its steps without hitting or leaving the ray.
+    pub out_of_steps: bool,
+    /// The shading normal at a hit.
+    pub normal: Option<[f64; 3]>,
+    /// Distance evaluations for the whole pixel (march, normal, occlusion, shadows).
+    pub evaluations: u64,
+}
+
+/// Renders like [`render_scene`] but keeps every pixel's [`PixelTrace`], in row-major order.
+pub fn trace_scene<F: Real, E: Evaluator<F> + ?Sized>(
+    evaluator: &E,
+    scene: &Scene,
+    frame: &Frame,
+) -> Result<Vec<PixelTrace>, RenderError> {
+    let view = View::<F>::new(scene, frame, bound(&fold_node(&scene.root)))?;
+    let width = frame.width() as usize;
+    let mut traces = vec![PixelTrace::default(); width * frame.height() as usize];
+    let counted = Counted(evaluator);
+    traces.par_chunks_mut(width).enumerate().for_each(|(y, row)| {
+        let env = Env { time: view.time, params: &view.params };
+        for (x, out) in row.iter_mut().enumerate() {
+            let before = EVALUATIONS.with(Cell::get);
+            let pixel = view.trace_pixel(&counted, &env, x as u32, y as u32);
+            *out = PixelTrace {
+                colour: [pixel.colour.x.f64(), pixel.colour.y.f64(), pixel.colour.z.f64()],
+                hit: pixel.hit,
+                t: pixel.t.f64(),
+                steps: pixel.steps,
+                out_of_steps: pixel.out_of_steps,
+                normal: pixel.normal.map(|n| [n.x.f64(), n.y.f64(), n.z.f64()]),
+                evaluations: EVALUATIONS.with(Cell::get) - before,
+            };
+        }
+    });
+    Ok(traces)
+}
+
+impl Default for PixelTrace {
+    fn default() -> Self {
+        PixelTrace {
+            colour: [0.0; 3],
+            hit: false,
+            t: f64::NAN,
+            steps: 0,
+            out_of_steps: false,
+            normal: None,
+            evaluations: 0,
+        }
+    }
+}
+
+thread_local! {
+    /// Distance evaluations made on this thread through [`Counted`] (each pixel runs on one thread).
+    static EVALUATIONS: Cell<u64> = const { Cell::new(0) };
+}
+
+/// An evaluator that counts its distance and sample calls in [`EVALUATIONS`].
+struct Counted<'a, E: ?Sized>(&'a E);
+
+impl<F: Real, E: Evaluator<F> + ?Sized> Evaluator<F> for Counted<'_, E> {
+    fn distance(&self, p: V3<F>, env: &Env<F>) -> F {
+        EVALUATIONS.with(|n| n.set(n.get() + 1));
+        self.0.distance(p, env)
+    }
+    fn sample(&self, p: V3<F>, env: &Env<F>) -> fractal_dsl::eval::Sample<F> {
+        EVALUATIONS.with(|n| n.set(n.get() + 1));
+        self.0.sample(p, env)
+    }
+}
+
+/// One pixel in the renderer's precision.
+struct Pixel<F> {
+    colour: V3<F>,
+    hit: bool,
+    t: F,
+    steps: u32,
+    out_of_steps: bool,
+    normal: Option<V3<F>>,
+}
+
+/// The end of a march.
+struct March<F> {
+    hit: bool,
+    t: F,
+    eps: F,
+    steps: u32,
+    out_of_steps: bool,
+    glow: F,
+}
+
+/// The render algorithm set up for one frame: camera, lights, settings and bound in precision `F`.
+pub(crate) struct View<F> {
     origin: V3<F>,
     right: V3<F>,
     up: V3<F>,
@@ -131,7 +235,7 @@ fn c<F: Real>(v: f64) -> F {
 }
 
 impl<F: Real> View<F> {
-    fn new(scene: &Scene, frame: &Frame, scene_bound: Option<Aabb>) -> Result<View<F>, RenderError> {
+    pub(crate) fn new(scene: &Scene, frame: &Frame, scene_bound: Option<Aabb>) -> Result<View<F>, RenderError> {
         let expected = FrameLayout { lights: scene.effective_lights().len(), params: scene.params().len() };
         if frame.layout() != expected {
             return Err(FrameError::SlotCount { expected: expected.slots(), got: frame.layout().slots() }.into());
@@ -186,19 +290,58 @@ impl<F: Real> View<F> {
         })
     }
 
-    /// Steps 2–6 of the render algorithm for pixel (x, y): the linear colour before gamma.
-    fn shade_pixel<E: Evaluator<F> + ?Sized>(&self, eval: &E, env: &Env<F>, x: u32, y: u32) -> V3<F> {
+    /// What expressions read: the frame's time and parameters.
+    pub(crate) fn env(&self) -> Env<'_, F> {
+        Env { time: self.time, params: &self.params }
+    }
+
+    /// Pixel footprint per unit distance along a ray.
+    pub(crate) fn footprint(&self) -> F {
+        self.footprint
+    }
+
+    pub(crate) fn max_distance(&self) -> F {
+        self.max_distance
+    }
+
+    pub(crate) fn background(&self) -> V3<F> {
+        self.background
+    }
+
+    /// Step 1: the ray through the point (px, py) of the image, in pixels from the top left corner (a pixel's centre
+    /// is at (x + 0.5, y + 0.5)).
+    pub(crate) fn ray(&self, px: F, py: F) -> (V3<F>, V3<F>) {
         let two = c::<F>(2.0);
+        let u = (two * px - self.width) / self.height;
+        let v = -(two * py - self.height) / self.height;
+        (self.origin, normalize(self.forward + self.right * u + self.up * v))
+    }
+
+    /// Steps 2–6 of the render algorithm for pixel (x, y): the linear colour before gamma, and how it was found.
+    fn trace_pixel<E: Evaluator<F> + ?Sized>(&self, eval: &E, env: &Env<F>, x: u32, y: u32) -> Pixel<F> {
         let half = c::<F>(0.5);
-        let u = (two * (c::<F>(x as f64) + half) - self.width) / self.height;
-        let v = -(two * (c::<F>(y as f64) + half) - self.height) / self.height;
-        let rd = normalize(self.forward + self.right * u + self.up * v);
-        let ro = self.origin;
-
-        let Some((t_near, t_far)) = self.clip(ro, rd) else {
-            return self.background;
+        let (ro, rd) = self.ray(c::<F>(x as f64) + half, c::<F>(y as f64) + half);
+        let Some(march) = self.march(eval, env, ro, rd) else {
+            let background = self.background;
+            return Pixel { colour: background, hit: false, t: F::nan(), steps: 0, out_of_steps: false, normal: None };
         };
+        let (t, eps) = (march.t, march.eps);
+        let (mut colour, normal) = if march.hit {
+            let p = ro + rd * t;
+            let n = self.normal(eval, env, p, eps);
+            (self.shade_hit(eval, env, p, n, rd, t, eps), Some(n))
+        } else {
+            (self.background, None)
+        };
+        if let Some(glow_colour) = self.glow {
+            colour = colour + glow_colour * (march.glow / c(GLOW_NORM)).min(F::one());
+        }
+        Pixel { colour, hit: march.hit, t, steps: march.steps, out_of_steps: march.out_of_steps, normal }
+    }
 
+    /// Steps 2–3: clip to the bound and march; `None` for a ray that misses the bound.
+    fn march<E: Evaluator<F> + ?Sized>(&self, eval: &E, env: &Env<F>, ro: V3<F>, rd: V3<F>) -> Option<March<F>> {
+        let (t_near, t_far) = self.clip(ro, rd)?;
         let mut t = t_near;
         let mut glow = F::zero();
         let mut eps = F::zero();
@@ -218,15 +361,11 @@ impl<F: Real> View<F> {
             }
             t = t + d;
         }
-
-        let mut colour = if hit { self.shade_hit(eval, env, ro + rd * t, rd, t, eps) } else { self.background };
-        if let Some(glow_colour) = self.glow {
-            colour = colour + glow_colour * (glow / c(GLOW_NORM)).min(F::one());
-        }
-        colour
+        let out_of_steps = !hit && step == self.max_steps && t <= t_far;
+        Some(March { hit, t, eps, steps: step, out_of_steps, glow })
     }
 
-    fn hit_epsilon(&self, t: F) -> F {
+    pub(crate) fn hit_epsilon(&self, t: F) -> F {
         let eps = match self.epsilon {
             HitEpsilon::Fixed(e) => c(e),
             HitEpsilon::Pixel(k) => c::<F>(k) * self.footprint * t,
@@ -257,17 +396,37 @@ impl<F: Real> View<F> {
         (t_near <= t_far).then_some((t_near, t_far))
     }
 
-    fn shade_hit<E: Evaluator<F> + ?Sized>(&self, eval: &E, env: &Env<F>, p: V3<F>, rd: V3<F>, t: F, eps: F) -> V3<F> {
-        let de = |q: V3<F>| eval.distance(q, env);
+    /// Step 4's normal: the tetrahedral gradient of the distance at `p` with taps `eps` apart.
+    fn normal<E: Evaluator<F> + ?Sized>(&self, eval: &E, env: &Env<F>, p: V3<F>, eps: F) -> V3<F> {
         let (one, neg) = (F::one(), -F::one());
         let taps = [v3(one, neg, neg), v3(neg, neg, one), v3(neg, one, neg), v3(one, one, one)];
         let mut gradient = V3::splat(F::zero());
         for k in taps {
-            gradient = gradient + k * de(p + k * eps);
+            gradient = gradient + k * eval.distance(p + k * eps, env);
         }
         let len = length(gradient);
         // A flat gradient (all four taps equal) has no direction; the kernels then take +y.
-        let n = if len > F::zero() { gradient / len } else { v3(F::zero(), one, F::zero()) };
+        if len > F::zero() {
+            gradient / len
+        } else {
+            v3(F::zero(), one, F::zero())
+        }
+    }
+
+    /// Step 4 after the normal: the colour of the hit at `p` (distance `t` along `rd`) with normal `n`.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn shade_hit<E: Evaluator<F> + ?Sized>(
+        &self,
+        eval: &E,
+        env: &Env<F>,
+        p: V3<F>,
+        n: V3<F>,
+        rd: V3<F>,
+        t: F,
+        eps: F,
+    ) -> V3<F> {
+        let de = |q: V3<F>| eval.distance(q, env);
+        let one = F::one();
         let m = eval.sample(p, env);
 
         let ao = match self.ambient_occlusion {
@@ -342,7 +501,7 @@ impl<F: Real> View<F> {
 }
 
 /// Step 7: clamp, gamma, pack RGBA8 with R in the low byte.
-fn pack<F: Real>(colour: V3<F>, gamma: f64) -> u32 {
+pub(crate) fn pack<F: Real>(colour: V3<F>, gamma: f64) -> u32 {
     let channel = |v: F| {
         // Rust's max/min drop NaN, so a NaN channel becomes 0 rather than poisoning the pixel.
         let v = v.max(F::zero()).min(F::one());

@@ -2,6 +2,7 @@
 //! (JSON Lines) per run, with the scene, size, device, settings, build options, timings and error figures. The time
 //! stamp is the system clock in UTC; nothing is read from version control.
 
+use crate::accuracy::TrueError;
 use std::fs::OpenOptions;
 use std::io::{self, Write};
 use std::path::Path;
@@ -134,8 +135,10 @@ pub struct BenchRecord {
     pub settings: SettingsRecord,
     pub build: BuildRecord,
     pub generated: TimingRecord,
-    /// Error against the f64 interpreter.
+    /// Error against the f64 interpreter with the same settings (precision).
     pub error: Accuracy,
+    /// Error against the ground truth.
+    pub true_error: TrueError,
     pub baseline: Option<BaselineRecord>,
 }
 
@@ -167,6 +170,7 @@ impl BenchRecord {
             build: BuildRecord::current(&report.options),
             generated: TimingRecord::new(&report.generated),
             error: report.accuracy.clone(),
+            true_error: report.true_error.clone(),
             baseline,
         }
     }
@@ -220,6 +224,9 @@ impl BenchRecord {
             ("kernel_ratio", opt(b.map(|b| b.kernel_ratio))),
             ("frame_ratio", opt(b.map(|b| b.frame_ratio))),
             ("baseline_hit_mismatch", opt(b.and_then(|b| b.error.as_ref()).and_then(|e| e.hit_mismatch))),
+            ("true_false_hits", self.true_error.false_hits.to_string()),
+            ("true_false_misses", self.true_error.false_misses.to_string()),
+            ("true_psnr_db", format!("{:.2}", self.true_error.psnr)),
         ]
     }
 }

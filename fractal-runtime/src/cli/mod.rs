@@ -1,10 +1,11 @@
-//! The `fractal` command line: `render`, `bench`, `export`, `list` and `view` (the interactive viewer,
+//! The `fractal` command line: `render`, `bench`, `accuracy`, `export`, `list` and `view` (the interactive viewer,
 //! [`crate::viewer`]). The binary is a shim that passes in the built-in scene table ([`SceneLibrary`]), so the runtime
 //! does not depend on the scene library.
 //!
 //! Errors print as one `error: …` line on stderr and exit with 2 for usage errors and 1 for failures
 //! ([`error::CliError`]); nothing a user types makes the program panic.
 
+mod accuracy;
 pub mod args;
 mod bench;
 pub mod error;
@@ -73,6 +74,7 @@ fn run(command: Command, library: &SceneLibrary) -> Result<(), CliError> {
     match command {
         Command::Render(args) => render::render(&args, library),
         Command::Bench(args) => bench::bench(&args, library),
+        Command::Accuracy(args) => accuracy::accuracy(&args, library),
         Command::Export(args) => export::export(&args, library),
         Command::List => list::list(library),
         Command::View(args) => view::view(&args, library),

@@ -1,0 +1,9 @@
+//! Speed against true error: renders measured against the ground truth ([`crate::truth`]) — [`metrics`] — and sweeps
+//! of the quality settings ([`crate::quality`]) behind `fractal accuracy`.
+
+pub mod metrics;
+pub mod sweep;
+pub mod table;
+
+pub use metrics::{measure, Observed, Spread, TracedError, TrueError};
+pub use sweep::{Budget, SweepPoint};

@@ -1,0 +1,255 @@
+//! A render against the truth ([`crate::truth`]): the true error of one image.
+//!
+//! - **Hit mask**: false hits (the render hit, the truth misses) and false misses, as fractions of all pixels; false
+//!   misses whose march ran out of steps are counted apart.
+//! - **Depth** where both hit, in pixel footprints: |t − t_true| / (pixel angle · t_true). *Thin-ray*: against the
+//!   crossing of the ray through the pixel's centre. *Cone-consistent*: a render that stopped where some part of the
+//!   pixel's cone meets the scene is not wrong by more than the depth gap to that meeting (a ray that stops on a
+//!   filament it passes a twentieth of a footprint from has found what the pixel sees); searched on a
+//!   [`CONE_GRID`]² lattice of sub-rays within [`CONE_WINDOW`] footprints of where the render stopped, for pixels
+//!   whose thin-ray error is above [`CONE_CHECK`]. Both over all pixels that hit and over *interior* pixels (truth
+//!   hits whose 8 neighbours are truth hits too).
+//! - **Overshoot**: the truth hits and the ray ended more than a footprint past the true hit (hit or miss): it passed
+//!   through the surface.
+//! - **Normals** where both hit: the angle between the render's shading normal and the true surface's, in degrees.
+//! - **Colour**: PSNR of the 8-bit image against the true hit shaded the same way, over all pixels.
+//! - **Health**: pixels with NaN or Inf anywhere (colour, depth of a hit, normal); rays that ran out of steps;
+//!   distance evaluations per pixel.
+//!
+//! From an image alone (the GPU backends) only the hit mask (a pixel of the background colour is a miss) and PSNR can
+//! be read.
+
+use fractal_dsl::math::v3;
+use fractal_dsl::Scene;
+
+use crate::backend::cpu::{pack, PixelTrace};
+use crate::bench::precision::scene_hits;
+use crate::image::{unpack_rgba8, Image};
+use crate::truth::Truth;
+
+/// Thin-ray depth errors above this many footprints are checked against the pixel's cone.
+pub const CONE_CHECK: f64 = 0.5;
+/// How far from where the render stopped, in footprints, the cone check looks for the scene.
+pub const CONE_WINDOW: f64 = 2.0;
+/// Sub-rays per side of the pixel in the cone check.
+pub const CONE_GRID: u32 = 7;
+/// How far past the true hit, in footprints, a ray must end to have passed through the surface.
+pub const OVERSHOOT_FOOTPRINTS: f64 = 1.0;
+
+/// median, 99th percentile and maximum of a set of errors.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
+pub struct Spread {
+    pub count: usize,
+    pub median: f64,
+    pub p99: f64,
+    pub max: f64,
+}
+
+impl Spread {
+    /// The spread of `values` (NaN figures when there are none).
+    pub fn of(mut values: Vec<f64>) -> Spread {
+        if values.is_empty() {
+            return Spread { count: 0, median: f64::NAN, p99: f64::NAN, max: f64::NAN };
+        }
+        values.sort_by(f64::total_cmp);
+        let at = |q: f64| values[((values.len() - 1) as f64 * q).round() as usize];
+        Spread { count: values.len(), median: at(0.5), p99: at(0.99), max: values[values.len() - 1] }
+    }
+}
+
+/// What was rendered: the CPU renderer's per-pixel traces, or an image from any backend.
+pub enum Observed<'a> {
+    Traced(&'a [PixelTrace]),
+    Image(&'a Image),
+}
+
+/// The figures measured on the render's depths, normals and march (not readable from an image).
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct TracedError {
+    pub depth_thin: Spread,
+    pub depth_cone: Spread,
+    pub depth_thin_interior: Spread,
+    pub depth_cone_interior: Spread,
+    /// Fraction of pixels whose ray passed through the true surface.
+    pub overshoot: f64,
+    /// Degrees.
+    pub normal: Spread,
+    /// Pixels with NaN or Inf.
+    pub non_finite: usize,
+    /// Fraction of pixels whose march ran out of steps.
+    pub out_of_steps: f64,
+    /// Fraction of pixels that are false misses out of steps.
+    pub false_misses_out_of_steps: f64,
+    pub evaluations_per_pixel: f64,
+}
+
+/// A render's true error.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct TrueError {
+    pub width: u32,
+    pub height: u32,
+    /// Fractions of all pixels.
+    pub false_hits: f64,
+    pub false_misses: f64,
+    /// Colour PSNR in dB (+∞ when identical).
+    pub psnr: f64,
+    pub traced: Option<TracedError>,
+}
+
+impl TrueError {
+    pub fn hit_mismatch(&self) -> f64 {
+        self.false_hits + self.false_misses
+    }
+
+    /// One line for reports.
+    pub fn describe(&self) -> String {
+        let mut s = format!(
+            "false hits {:.3} %, false misses {:.3} %, colour PSNR {:.1} dB",
+            100.0 * self.false_hits,
+            100.0 * self.false_misses,
+            self.psnr
+        );
+        if let Some(t) = &self.traced {
+            s += &format!(
+                "; depth error (footprints) median {:.2}, p99 {:.2} thin-ray / {:.2} cone-consistent, interior p99 \
+                 {:.2} cone-consistent; overshoot {:.3} %; normal error median {:.1}°, p99 {:.1}°; {:.3} % out of \
+                 steps; {} NaN/Inf pixels; {:.1} distance evaluations per pixel",
+                t.depth_thin.median,
+                t.depth_thin.p99,
+                t.depth_cone.p99,
+                t.depth_cone_interior.p99,
+                100.0 * t.overshoot,
+                t.normal.median,
+                t.normal.p99,
+                100.0 * t.out_of_steps,
+                t.non_finite,
+                t.evaluations_per_pixel
+            );
+        }
+        s
+    }
+}
+
+/// The 8-bit colour of a linear colour, as the renderers pack it.
+fn packed(colour: [f64; 3], gamma: f64) -> [u8; 4] {
+    unpack_rgba8(pack::<f64>(v3(colour[0], colour[1], colour[2]), gamma))
+}
+
+fn psnr(pairs: impl Iterator<Item = ([u8; 4], [u8; 4])>) -> f64 {
+    let (mut sum, mut n) = (0.0, 0usize);
+    for (a, b) in pairs {
+        for i in 0..3 {
+            let d = a[i] as f64 - b[i] as f64;
+            sum += d * d;
+            n += 1;
+        }
+    }
+    let mse = sum / n.max(1) as f64;
+    10.0 * (255.0 * 255.0 / mse).log10()
+}
+
+/// Measures a render of `scene` against its truth (same frame).
+pub fn measure(scene: &Scene, truth: &Truth, observed: Observed) -> TrueError {
+    let n = truth.pixels.len();
+    let gamma = scene.settings.gamma;
+    let truth_colours = truth.pixels.iter().map(|p| packed(p.colour, gamma));
+    let hits: Vec<bool> = match &observed {
+        Observed::Traced(traces) => traces.iter().map(|p| p.hit).collect(),
+        // Glow tints misses; then every pixel reads as a hit.
+        Observed::Image(image) => scene_hits(scene, image).unwrap_or_else(|| vec![true; n]),
+    };
+    let psnr = match &observed {
+        Observed::Traced(traces) => psnr(traces.iter().map(|p| packed(p.colour, gamma)).zip(truth_colours)),
+        Observed::Image(image) => psnr(image.pixels.iter().map(|&p| unpack_rgba8(p)).zip(truth_colours)),
+    };
+    let false_hits = hits.iter().zip(&truth.pixels).filter(|(h, t)| **h && !t.hit()).count();
+    let false_misses = hits.iter().zip(&truth.pixels).filter(|(h, t)| !**h && t.hit()).count();
+    let traced = match observed {
+        Observed::Traced(traces) => Some(traced_error(truth, traces)),
+        Observed::Image(_) => None,
+    };
+    TrueError {
+        width: truth.width,
+        height: truth.height,
+        false_hits: false_hits as f64 / n.max(1) as f64,
+        false_misses: false_misses as f64 / n.max(1) as f64,
+        psnr,
+        traced,
+    }
+}
+
+/// Whether pixel (x, y) and its 8 neighbours are all truth hits.
+fn interior(truth: &Truth, x: u32, y: u32) -> bool {
+    let (w, h) = (truth.width as i64, truth.height as i64);
+    (-1..=1).all(|dy| {
+        (-1..=1).all(|dx| {
+            let (nx, ny) = (x as i64 + dx, y as i64 + dy);
+            nx >= 0 && ny >= 0 && nx < w && ny < h && truth.at(nx as u32, ny as u32).hit()
+        })
+    })
+}
+
+fn angle_degrees(a: [f64; 3], b: [f64; 3]) -> f64 {
+    let dot = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let len = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    (dot / (len(a) * len(b))).clamp(-1.0, 1.0).acos().to_degrees()
+}
+
+/// One pixel's (thin, cone, interior) depth errors where both hit, normal error, and whether it overshot.
+type PixelError = (Option<(f64, f64, bool)>, Option<f64>, bool);
+
+fn traced_error(truth: &Truth, traces: &[PixelTrace]) -> TracedError {
+    use rayon::prelude::*;
+    let n = traces.len().max(1) as f64;
+    // Per pixel: (thin, cone, interior) depth errors where both hit, normal error, overshoot.
+    let per_pixel: Vec<PixelError> = traces
+        .par_iter()
+        .enumerate()
+        .map(|(i, r)| {
+            let (x, y) = ((i as u32) % truth.width, (i as u32) / truth.width);
+            let t = truth.pixels[i];
+            let overshoot = t.hit() && r.t.is_finite() && r.t > t.t + OVERSHOOT_FOOTPRINTS * truth.footprint_at(t.t);
+            if !(r.hit && t.hit()) {
+                return (None, None, overshoot);
+            }
+            let thin = (r.t - t.t).abs() / truth.footprint_at(t.t);
+            let cone = if thin > CONE_CHECK && r.t.is_finite() {
+                let window = thin.min(CONE_WINDOW);
+                truth.cone_error(x, y, r.t, window, CONE_GRID).map_or(thin, |c| c.min(thin))
+            } else {
+                thin
+            };
+            let normal = match (r.normal, t.normal) {
+                (Some(a), Some(b)) => Some(angle_degrees(a, b)),
+                _ => None,
+            };
+            (Some((thin, cone, interior(truth, x, y))), normal, overshoot)
+        })
+        .collect();
+    let depths = || per_pixel.iter().filter_map(|p| p.0);
+    let non_finite = traces
+        .iter()
+        .filter(|r| {
+            r.colour.iter().any(|c| !c.is_finite())
+                || (r.hit && !r.t.is_finite())
+                || r.normal.is_some_and(|n| n.iter().any(|c| !c.is_finite()))
+        })
+        .count();
+    TracedError {
+        depth_thin: Spread::of(depths().map(|d| d.0).collect()),
+        depth_cone: Spread::of(depths().map(|d| d.1).collect()),
+        depth_thin_interior: Spread::of(depths().filter(|d| d.2).map(|d| d.0).collect()),
+        depth_cone_interior: Spread::of(depths().filter(|d| d.2).map(|d| d.1).collect()),
+        overshoot: per_pixel.iter().filter(|p| p.2).count() as f64 / n,
+        normal: Spread::of(per_pixel.iter().filter_map(|p| p.1).collect()),
+        non_finite,
+        out_of_steps: traces.iter().filter(|r| r.out_of_steps).count() as f64 / n,
+        false_misses_out_of_steps: traces
+            .iter()
+            .zip(&truth.pixels)
+            .filter(|(r, t)| !r.hit && r.out_of_steps && t.hit())
+            .count() as f64
+            / n,
+        evaluations_per_pixel: traces.iter().map(|r| r.evaluations as f64).sum::<f64>() / n,
+    }
+}

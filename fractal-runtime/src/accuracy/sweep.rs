@@ -1,0 +1,219 @@
+//! A sweep of quality settings on one backend: each setting rendered, timed and measured against the truth, and the
+//! error budget the recommended setting must meet.
+//!
+//! The CPU backend renders with the f32 interpreter of the scene with the setting applied (the same evaluator for
+//! every setting, so times compare) and gives every figure; wgpu and OpenCL render the kernels compiled for the
+//! setting and give what an image holds (hit mask, colour), and cannot scale the step factor.
+
+use std::time::Instant;
+
+use fractal_dsl::eval::interp::Interpreter;
+use fractal_dsl::{HitEpsilon, Node, Scene};
+
+use crate::accuracy::metrics::{measure, Observed, TrueError};
+use crate::backend::cpu::trace_scene;
+use crate::device::Backend;
+use crate::error::RenderError;
+use crate::frame::Frame;
+use crate::quality::{Quality, StepScaled};
+use crate::renderer::{KernelSources, RenderJob, Renderer};
+use crate::truth::Truth;
+
+/// Renders per timing; the median is reported.
+pub const TIMING_RUNS: usize = 3;
+
+/// The error a recommended setting may have.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct Budget {
+    /// Fraction of pixels.
+    pub hit_mismatch: f64,
+    /// Fraction of pixels.
+    pub overshoot: f64,
+    /// Degrees.
+    pub normal_p99: f64,
+    /// Footprints, cone-consistent, over interior pixels.
+    pub depth_p99_interior: f64,
+}
+
+impl Default for Budget {
+    fn default() -> Self {
+        Budget { hit_mismatch: 0.005, overshoot: 0.001, normal_p99: 5.0, depth_p99_interior: 1.0 }
+    }
+}
+
+impl Budget {
+    /// The ways `e` exceeds the budget (empty: within it). Rays out of steps and NaN/Inf pixels allow none.
+    pub fn violations(&self, e: &TrueError) -> Vec<String> {
+        let mut out = Vec::new();
+        if e.hit_mismatch() > self.hit_mismatch {
+            out.push(format!("hit mismatch {:.2} %", 100.0 * e.hit_mismatch()));
+        }
+        if let Some(t) = &e.traced {
+            if t.overshoot > self.overshoot {
+                out.push(format!("overshoot {:.2} %", 100.0 * t.overshoot));
+            }
+            if t.normal.p99 > self.normal_p99 {
+                out.push(format!("normal p99 {:.1}°", t.normal.p99));
+            }
+            if t.depth_cone_interior.p99 > self.depth_p99_interior {
+                out.push(format!("depth p99 {:.2}", t.depth_cone_interior.p99));
+            }
+            if t.out_of_steps > 0.0 {
+                out.push(format!("{:.2} % out of steps", 100.0 * t.out_of_steps));
+            }
+            if t.non_finite > 0 {
+                out.push(format!("{} NaN/Inf", t.non_finite));
+            }
+        }
+        out
+    }
+}
+
+/// One measured setting.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SweepPoint {
+    pub quality: Quality,
+    /// Median render time in milliseconds.
+    pub time_ms: f64,
+    pub error: TrueError,
+}
+
+/// The settings a sweep tries on `scene` (one at a time around its own, then a few combinations), the scene's own
+/// first. The step factor is only varied where `step_scales`.
+pub fn grid(scene: &Scene, step_scales: bool) -> Vec<Quality> {
+    let own = &scene.settings;
+    let mut out = vec![Quality::default()];
+    for n in [32, 64, 96, 192, 256, 512] {
+        if n != own.max_steps {
+            out.push(Quality { max_steps: Some(n), ..Quality::default() });
+        }
+    }
+    let fixed = match own.epsilon {
+        HitEpsilon::Fixed(e) => e,
+        HitEpsilon::Pixel(_) => 0.0005,
+    };
+    for e in [fixed * 0.25, fixed * 4.0, 0.002] {
+        out.push(Quality { epsilon: Some(HitEpsilon::Fixed(e)), ..Quality::default() });
+    }
+    for k in [0.25, 0.5, 1.0, 2.0] {
+        out.push(Quality { epsilon: Some(HitEpsilon::Pixel(k)), ..Quality::default() });
+    }
+    if let Some(n) = escape_time_iterations(scene) {
+        for m in [n.saturating_sub(2).max(1), n + 2, n + 4] {
+            out.push(Quality { iterations: Some(m), ..Quality::default() });
+        }
+    }
+    if step_scales {
+        for s in [0.8, 1.2, 4.0 / 3.0] {
+            out.push(Quality { step_scale: Some(s), ..Quality::default() });
+        }
+        // A longer step with the budget to finish, and the same with a pixel epsilon.
+        out.push(Quality { step_scale: Some(4.0 / 3.0), max_steps: Some(256), ..Quality::default() });
+        out.push(Quality {
+            step_scale: Some(4.0 / 3.0),
+            max_steps: Some(256),
+            epsilon: Some(HitEpsilon::Pixel(0.5)),
+            ..Quality::default()
+        });
+    }
+    out.dedup();
+    out
+}
+
+/// The iteration count of the scene's first escape-time fractal, if it has one.
+pub fn escape_time_iterations(scene: &Scene) -> Option<u32> {
+    fn find(node: &Node) -> Option<u32> {
+        match node {
+            Node::Fractal(f) if f.decl().membership.approaches_limit => Some(f.iterations_or_default()),
+            _ => node.children().iter().find_map(find),
+        }
+    }
+    find(&scene.root)
+}
+
+/// Renders `quality` on the CPU with per-pixel traces, `TIMING_RUNS` times.
+fn run_cpu(scene: &Scene, quality: &Quality, frame: &Frame, truth: &Truth) -> Result<SweepPoint, RenderError> {
+    let applied = quality.apply(scene);
+    let interpreter = Interpreter::new(&applied);
+    let scaled = StepScaled { inner: &interpreter, scale: quality.step_scale() as f32 };
+    let mut times = Vec::new();
+    let mut traces = Vec::new();
+    for _ in 0..TIMING_RUNS {
+        let start = Instant::now();
+        traces = trace_scene::<f32, _>(&scaled, &applied, frame)?;
+        times.push(start.elapsed().as_secs_f64() * 1e3);
+    }
+    let error = measure(&applied, truth, Observed::Traced(&traces));
+    Ok(SweepPoint { quality: *quality, time_ms: median(times), error })
+}
+
+/// Renders `quality` with the kernels compiled for it on a GPU backend.
+fn run_kernels(
+    renderer: &mut dyn Renderer,
+    scene: &Scene,
+    quality: &Quality,
+    frame: &Frame,
+    truth: &Truth,
+) -> Result<SweepPoint, RenderError> {
+    let applied = quality.apply(scene);
+    let kernels = fractal_dsl::compile(&applied);
+    let job = RenderJob::new(KernelSources::compiled(&kernels), frame);
+    // The first render builds the kernel; it is not timed.
+    let mut image = renderer.render(&job)?;
+    let mut times = Vec::new();
+    for _ in 0..TIMING_RUNS {
+        let start = Instant::now();
+        image = renderer.render(&job)?;
+        times.push(start.elapsed().as_secs_f64() * 1e3);
+    }
+    let error = measure(&applied, truth, Observed::Image(&image));
+    Ok(SweepPoint { quality: *quality, time_ms: median(times), error })
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+/// Measures every setting of `qualities` on `backend` against `truth`. `renderer` is the opened GPU renderer (unused
+/// for the CPU). `progress` is told each finished point.
+pub fn run(
+    scene: &Scene,
+    frame: &Frame,
+    truth: &Truth,
+    backend: Backend,
+    mut renderer: Option<&mut Box<dyn Renderer>>,
+    qualities: &[Quality],
+    progress: &mut dyn FnMut(&SweepPoint),
+) -> Result<Vec<SweepPoint>, RenderError> {
+    let mut out = Vec::new();
+    for q in qualities {
+        let point = match (backend, renderer.as_mut()) {
+            (Backend::Cpu, _) | (_, None) => run_cpu(scene, q, frame, truth)?,
+            (_, Some(r)) => run_kernels(r.as_mut(), scene, q, frame, truth)?,
+        };
+        progress(&point);
+        out.push(point);
+    }
+    Ok(out)
+}
+
+/// The points no other point beats on both time and `error` (lower is better), by increasing time.
+pub fn pareto(points: &[SweepPoint], error: impl Fn(&SweepPoint) -> f64) -> Vec<&SweepPoint> {
+    let mut sorted: Vec<&SweepPoint> = points.iter().collect();
+    sorted.sort_by(|a, b| a.time_ms.total_cmp(&b.time_ms).then(error(a).total_cmp(&error(b))));
+    let mut front = Vec::new();
+    let mut best = f64::INFINITY;
+    for p in sorted {
+        if error(p) < best {
+            best = error(p);
+            front.push(p);
+        }
+    }
+    front
+}
+
+/// The fastest point within the budget.
+pub fn recommended<'a>(points: &'a [SweepPoint], budget: &Budget) -> Option<&'a SweepPoint> {
+    points.iter().filter(|p| budget.violations(&p.error).is_empty()).min_by(|a, b| a.time_ms.total_cmp(&b.time_ms))
+}

@@ -1,0 +1,130 @@
+//! The quality settings an accuracy sweep varies, and how each is applied to a scene: the march's step budget and hit
+//! epsilon (render settings), the iteration count of escape-time fractals (the scene's fractals), and a factor on
+//! every distance the march steps by (the step factor, applied by wrapping the CPU evaluator).
+
+use std::fmt;
+
+use fractal_dsl::eval::{Env, Evaluator, Sample};
+use fractal_dsl::math::{Real, V3};
+use fractal_dsl::{Fractal, HitEpsilon, Node, Op, Scene};
+
+/// One point of a sweep; `None` keeps the scene's own value.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Quality {
+    pub max_steps: Option<u32>,
+    pub epsilon: Option<HitEpsilon>,
+    /// Iterations of every escape-time fractal (IFS levels are the shape and stay).
+    pub iterations: Option<u32>,
+    /// Factor on the step factor the scene's fractals declare (1: as declared).
+    pub step_scale: Option<f64>,
+}
+
+impl Quality {
+    /// The scene with this quality's render settings and iteration counts.
+    pub fn apply(&self, scene: &Scene) -> Scene {
+        let mut out = match self.iterations {
+            Some(n) => with_fractals(scene, &|f| {
+                let mut f = f.clone();
+                if f.decl().membership.approaches_limit {
+                    let range = f.decl().iterations;
+                    f.iterations = Some(n.clamp(range.min, range.max));
+                }
+                f
+            }),
+            None => scene.clone(),
+        };
+        if let Some(n) = self.max_steps {
+            out.settings.max_steps = n;
+        }
+        if let Some(e) = self.epsilon {
+            out.settings.epsilon = e;
+        }
+        out
+    }
+
+    /// The factor on the march's distances.
+    pub fn step_scale(&self) -> f64 {
+        self.step_scale.unwrap_or(1.0)
+    }
+
+    /// Whether this is the scene's own setting.
+    pub fn is_default(&self) -> bool {
+        *self == Quality::default()
+    }
+}
+
+impl fmt::Display for Quality {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let mut parts = Vec::new();
+        if let Some(n) = self.max_steps {
+            parts.push(format!("steps {n}"));
+        }
+        match self.epsilon {
+            Some(HitEpsilon::Fixed(e)) => parts.push(format!("eps {e}")),
+            Some(HitEpsilon::Pixel(k)) => parts.push(format!("eps {k} px")),
+            None => {}
+        }
+        if let Some(n) = self.iterations {
+            parts.push(format!("iter {n}"));
+        }
+        if let Some(s) = self.step_scale {
+            // Three decimals at most: 4/3 reads 1.333.
+            let text = format!("{s:.3}");
+            parts.push(format!("step x{}", text.trim_end_matches('0').trim_end_matches('.')));
+        }
+        if parts.is_empty() {
+            write!(f, "scene default")
+        } else {
+            write!(f, "{}", parts.join(", "))
+        }
+    }
+}
+
+/// The scene with each escape-time fractal's iteration count multiplied by `factor` (IFS levels stay).
+pub fn with_iterations_scaled(scene: &Scene, factor: u32) -> Scene {
+    if factor == 1 {
+        return scene.clone();
+    }
+    with_fractals(scene, &|f| {
+        let mut f = f.clone();
+        if f.decl().membership.approaches_limit {
+            f.iterations = Some(f.iterations_or_default() * factor);
+        }
+        f
+    })
+}
+
+/// The scene with every fractal replaced by `edit(fractal)`.
+pub fn with_fractals(scene: &Scene, edit: &dyn Fn(&Fractal) -> Fractal) -> Scene {
+    Scene { root: map_fractals(&scene.root, edit), ..scene.clone() }
+}
+
+fn map_fractals(node: &Node, edit: &dyn Fn(&Fractal) -> Fractal) -> Node {
+    match node {
+        Node::Fractal(f) => Node::Fractal(edit(f)),
+        Node::Prim(_) => node.clone(),
+        Node::Op(op) => Node::Op(Op {
+            kind: op.kind,
+            shapes: op.shapes.iter().map(|n| map_fractals(n, edit)).collect(),
+            args: op.args.clone(),
+        }),
+        Node::Material(c, m) => Node::Material(Box::new(map_fractals(c, edit)), m.clone()),
+    }
+}
+
+/// An evaluator whose distances are scaled by a factor: a step factor on the whole scene. The hit test compares the
+/// scaled distance with epsilon, as the kernels do with a fractal's declared step factor.
+pub struct StepScaled<'a, F> {
+    pub inner: &'a dyn Evaluator<F>,
+    pub scale: F,
+}
+
+impl<F: Real> Evaluator<F> for StepScaled<'_, F> {
+    fn distance(&self, p: V3<F>, env: &Env<F>) -> F {
+        self.inner.distance(p, env) * self.scale
+    }
+    fn sample(&self, p: V3<F>, env: &Env<F>) -> Sample<F> {
+        let s = self.inner.sample(p, env);
+        Sample { distance: s.distance * self.scale, ..s }
+    }
+}
