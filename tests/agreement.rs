@@ -85,7 +85,7 @@ impl Subject for InterpreterF32 {
         Class::CpuF32
     }
     fn answers(&mut self, row: &Row, points: &[V3<f32>]) -> Result<Vec<Answer>, String> {
-        cpu_answers::<f32>(&Interpreter::new(row.scene()), row, points)
+        cpu_answers::<f32>(&Interpreter::new(row.scene()).unwrap(), row, points)
     }
 }
 
@@ -279,7 +279,8 @@ fn the_comparison_catches_wrong_answers() {
         let row = rows.iter().find(|r| r.name == name).expect("the row exists");
         let reference = harness::Reference::new(row);
         let points = harness::points(row, &reference);
-        let mut got = cpu_answers::<f32>(&Interpreter::new(row.scene()), row, &points).expect("the interpreter runs");
+        let mut got =
+            cpu_answers::<f32>(&Interpreter::new(row.scene()).unwrap(), row, &points).expect("the interpreter runs");
         assert!(harness::compare(row, &reference, &points, &got, Class::CpuF32).failures.is_empty(), "{name}");
         got.iter_mut().for_each(mutate);
         let outcome = harness::compare(row, &reference, &points, &got, Class::CpuF32);

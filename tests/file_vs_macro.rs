@@ -14,7 +14,7 @@ fn macro_file_and_runtime_load_write_identical_kernels() {
             .camera(camera(vec3(0.0, 0.6, -3.2), vec3(0.0, 0.0, 0.0)).fov(50.0))
     };
     let from_file = &scenes::HELLO_WORLD;
-    let loaded = compile(&parse_str(scenes::source_file("hello_world").unwrap()).unwrap());
+    let loaded = compile(&parse_str(scenes::source_file("hello_world").unwrap()).unwrap()).unwrap();
     assert_eq!(inline.opencl(), from_file.opencl());
     assert_eq!(inline.wgsl(), from_file.wgsl());
     assert_eq!(inline.opencl(), loaded.opencl);
@@ -24,7 +24,7 @@ fn macro_file_and_runtime_load_write_identical_kernels() {
 #[test]
 fn every_built_in_scene_loads_at_run_time_to_the_same_kernels() {
     for (name, compiled) in scenes::ALL {
-        let loaded = compile(&parse_str(scenes::source_file(name).unwrap()).unwrap());
+        let loaded = compile(&parse_str(scenes::source_file(name).unwrap()).unwrap()).unwrap();
         assert_eq!(compiled.opencl(), loaded.opencl, "{name}");
         assert_eq!(compiled.wgsl(), loaded.wgsl, "{name}");
         // The canonical source the macro embeds reads back to the same scene.
@@ -37,5 +37,5 @@ fn builder_and_macro_build_the_same_scene() {
     let built = fractal::dsl::builder::scene(union(mandelbulb(8), sphere(1.0).translate(vec3(1.5, 0.0, 0.0))));
     let compiled = scene! { union(mandelbulb(8), sphere(1.0).translate(vec3(1.5, 0.0, 0.0))) };
     assert_eq!(compiled.scene(), &built);
-    assert_eq!(compiled.opencl(), compile(&built).opencl);
+    assert_eq!(compiled.opencl(), compile(&built).unwrap().opencl);
 }

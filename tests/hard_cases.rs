@@ -17,8 +17,8 @@ fn require_gpu() -> bool {
 /// Renders `scene` from `pose` with the CPU renderer and, when available, wgpu.
 fn render_both(scene: &Scene, pose: &Pose, size: u32) -> Vec<(&'static str, Image)> {
     let frame = Frame::new(scene, pose, 0.0, size, size, &ParamValues::defaults(scene)).unwrap();
-    let interp = Interpreter::new(scene);
-    let kernels = compile(scene);
+    let interp = Interpreter::new(scene).unwrap();
+    let kernels = compile(scene).unwrap();
     let mut out = vec![(
         "cpu",
         CpuRenderer::new().render(&RenderJob::new(KernelSources::default().with_cpu(&interp, scene), &frame)).unwrap(),

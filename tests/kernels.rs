@@ -51,7 +51,7 @@ fn every_wgsl_module_validates_with_naga() {
 
 #[test]
 fn a_sphere_only_kernel_has_no_fractal_shadow_or_effect_code() {
-    let k = compile(&parse_str("sphere(1.0)").unwrap());
+    let k = compile(&parse_str("sphere(1.0)").unwrap()).unwrap();
     // Exactly the sphere's distance, the two scene functions, the normal and the entry point: no fractal estimator,
     // blend, shadow, occlusion or glow code, and no loop but the march.
     let expected = ["sd_sphere", "scene_de", "scene_sample", "scene_normal", "render"];
@@ -73,7 +73,7 @@ fn opencl_scene_de(text: &str) -> &str {
 
 #[test]
 fn literals_fold_and_params_become_uniforms() {
-    let k = compile(&parse_str("sphere(0.25 + 0.75).translate(vec3(2.0 * 0.5, 0.0, 0.0))").unwrap());
+    let k = compile(&parse_str("sphere(0.25 + 0.75).translate(vec3(2.0 * 0.5, 0.0, 0.0))").unwrap()).unwrap();
     // Radius 0.25 + 0.75 and offset 2.0 · 0.5 arrive as single literals; the zero offsets cost nothing.
     assert_eq!(
         opencl_scene_de(&k.opencl),
@@ -81,7 +81,7 @@ fn literals_fold_and_params_become_uniforms() {
         "{}",
         k.opencl
     );
-    let k = compile(&parse_str(r#"sphere(param("radius", 1.0, 0.5..2.0))"#).unwrap());
+    let k = compile(&parse_str(r#"sphere(param("radius", 1.0, 0.5..2.0))"#).unwrap()).unwrap();
     assert!(k.opencl.contains("frame->params[0].x"), "{}", k.opencl);
     assert!(k.wgsl.contains("frame.params[0].x"), "{}", k.wgsl);
     assert!(k.wgsl.contains("params: array<vec4<f32>, 1>"), "{}", k.wgsl);
@@ -89,9 +89,9 @@ fn literals_fold_and_params_become_uniforms() {
 
 #[test]
 fn power_eight_mandelbulb_is_trig_free_and_other_powers_are_not() {
-    let k = compile(&parse_str("mandelbulb(8)").unwrap());
+    let k = compile(&parse_str("mandelbulb(8)").unwrap()).unwrap();
     assert!(k.opencl.contains("de_mandelbulb8(") && !k.opencl.contains("acos"), "{}", k.opencl);
-    let k = compile(&parse_str("mandelbulb(8.0 + sin(t))").unwrap());
+    let k = compile(&parse_str("mandelbulb(8.0 + sin(t))").unwrap()).unwrap();
     assert!(k.opencl.contains("de_mandelbulb(") && !k.opencl.contains("de_mandelbulb8("), "{}", k.opencl);
     // The animated power reaches the estimator (and so its derivative) as the same value.
     assert!(k.opencl.contains("frame->origin.w"), "{}", k.opencl);
@@ -99,11 +99,11 @@ fn power_eight_mandelbulb_is_trig_free_and_other_powers_are_not() {
 
 #[test]
 fn effects_appear_only_when_enabled() {
-    let plain = compile(&parse_str("scene(sphere(1.0))").unwrap());
+    let plain = compile(&parse_str("scene(sphere(1.0))").unwrap()).unwrap();
     let all = compile(
         &parse_str("scene(sphere(1.0)).soft_shadows(8.0).ambient_occlusion(1.0).glow(rgb(0.2, 0.3, 0.9)).fog(rgb(0.5, 0.5, 0.5), 0.1)")
             .unwrap(),
-    );
+    ).unwrap();
     for marker in ["scene_shadow", "scene_ao", "glow", "exp("] {
         assert!(!plain.wgsl.contains(marker), "plain kernel has `{marker}`");
         assert!(all.wgsl.contains(marker), "kernel with every effect lacks `{marker}`");

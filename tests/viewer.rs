@@ -420,7 +420,8 @@ fn animated_child(dir: &Path) {
         print_help: false,
         ..ViewerOptions::default()
     };
-    let summary = fractal_runtime::viewer::run(ViewerScene::built("moving", moving), options).expect("the viewer runs");
+    let summary =
+        fractal_runtime::viewer::run(ViewerScene::built("moving", moving).unwrap(), options).expect("the viewer runs");
     let [early, late] = summary.screenshots.as_slice() else {
         panic!("expected two screenshots, got {}", summary.screenshots.len());
     };
@@ -439,8 +440,8 @@ fn animated_child(dir: &Path) {
 
 /// Renders a screenshot of a runtime-loaded scene offline: its compiled kernels, or the interpreter on the CPU.
 fn render_file_scene(shot: &ScreenshotInfo) -> Image {
-    let kernels = fractal_dsl::compile(&shot.scene);
-    let interpreter = fractal_dsl::eval::interp::Interpreter::new(&shot.scene);
+    let kernels = fractal_dsl::compile(&shot.scene).unwrap();
+    let interpreter = fractal_dsl::eval::interp::Interpreter::new(&shot.scene).unwrap();
     let sources = KernelSources::compiled(&kernels).with_cpu(&interpreter, &shot.scene);
     let (w, h) = shot.render_size;
     let frame = Frame::new(&shot.scene, &shot.pose, shot.time, w, h, &shot.params).expect("pack the frame");
@@ -454,7 +455,7 @@ fn render_file_scene(shot: &ScreenshotInfo) -> Image {
 /// Renders what `shot` shows with a fresh renderer of the same backend and the kernels `fractal render` would use.
 fn render_offline(shot: &ScreenshotInfo) -> Image {
     let compiled = &scenes::SPHERE_BOX;
-    let recompiled = fractal_dsl::compile(&shot.scene);
+    let recompiled = fractal_dsl::compile(&shot.scene).unwrap();
     let unchanged = shot.scene.settings == compiled.scene().settings;
     let (wgsl, opencl) = if unchanged {
         (compiled.wgsl(), compiled.opencl())

@@ -95,7 +95,7 @@ impl Fractal {
 
 impl From<Fractal> for Node {
     fn from(f: Fractal) -> Node {
-        Node::Fractal(f)
+        Node::Fractal(Box::new(f))
     }
 }
 

@@ -139,13 +139,14 @@ pub struct Kernels {
     pub program: crate::lower::Program,
 }
 
-/// Compiles a scene: lowers it once and spells the render kernels in both GPU languages.
-pub fn compile(scene: &Scene) -> Kernels {
+/// Compiles a scene: validates it, lowers it once and spells the render kernels in both GPU languages.
+pub fn compile(scene: &Scene) -> Result<Kernels, crate::validate::InvalidScene> {
+    crate::validate::checked(scene)?;
     let program = crate::lower::lower(scene);
-    Kernels {
+    Ok(Kernels {
         source: crate::print::to_source(scene),
         opencl: crate::back::opencl::write(&program, crate::back::Entry::Render),
         wgsl: crate::back::wgsl::write(&program, crate::back::Entry::Render),
         program,
-    }
+    })
 }

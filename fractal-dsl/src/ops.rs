@@ -426,7 +426,7 @@ pub trait ShapeExt: Into<Node> + Sized {
         ELONGATE.node(vec![self.into()], vec![h.into().into()])
     }
     fn material(self, m: impl Into<Material>) -> Node {
-        Node::Material(Box::new(self.into()), m.into())
+        Node::Material(Box::new(self.into()), Box::new(m.into()))
     }
 }
 impl ShapeExt for Node {}

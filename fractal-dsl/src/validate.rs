@@ -49,6 +49,32 @@ impl fmt::Display for ValidationError {
 
 impl std::error::Error for ValidationError {}
 
+/// A scene that breaks rules of the language: every broken rule [`validate`] found. Every way into the compiler and
+/// the evaluators ([`crate::compile`], [`crate::eval::interp::Interpreter::new`]) returns it for a scene made with the
+/// builder; the parser and `scene!` report the same rules at their source location instead.
+#[derive(Clone, Debug, PartialEq)]
+pub struct InvalidScene(pub Vec<ValidationError>);
+
+impl fmt::Display for InvalidScene {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("the scene is invalid: ")?;
+        for (i, e) in self.0.iter().enumerate() {
+            if i > 0 {
+                f.write_str("; ")?;
+            }
+            write!(f, "{e}")?;
+        }
+        Ok(())
+    }
+}
+
+impl std::error::Error for InvalidScene {}
+
+/// [`validate`] with its errors as one [`InvalidScene`].
+pub fn checked(scene: &Scene) -> Result<(), InvalidScene> {
+    validate(scene).map_err(InvalidScene)
+}
+
 /// One broken rule found by a per-value check: which argument it concerns (by the name the vocabulary gives it;
 /// `""` for the value as a whole) and, for an argument that repeats (the keys of a camera path), which one.
 #[derive(Clone, Debug, PartialEq)]
@@ -209,16 +235,19 @@ fn size_problem(scene: &Scene) -> Option<String> {
     let mut expr_nodes = 0usize;
     let mut stack = vec![(&scene.root, 1usize)];
     let mut exprs: Vec<&Expr> = Vec::new();
+    let mut deepest = 0;
+    // Every node is counted before depth is judged: a tree that is too big says so even where it is also deep.
     while let Some((n, d)) = stack.pop() {
         nodes += 1;
-        if d > MAX_DEPTH {
-            return Some(format!("the shape tree nests more than {MAX_DEPTH} levels deep"));
-        }
+        deepest = deepest.max(d);
         if nodes > MAX_NODES {
             return Some(format!("the shape tree has more than {MAX_NODES} nodes"));
         }
         exprs.extend(own_exprs(n));
         stack.extend(n.children().iter().map(|c| (c, d + 1)));
+    }
+    if deepest > MAX_DEPTH {
+        return Some(format!("the shape tree nests more than {MAX_DEPTH} levels deep"));
     }
     for l in &scene.lights {
         exprs.extend(light_exprs(l));

@@ -134,7 +134,7 @@ const TIMES: [f64; 4] = [0.0, 0.37, 2.9, 12.0];
 fn check_node(node: &Node, points: usize, rng: &mut Rng) -> Result<(), TestCaseError> {
     let info = bound_info(node);
     let Some(b) = info.aabb else { return Ok(()) };
-    let interp = Interpreter::new(&scene(node.clone()));
+    let interp = Interpreter::new(&scene(node.clone())).unwrap();
     let margin = 0.5 * b.half_extents().iter().fold(0.0f64, |a, &h| a.max(h)) + 0.2;
     for &time in &TIMES {
         let params = param_values(&interp, rng);
@@ -245,8 +245,8 @@ proptest! {
                 }
             }
         }
-        let guarded = Interpreter::new(&scene(root.clone()));
-        let reference = Interpreter::new(&scene(root.clone())).without_bound_guards();
+        let guarded = Interpreter::new(&scene(root.clone())).unwrap();
+        let reference = Interpreter::new(&scene(root.clone())).unwrap().without_bound_guards();
         let mut rng = Rng(seed | 1);
         let region = bound(&folded).unwrap_or(Aabb::cube(3.0));
         for &time in &TIMES {
@@ -263,8 +263,8 @@ proptest! {
     /// a box that holds the child's surface, so it never crosses the surface: the sign is kept.
     #[test]
     fn guards_skip_only_children_whose_surface_is_no_nearer(root in guarded_union(any_guarded_child()), seed in any::<u64>()) {
-        let guarded = Interpreter::new(&scene(root.clone()));
-        let reference = Interpreter::new(&scene(root.clone())).without_bound_guards();
+        let guarded = Interpreter::new(&scene(root.clone())).unwrap();
+        let reference = Interpreter::new(&scene(root.clone())).unwrap().without_bound_guards();
         let folded = fold_node(&root);
         let region = bound(&folded).unwrap_or(Aabb::cube(3.0));
         let mut rng = Rng(seed | 1);
@@ -284,8 +284,8 @@ proptest! {
 #[test]
 fn guard_excess_over_an_escape_time_fractal_is_bounded_by_the_box_distance() {
     let root = union(sphere(0.5).translate([4.0, 0.0, 0.0]), mandelbulb(8));
-    let guarded = Interpreter::new(&scene(root.clone()));
-    let reference = Interpreter::new(&scene(root.clone())).without_bound_guards();
+    let guarded = Interpreter::new(&scene(root.clone())).unwrap();
+    let reference = Interpreter::new(&scene(root.clone())).unwrap().without_bound_guards();
     let b = bound(&mandelbulb(8).into()).expect("bounded");
     let mut rng = Rng(99);
     let mut worst = 0.0f64;
@@ -305,7 +305,7 @@ fn guard_excess_over_an_escape_time_fractal_is_bounded_by_the_box_distance() {
 /// for the escape-time fractals, whose radii carry a margin for the rendered surface, and 0 for the sponge and the
 /// tetrahedron, which touch their cube.
 fn assert_surface_inside(name: &str, fractal: Fractal, b: &Aabb, margin: f64, n: usize, eps: f64) {
-    let interp = Interpreter::new(&scene(fractal));
+    let interp = Interpreter::new(&scene(fractal)).unwrap();
     let mut rng = Rng(5);
     let mut nearest = f64::INFINITY;
     for p in points_around(b, margin, n, &mut rng) {

@@ -67,7 +67,7 @@ proptest! {
     ) {
         let tol = 1e-12;
         let check = |node: Node, expected: f64| -> Result<(), TestCaseError> {
-            let got = d64(&Interpreter::new(&scene(node.clone())), p);
+            let got = d64(&Interpreter::new(&scene(node.clone())).unwrap(), p);
             prop_assert!((got - expected).abs() <= tol * (1.0 + expected.abs()), "{node:?} at {p:?}: {got} vs {expected}");
             Ok(())
         };
@@ -115,7 +115,8 @@ fn union_takes_the_nearest_childs_material_and_the_first_on_ties() {
     let s = Interpreter::new(&scene(union(
         colored(sphere(1.0).translate([-2.0, 0.0, 0.0]), RED),
         colored(sphere(1.0).translate([2.0, 0.0, 0.0]), GREEN),
-    )));
+    )))
+    .unwrap();
     assert!(close(albedo(&sample64(&s, [-1.5, 0.3, 0.0])), RED));
     assert!(close(albedo(&sample64(&s, [1.5, 0.3, 0.0])), GREEN));
     assert!(close(albedo(&sample64(&s, [0.0, 0.3, 0.0])), RED), "a tie keeps the first child");
@@ -125,7 +126,8 @@ fn union_takes_the_nearest_childs_material_and_the_first_on_ties() {
     let tie = Interpreter::new(&scene(union(
         colored(Node::from(menger(1)).translate([-2.0, 0.0, 0.0]), RED),
         colored(box3([1.0, 1.0, 1.0]).translate([2.0, 0.0, 0.0]), GREEN),
-    )));
+    )))
+    .unwrap();
     assert!(close(albedo(&sample64(&tie, [0.0, 0.0, 0.0])), GREEN));
 }
 
@@ -134,22 +136,22 @@ fn intersect_subtract_and_smooth_blends_choose_materials_by_the_rules() {
     let a = colored(sphere(1.0), RED);
     let b = colored(sphere(1.0).translate([1.0, 0.0, 0.0]), GREEN);
     // Intersection: the farther child's material.
-    let i = Interpreter::new(&scene(intersect(a.clone(), b.clone())));
+    let i = Interpreter::new(&scene(intersect(a.clone(), b.clone()))).unwrap();
     assert!(close(albedo(&sample64(&i, [-0.5, 0.0, 0.0])), GREEN));
     assert!(close(albedo(&sample64(&i, [1.5, 0.0, 0.0])), RED));
     // Subtraction and smooth subtraction: always the left operand's.
     for n in [subtract(a.clone(), b.clone()), smooth_subtract(a.clone(), b.clone(), 0.3)] {
-        let s = Interpreter::new(&scene(n));
+        let s = Interpreter::new(&scene(n)).unwrap();
         assert!(close(albedo(&sample64(&s, [0.9, 0.0, 0.0])), RED));
     }
     // Smooth union: mixed by the blend weight; halfway between equal spheres, half and half.
-    let su = Interpreter::new(&scene(smooth_union(a.clone(), b.clone(), 0.5)));
+    let su = Interpreter::new(&scene(smooth_union(a.clone(), b.clone(), 0.5))).unwrap();
     let mid = sample64(&su, [0.5, 0.7, 0.0]);
     assert!(close(albedo(&mid), [0.5, 0.5, 0.0]), "{:?}", mid.albedo);
     let (da, db) = ((0.25f64 + 0.49).sqrt() - 1.0, (0.25f64 + 0.49).sqrt() - 1.0);
     assert!((mid.distance - sdf::smooth_min(da, db, 0.5)).abs() < 1e-12);
     // Smooth intersection leans towards the farther child.
-    let si = Interpreter::new(&scene(smooth_intersect(a, b, 0.5)));
+    let si = Interpreter::new(&scene(smooth_intersect(a, b, 0.5))).unwrap();
     let s = sample64(&si, [-0.3, 0.0, 0.0]);
     let (d_red, d_green) = (0.3 - 1.0, 1.3 - 1.0);
     let w = sdf::blend_weight(d_green, d_red, 0.5);
@@ -158,25 +160,25 @@ fn intersect_subtract_and_smooth_blends_choose_materials_by_the_rules() {
 
 #[test]
 fn innermost_material_wins_and_bare_geometry_gets_the_default_surface() {
-    let inner = Interpreter::new(&scene(colored(colored(sphere(1.0), RED), BLUE)));
+    let inner = Interpreter::new(&scene(colored(colored(sphere(1.0), RED), BLUE))).unwrap();
     assert!(close(albedo(&sample64(&inner, [2.0, 0.0, 0.0])), RED));
-    let bare = Interpreter::new(&scene(sphere(1.0)));
+    let bare = Interpreter::new(&scene(sphere(1.0))).unwrap();
     let s = sample64(&bare, [2.0, 0.0, 0.0]);
     assert!(close(albedo(&s), [0.95, 0.75, 0.55]));
     assert_eq!((s.ambient, s.diffuse, s.specular, s.shininess), (0.15, 0.85, 0.0, 32.0));
     let phong_m = phong(rgb(0.1, 0.2, 0.3), 0.3, 0.6, 0.9, 64.0);
-    let s = sample64(&Interpreter::new(&scene(sphere(1.0).material(phong_m))), [0.0, 2.0, 0.0]);
+    let s = sample64(&Interpreter::new(&scene(sphere(1.0).material(phong_m))).unwrap(), [0.0, 2.0, 0.0]);
     assert_eq!((s.ambient, s.diffuse, s.specular, s.shininess), (0.3, 0.6, 0.9, 64.0));
 }
 
 #[test]
 fn orbit_trap_mixes_by_the_fractals_trap_and_other_leaves_take_the_first_colour() {
     let trap = orbit_trap(rgb(1.0, 0.0, 0.0), rgb(0.0, 0.0, 1.0));
-    let bulb = Interpreter::new(&scene(mandelbulb(8).material(trap.clone())));
+    let bulb = Interpreter::new(&scene(mandelbulb(8).material(trap.clone()))).unwrap();
     let p = [0.3, 0.5, 0.9];
     let t = sdf::de_mandelbulb8(v3(p[0], p[1], p[2]), 8, 2.0)[1];
     assert!(close(albedo(&sample64(&bulb, p)), [1.0 - t, 0.0, t]), "trap {t}");
-    let plain = Interpreter::new(&scene(sphere(1.0).material(trap)));
+    let plain = Interpreter::new(&scene(sphere(1.0).material(trap))).unwrap();
     assert!(close(albedo(&sample64(&plain, p)), [1.0, 0.0, 0.0]));
 }
 
@@ -194,14 +196,14 @@ fn fractal_leaves_call_the_leaf_functions_times_the_step_factor() {
     ];
     for (f, raw) in cases {
         let step = f.step_factor() as f32;
-        let i = Interpreter::new(&scene(f.clone()));
+        let i = Interpreter::new(&scene(f.clone())).unwrap();
         assert_eq!(i.distance_in(p, &env), raw * step, "{f:?}");
     }
     // A power that folds to 8 takes the polynomial form; a parameter power takes the trigonometric one.
-    let folded = Interpreter::new(&scene(mandelbulb(Expr::Lit(4.0) * 2.0)));
+    let folded = Interpreter::new(&scene(mandelbulb(Expr::Lit(4.0) * 2.0))).unwrap();
     assert_eq!(folded.distance_in(p, &env), sdf::de_mandelbulb8(p, 8, 2.0)[0] * 0.75);
     // Its step factor is that of the lowest power it can take (2 here).
-    let animated = Interpreter::new(&scene(mandelbulb(param("power", 8.0, 2.0..12.0))));
+    let animated = Interpreter::new(&scene(mandelbulb(param("power", 8.0, 2.0..12.0)))).unwrap();
     assert_eq!(
         animated.distance_in(p, &Env { time: 0.0, params: &[8.0] }),
         sdf::de_mandelbulb(p, 8.0, 8, 2.0)[0] * 0.35
@@ -214,7 +216,7 @@ fn parameters_are_read_by_slot_and_default_when_missing() {
         sphere(param("r", 1.0, 0.1..2.0)),
         sphere(0.5).translate(vec3(param("x", 3.0, 0.0..5.0) + time(), 0.0, 0.0)),
     ));
-    let i = Interpreter::new(&s);
+    let i = Interpreter::new(&s).unwrap();
     assert_eq!(i.params().iter().map(|p| p.name.as_str()).collect::<Vec<_>>(), ["r", "x"]);
     let at = |p: [f64; 3], time: f64, params: &[f64]| i.distance_in(v3(p[0], p[1], p[2]), &Env { time, params });
     assert!((at([0.0, 0.0, 0.0], 0.0, &[1.5, 3.0]) + 1.5).abs() < 1e-12);
@@ -226,9 +228,9 @@ fn parameters_are_read_by_slot_and_default_when_missing() {
 #[test]
 fn domain_operations_follow_the_evaluation_rules() {
     let p = [0.7, -0.4, 1.3];
-    let at = |n: Node| d64(&Interpreter::new(&scene(n)), p);
+    let at = |n: Node| d64(&Interpreter::new(&scene(n)).unwrap(), p);
     // Rotation turns the shape by +angle: a box long in x turned 90° about z is long in y.
-    let long = Interpreter::new(&scene(box3([2.0, 0.2, 0.2]).rotate_z(std::f64::consts::FRAC_PI_2)));
+    let long = Interpreter::new(&scene(box3([2.0, 0.2, 0.2]).rotate_z(std::f64::consts::FRAC_PI_2))).unwrap();
     assert!(d64(&long, [0.0, 1.9, 0.0]) < 0.0 && d64(&long, [1.9, 0.0, 0.0]) > 0.0);
     // Any-axis rotation about z equals rotate_z.
     assert!(
@@ -236,9 +238,9 @@ fn domain_operations_follow_the_evaluation_rules() {
             < 1e-12
     );
     // Repetition: p − period·floor(p/period + 0.5) on repeated axes; the limited form clamps the cell.
-    let rep = Interpreter::new(&scene(sphere(0.3).repeat([2.0, 0.0, 0.0])));
+    let rep = Interpreter::new(&scene(sphere(0.3).repeat([2.0, 0.0, 0.0]))).unwrap();
     assert!((d64(&rep, [4.1, 0.2, 0.0]) - d64(&rep, [0.1, 0.2, 0.0])).abs() < 1e-12);
-    let lim = Interpreter::new(&scene(sphere(0.3).repeat_limited([2.0, 0.0, 0.0], [1, 0, 0])));
+    let lim = Interpreter::new(&scene(sphere(0.3).repeat_limited([2.0, 0.0, 0.0], [1, 0, 0]))).unwrap();
     assert!((d64(&lim, [4.1, 0.0, 0.0]) - (2.1 - 0.3)).abs() < 1e-12);
     // Twist about y and bend in xy: the child at the turned point, divided by the stretch.
     let k = 0.9;
@@ -255,8 +257,8 @@ fn domain_operations_follow_the_evaluation_rules() {
     assert!((at(box3([0.5, 1.0, 0.3]).bend(k)) - bend).abs() < 1e-12);
     // Scale divides the point and multiplies the distance back.
     assert!((at(box3([0.5, 1.0, 0.3]).scale(2.5)) - 2.5 * child(p.map(|v| v / 2.5))).abs() < 1e-12);
-    // A union of nothing is no geometry.
-    assert_eq!(at(union_all([])), f64::INFINITY);
+    // A union of nothing is refused, as by every other entry point.
+    assert!(Interpreter::new(&scene(union_all([]))).is_err());
 }
 
 // ---- f32 against f64 ---------------------------------------------------------------------------------------------
@@ -300,7 +302,7 @@ proptest! {
 
     #[test]
     fn f32_agrees_with_f64_on_primitive_trees(t in tree(), points in prop::collection::vec(vec3_in(-3.0, 3.0), 32)) {
-        let i = Interpreter::new(&scene(t.clone()));
+        let i = Interpreter::new(&scene(t.clone())).unwrap();
         for p in points {
             let p32 = p.map(|v| v as f32 as f64);
             let (a, b) = (d32(&i, p32) as f64, d64(&i, p32));
@@ -365,7 +367,7 @@ fn f32_agrees_with_f64_on_fractals_away_from_the_surface() {
         (rng >> 11) as f64 / (1u64 << 53) as f64
     };
     for (name, f, half) in fractals {
-        let i = Interpreter::new(&scene(f));
+        let i = Interpreter::new(&scene(f)).unwrap();
         let mut worst = 0.0f64;
         for _ in 0..4000 {
             let p = [0, 1, 2].map(|_| ((next() * 2.0 - 1.0) * half) as f32 as f64);
@@ -426,8 +428,10 @@ fn mandelbulb_on_and_near_the_pole_axis() {
 /// Case 2: p = 0 exactly, and points whose orbit never escapes, give a finite estimate at or below 0.
 #[test]
 fn mandelbulb_at_the_origin_and_at_points_that_never_escape() {
-    let bulbs =
-        [Interpreter::new(&scene(mandelbulb(8))), Interpreter::new(&scene(mandelbulb(param("n", 8.0, 2.0..16.0))))];
+    let bulbs = [
+        Interpreter::new(&scene(mandelbulb(8))).unwrap(),
+        Interpreter::new(&scene(mandelbulb(param("n", 8.0, 2.0..16.0)))).unwrap(),
+    ];
     for i in &bulbs {
         for p in [[0.0, 0.0, 0.0], [0.0, 0.0, 0.5], [0.1, -0.2, 0.15], [-0.3, 0.1, 0.2], [0.0, 0.4, -0.3]] {
             let (a, b) = (d32(i, p), d64(i, p));
@@ -463,7 +467,7 @@ fn high_power_points(n: usize) -> Vec<[f64; 3]> {
 fn high_power_mandelbulbs_stay_finite_in_f64() {
     for power in [16.0, 32.0] {
         for iterations in [8, 32, MAX_ITERATIONS] {
-            let i = Interpreter::new(&scene(mandelbulb(power).bailout(256.0).iterations(iterations)));
+            let i = Interpreter::new(&scene(mandelbulb(power).bailout(256.0).iterations(iterations))).unwrap();
             for p in high_power_points(3000) {
                 let d = d64(&i, p);
                 assert!(d.is_finite(), "power {power} × {iterations} at {p:?}: {d}");
@@ -481,7 +485,7 @@ fn high_power_mandelbulbs_stay_finite_in_f32() {
     assert!(d.is_finite(), "power 16 × 8, bailout 256 at (-0.73857415, -1.087467, 0.24681997): {d}");
     for power in [16.0, 32.0] {
         for iterations in [8, 32, MAX_ITERATIONS] {
-            let i = Interpreter::new(&scene(mandelbulb(power).bailout(256.0).iterations(iterations)));
+            let i = Interpreter::new(&scene(mandelbulb(power).bailout(256.0).iterations(iterations))).unwrap();
             for p in high_power_points(3000) {
                 let d = d32(&i, p);
                 assert!(d.is_finite(), "power {power} × {iterations} at {p:?}: {d}");
@@ -494,7 +498,7 @@ fn high_power_mandelbulbs_stay_finite_in_f32() {
 /// f32 and f64 within 1e-5 (coordinates like 1/3 round in f32 by up to 3e-8; the estimate is 1-Lipschitz).
 #[test]
 fn menger_on_the_planes_of_its_holes() {
-    let i = Interpreter::new(&scene(menger(6)));
+    let i = Interpreter::new(&scene(menger(6))).unwrap();
     let mut worst = 0.0f64;
     for m in 1..=6 {
         let step = 3f64.powi(-m);
@@ -521,10 +525,10 @@ fn menger_on_the_planes_of_its_holes() {
 fn smooth_union_at_zero_and_huge_blend_radius() {
     let a = sphere(0.2).translate([-0.5, 0.0, 0.0]);
     let b = box3([0.1, 0.2, 0.3]).translate([0.5, 0.0, 0.0]);
-    let plain = Interpreter::new(&scene(union(a.clone(), b.clone())));
-    let zero = Interpreter::new(&scene(smooth_union(a.clone(), b.clone(), 0.0)));
-    let zero_param = Interpreter::new(&scene(smooth_union(a.clone(), b.clone(), param("k", 0.0, 0.0..1.0))));
-    let huge = Interpreter::new(&scene(smooth_union(a.clone(), b.clone(), 5.0)));
+    let plain = Interpreter::new(&scene(union(a.clone(), b.clone()))).unwrap();
+    let zero = Interpreter::new(&scene(smooth_union(a.clone(), b.clone(), 0.0))).unwrap();
+    let zero_param = Interpreter::new(&scene(smooth_union(a.clone(), b.clone(), param("k", 0.0, 0.0..1.0)))).unwrap();
+    let huge = Interpreter::new(&scene(smooth_union(a.clone(), b.clone(), 5.0))).unwrap();
     for p in [[0.0, 0.0, 0.0], [0.0, 0.7, 0.1], [-0.5, 0.0, 0.0], [2.0, -1.0, 0.5], [0.3, 0.0, 0.0]] {
         let m = d64(&plain, p);
         assert_eq!(d64(&zero, p), m, "k = 0 at {p:?}");
@@ -538,7 +542,7 @@ fn smooth_union_at_zero_and_huge_blend_radius() {
     // Equal distances with k = 0: h = 0 / TINY, not 0 / 0.
     assert_eq!(sdf::smooth_min(0.25f32, 0.25, 0.0), 0.25);
     assert_eq!(sdf::blend_weight(0.25f32, 0.25, 0.0), 0.5);
-    let twins = Interpreter::new(&scene(smooth_union(sphere(1.0), sphere(1.0), 0.0)));
+    let twins = Interpreter::new(&scene(smooth_union(sphere(1.0), sphere(1.0), 0.0))).unwrap();
     let s = sample64(&twins, [0.0, 2.0, 0.0]);
     assert!(s.distance == 1.0 && s.albedo.x.is_finite());
 }
@@ -557,7 +561,7 @@ fn julia_at_its_critical_point_is_finite() {
 /// Evaluator trait objects dispatch to the same evaluation.
 #[test]
 fn evaluator_trait_matches_the_inherent_methods() {
-    let i = Interpreter::new(&scene(union(sphere(1.0), Node::from(menger(2)).translate([3.0, 0.0, 0.0]))));
+    let i = Interpreter::new(&scene(union(sphere(1.0), Node::from(menger(2)).translate([3.0, 0.0, 0.0])))).unwrap();
     let e32: &dyn Evaluator<f32> = &i;
     let e64: &dyn Evaluator<f64> = &i;
     let p = v3(1.7f32, 0.2, -0.3);

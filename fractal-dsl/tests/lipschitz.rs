@@ -67,7 +67,7 @@ proptest! {
 
     #[test]
     fn exact_trees_are_1_lipschitz(tree in exact_tree(), pairs in prop::collection::vec(pair(), 64)) {
-        let interp = Interpreter::new(&scene(tree.clone()));
+        let interp = Interpreter::new(&scene(tree.clone())).unwrap();
         for (p, q) in pairs {
             let (fp, fq) = (d64(&interp, p), d64(&interp, q));
             let d = dist(p, q);
@@ -143,7 +143,7 @@ fn julia_escapes(p: [f64; 3], c: [f64; 4], iterations: u32, bailout: f64) -> boo
 /// at the step scale it settles.
 fn measured_ratio(fractal: Fractal, half: f64, exterior: &dyn Fn([f64; 3]) -> bool, pairs: usize, seed: u64) -> f64 {
     let step = fractal.step_factor();
-    let interp = Interpreter::new(&scene(fractal));
+    let interp = Interpreter::new(&scene(fractal)).unwrap();
     let mut rng = Rng(seed);
     let h = 0.01 * half;
     let mut worst = 0.0f64;
@@ -274,7 +274,7 @@ fn menger_and_sierpinski_estimators_are_1_lipschitz() {
         ("sierpinski 3", sierpinski_tetrahedron(3)),
     ] {
         assert_eq!(fractal.step_factor(), 1.0);
-        let interp = Interpreter::new(&scene(fractal));
+        let interp = Interpreter::new(&scene(fractal)).unwrap();
         let mut rng = Rng(42);
         let mut worst = 0.0f64;
         for _ in 0..20000 {

@@ -75,7 +75,10 @@ fn expand(scene: &fractal_dsl::Scene, span: Span) -> TokenStream2 {
         return syn::Error::new(span, message).to_compile_error();
     }
     let krate = dsl_path();
-    let kernels = fractal_dsl::compile(scene);
+    let kernels = match fractal_dsl::compile(scene) {
+        Ok(kernels) => kernels,
+        Err(e) => return syn::Error::new(span, e.to_string()).to_compile_error(),
+    };
     let native_src = fractal_dsl::back::rust::write(&kernels.program, &krate.to_string().replace(' ', ""));
     let native: TokenStream2 = match native_src.parse() {
         Ok(tokens) => tokens,

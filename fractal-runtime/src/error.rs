@@ -67,6 +67,9 @@ pub enum RenderError {
     Device { backend: Backend, message: String },
     #[error(transparent)]
     Frame(#[from] FrameError),
+    /// The scene breaks a rule of the language (only scenes made with the builder can reach a renderer so).
+    #[error(transparent)]
+    InvalidScene(#[from] fractal_dsl::validate::InvalidScene),
     /// Every backend `auto` tried failed; one line per backend.
     #[error("no backend could render:\n{}", .0.join("\n"))]
     AllBackendsFailed(Vec<String>),

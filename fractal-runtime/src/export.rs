@@ -26,7 +26,7 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::str::FromStr;
 
 use fractal_dsl::compiled::{CompiledScene, Kernels};
-use fractal_dsl::validate::ValidationError;
+use fractal_dsl::validate::InvalidScene;
 use fractal_dsl::Scene;
 use naga::back::{glsl, hlsl, msl, spv};
 use naga::valid::{Capabilities, ModuleInfo, ValidationFlags, Validator};
@@ -157,8 +157,8 @@ impl Exported {
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum ExportError {
     /// The scene breaks a rule of the scene language (only scenes not made by the parser can).
-    #[error("the scene is invalid: {}", join_errors(.0))]
-    InvalidScene(Vec<ValidationError>),
+    #[error(transparent)]
+    InvalidScene(#[from] InvalidScene),
     /// naga's WGSL front end refused the compiler's WGSL: a bug in the WGSL writer.
     #[error("the WGSL kernel does not parse (a scene compiler bug):\n{0}")]
     WgslParse(String),
@@ -173,10 +173,6 @@ pub enum ExportError {
     Translation { target: Target, message: String },
 }
 
-fn join_errors(errors: &[ValidationError]) -> String {
-    errors.iter().map(ToString::to_string).collect::<Vec<_>>().join("; ")
-}
-
 /// The render kernel of compiled `kernels` in `target`'s language or format.
 pub fn export(kernels: &Kernels, target: Target) -> Result<Exported, ExportError> {
     export_sources(&kernels.opencl, &kernels.wgsl, target)
@@ -184,8 +180,7 @@ pub fn export(kernels: &Kernels, target: Target) -> Result<Exported, ExportError
 
 /// Validates `scene`, compiles it and exports its render kernel.
 pub fn export_scene(scene: &Scene, target: Target) -> Result<Exported, ExportError> {
-    fractal_dsl::validate::validate(scene).map_err(ExportError::InvalidScene)?;
-    export(&fractal_dsl::compile(scene), target)
+    export(&fractal_dsl::compile(scene)?, target)
 }
 
 /// Exports the kernel a scene was compiled to at build time (`scene!`, `scene_file!`, the built-in scenes).

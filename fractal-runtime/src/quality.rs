@@ -101,7 +101,7 @@ pub fn with_fractals(scene: &Scene, edit: &dyn Fn(&Fractal) -> Fractal) -> Scene
 
 fn map_fractals(node: &Node, edit: &dyn Fn(&Fractal) -> Fractal) -> Node {
     match node {
-        Node::Fractal(f) => Node::Fractal(edit(f)),
+        Node::Fractal(f) => Node::Fractal(Box::new(edit(f))),
         Node::Prim(_) => node.clone(),
         Node::Op(op) => Node::Op(Op {
             kind: op.kind,

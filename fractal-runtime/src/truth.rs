@@ -118,7 +118,7 @@ impl Truth {
             time,
             params,
         };
-        let shading = Interpreter::new(&scene);
+        let shading = Interpreter::new(&scene)?;
         let width = frame.width() as usize;
         let mut pixels =
             vec![TruthPixel { t: f64::INFINITY, normal: None, colour: [0.0; 3] }; width * truth.height as usize];
@@ -313,7 +313,7 @@ mod tests {
         let settings = TruthSettings { step_footprints: 1.0 / 32.0, iteration_factor: 1 };
         let truth = Truth::compute(&bulb, &f, settings).unwrap();
         let error = |s: &Scene| {
-            let traces = trace_scene::<f32, _>(&Interpreter::new(s), s, &f).unwrap();
+            let traces = trace_scene::<f32, _>(&Interpreter::new(s).unwrap(), s, &f).unwrap();
             measure(s, &truth, Observed::Traced(&traces))
         };
         let good = error(&bulb);

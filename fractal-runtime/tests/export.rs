@@ -32,7 +32,7 @@ fn builtin_scenes() -> Vec<(String, Scene, Kernels)> {
             let name = path.file_stem().expect("file name").to_string_lossy().into_owned();
             let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
             let scene = fractal_dsl::parse::parse_str(&text).unwrap_or_else(|e| panic!("{}:{e}", path.display()));
-            let kernels = compile(&scene);
+            let kernels = compile(&scene).unwrap();
             (name, scene, kernels)
         })
         .collect()
@@ -265,7 +265,7 @@ fn invalid_scene_is_refused_with_the_rule_it_breaks() {
 
 #[test]
 fn broken_wgsl_is_an_error_not_a_panic() {
-    let mut kernels = compile(&scene(sphere(1.0)));
+    let mut kernels = compile(&scene(sphere(1.0))).unwrap();
     kernels.wgsl.push_str("\nfn broken( {\n");
     for target in [Target::Glsl, Target::Hlsl, Target::Msl, Target::SpirV] {
         let err = export(&kernels, target).expect_err("broken WGSL must be refused");
@@ -277,7 +277,7 @@ fn broken_wgsl_is_an_error_not_a_panic() {
 
 #[test]
 fn wgsl_without_the_render_entry_point_is_refused() {
-    let mut kernels = compile(&scene(sphere(1.0)));
+    let mut kernels = compile(&scene(sphere(1.0))).unwrap();
     kernels.wgsl = kernels.wgsl.replace("fn render(", "fn not_render(");
     let err = export(&kernels, Target::SpirV).expect_err("no entry point");
     assert_eq!(err, ExportError::NoEntryPoint);

@@ -70,8 +70,8 @@ fn compiled_scenes_render_alike_on_every_backend() {
     #[cfg(feature = "opencl")]
     let mut cl = available("OpenCL", fractal_runtime::OpenClRenderer::new(false));
     for (name, s) in scenes() {
-        let kernels = fractal_dsl::compile(&s);
-        let interpreter = Interpreter::new(&s);
+        let kernels = fractal_dsl::compile(&s).unwrap();
+        let interpreter = Interpreter::new(&s).unwrap();
         let frame = frame(&s);
         let cpu = CpuRenderer::new()
             .render(&RenderJob::new(KernelSources::default().with_cpu(&interpreter, &s), &frame))
@@ -105,7 +105,7 @@ fn lattice() -> Vec<[f32; 4]> {
 
 /// Probe results against the interpreter in f32: distance within 1e-4 (relative beyond 1), material within 1e-4.
 fn check_probe(name: &str, backend: &str, s: &Scene, frame: &Frame, points: &[[f32; 4]], got: &[[f32; 8]]) {
-    let interpreter = Interpreter::new(s);
+    let interpreter = Interpreter::new(s).unwrap();
     let params = frame.params();
     let env = Env { time: frame.time(), params: &params };
     assert_eq!(got.len(), points.len());

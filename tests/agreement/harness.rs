@@ -150,7 +150,7 @@ pub struct Reference {
 impl Reference {
     pub fn new(row: &Row) -> Reference {
         let (time, params) = row.env_values::<f64>();
-        Reference { interp: Interpreter::new(row.scene()), time, params }
+        Reference { interp: Interpreter::new(row.scene()).unwrap(), time, params }
     }
     pub fn distance(&self, p: V3<f64>) -> f64 {
         Evaluator::<f64>::distance(&self.interp, p, &Env { time: self.time, params: &self.params })

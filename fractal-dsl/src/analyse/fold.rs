@@ -35,7 +35,7 @@ fn fold_v3(v: &Vec3Expr) -> Vec3Expr {
 pub fn fold_node(n: &Node) -> Node {
     match n {
         Node::Prim(p) => Node::Prim(Prim { args: fold_args(&p.args), ..p.clone() }),
-        Node::Fractal(f) => Node::Fractal(fold_fractal(f)),
+        Node::Fractal(f) => Node::Fractal(Box::new(fold_fractal(f))),
         Node::Op(op) => {
             let args = fold_args(&op.args);
             match op.shapes.as_slice() {
@@ -43,7 +43,7 @@ pub fn fold_node(n: &Node) -> Node {
                 shapes => Node::Op(Op { kind: op.kind, shapes: shapes.iter().map(fold_node).collect(), args }),
             }
         }
-        Node::Material(c, m) => Node::Material(Box::new(fold_node(c)), fold_material(m)),
+        Node::Material(c, m) => Node::Material(Box::new(fold_node(c)), Box::new(fold_material(m))),
     }
 }
 

@@ -18,9 +18,10 @@ pub struct Interpreter {
 }
 
 impl Interpreter {
-    /// Folds and prepares `scene`. [`Env::params`] slot i holds the value of `scene.params()[i]`.
-    pub fn new(scene: &Scene) -> Interpreter {
-        Interpreter { plan: Plan::new(scene), guards: true }
+    /// Validates, folds and prepares `scene`. [`Env::params`] slot i holds the value of `scene.params()[i]`.
+    pub fn new(scene: &Scene) -> Result<Interpreter, crate::validate::InvalidScene> {
+        crate::validate::checked(scene)?;
+        Ok(Interpreter { plan: Plan::new(scene), guards: true })
     }
 
     /// The same scene with every union child evaluated, guard boxes ignored: the reference the guards are tested

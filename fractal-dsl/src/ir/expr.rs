@@ -264,3 +264,34 @@ impl fmt::Display for BinOp {
         f.write_str(self.symbol())
     }
 }
+
+/// Expressions built in Rust (`e = e + 1.0` in a loop) may nest far deeper than the native stack allows: as for
+/// [`super::Node`], operands are moved onto a heap stack so each node drops with nothing left to recurse into.
+impl Drop for Expr {
+    fn drop(&mut self) {
+        let mut pending = Vec::new();
+        self.detach_operands(&mut pending);
+        while let Some(mut e) = pending.pop() {
+            e.detach_operands(&mut pending);
+        }
+    }
+}
+
+impl Expr {
+    fn detach_operands(&mut self, into: &mut Vec<Expr>) {
+        let mut detach = |e: &mut Box<Expr>| {
+            if matches!(**e, Expr::Neg(_) | Expr::Bin(..) | Expr::Call(..)) {
+                into.push(std::mem::replace(e, Expr::Time));
+            }
+        };
+        match self {
+            Expr::Neg(a) => detach(a),
+            Expr::Bin(_, a, b) => {
+                detach(a);
+                detach(b);
+            }
+            Expr::Call(_, args) => into.append(args),
+            Expr::Lit(_) | Expr::Time | Expr::Param(_) => {}
+        }
+    }
+}

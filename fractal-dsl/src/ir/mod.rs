@@ -64,10 +64,10 @@ pub use prim::{Prim, PrimDecl, PrimKind};
 #[derive(Clone, Debug, PartialEq)]
 pub enum Node {
     Prim(Prim),
-    Fractal(Fractal),
+    Fractal(Box<Fractal>),
     /// CSG, transforms and domain operations ([`crate::ops`]).
     Op(Op),
-    Material(Box<Node>, Material),
+    Material(Box<Node>, Box<Material>),
 }
 
 impl Node {
@@ -264,4 +264,30 @@ pub struct Scene {
     pub lights: Vec<Light>,
     pub camera: Camera,
     pub settings: RenderSettings,
+}
+
+/// Trees from the builder may nest far deeper than the native stack allows (validation refuses them, but they must
+/// still drop): the children are moved onto a heap stack, so every node drops with no children left to recurse into.
+impl Drop for Node {
+    fn drop(&mut self) {
+        let mut pending = Vec::new();
+        self.detach_children(&mut pending);
+        while let Some(mut node) = pending.pop() {
+            node.detach_children(&mut pending);
+        }
+    }
+}
+
+impl Node {
+    fn detach_children(&mut self, into: &mut Vec<Node>) {
+        match self {
+            Node::Op(op) => into.append(&mut op.shapes),
+            Node::Material(inner, _) if !inner.children().is_empty() => {
+                let leaf =
+                    Node::Op(Op { kind: OpKind(&crate::ops::decl::UNION), shapes: Vec::new(), args: Vec::new() });
+                into.push(std::mem::replace(inner, leaf));
+            }
+            _ => {}
+        }
+    }
 }

@@ -6,6 +6,7 @@
 use super::arg::{normalise_directions, ArgDecl, ArgRange, ArgValue};
 use super::Node;
 use crate::geom::Bound;
+use crate::validate::MAX_NODES;
 
 /// How an operator takes its shapes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -89,16 +90,20 @@ impl OpDecl {
     pub fn node(&'static self, shapes: Vec<Node>, mut args: Vec<ArgValue>) -> Node {
         normalise_directions(self.args, &mut args);
         let shapes = if self.flattens {
-            // The first shape's list is reused, so building `node = union(node, x)` in a loop stays linear.
-            let mut rest = shapes.into_iter();
-            let mut flat = match rest.next() {
-                Some(Node::Op(op)) if op.kind.0.name == self.name => op.shapes,
-                first => first.into_iter().collect(),
-            };
-            for s in rest {
-                match s {
-                    Node::Op(op) if op.kind.0.name == self.name => flat.extend(op.shapes),
-                    s => flat.push(s),
+            // The first shape's list is taken whole, so `node = union(node, x)` in a loop is linear. A later one is
+            // copied, so `node = union(x, node)` costs the list's length per call: past [`MAX_NODES`] children (a
+            // scene validation refuses anyway) it is kept nested instead, and a list that already ends in one is
+            // never copied again, so the loop stays bounded.
+            let same = |op: &Op| op.kind.0.name == self.name;
+            let capped = |op: &Op| op.shapes.last().and_then(Node::op).is_some_and(same);
+            let mut flat = Vec::new();
+            for mut s in shapes {
+                match &mut s {
+                    Node::Op(op) if same(op) && flat.is_empty() => flat = std::mem::take(&mut op.shapes),
+                    Node::Op(op) if same(op) && !capped(op) && flat.len() + op.shapes.len() <= MAX_NODES => {
+                        flat.append(&mut op.shapes)
+                    }
+                    _ => flat.push(s),
                 }
             }
             flat

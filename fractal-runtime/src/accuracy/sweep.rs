@@ -134,7 +134,7 @@ pub fn escape_time_iterations(scene: &Scene) -> Option<u32> {
 /// Renders `quality` on the CPU with per-pixel traces, `TIMING_RUNS` times.
 fn run_cpu(scene: &Scene, quality: &Quality, frame: &Frame, truth: &Truth) -> Result<SweepPoint, RenderError> {
     let applied = quality.apply(scene);
-    let interpreter = Interpreter::new(&applied);
+    let interpreter = Interpreter::new(&applied)?;
     let scaled = StepScaled { inner: &interpreter, scale: quality.step_scale() as f32 };
     let mut times = Vec::new();
     let mut traces = Vec::new();
@@ -156,7 +156,7 @@ fn run_kernels(
     truth: &Truth,
 ) -> Result<SweepPoint, RenderError> {
     let applied = quality.apply(scene);
-    let kernels = fractal_dsl::compile(&applied);
+    let kernels = fractal_dsl::compile(&applied)?;
     let job = RenderJob::new(KernelSources::compiled(&kernels), frame);
     // The first render builds the kernel; it is not timed.
     let mut image = renderer.render(&job)?;

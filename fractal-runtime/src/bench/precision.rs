@@ -45,7 +45,7 @@ impl Accuracy {
 
 /// The reference image: the CPU renderer in f64 with the interpreter.
 pub fn reference(scene: &Scene, frame: &Frame) -> Result<Image, RenderError> {
-    render_scene::<f64, _>(&Interpreter::new(scene), scene, frame)
+    render_scene::<f64, _>(&Interpreter::new(scene)?, scene, frame)
 }
 
 /// A colour packed as the renderers pack it: clamp, gamma, round.

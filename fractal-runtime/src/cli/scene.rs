@@ -63,8 +63,9 @@ impl<'a> LoadedScene<'a> {
             .map_err(|e| CliError::failure(format!("cannot read scene file {}: {e}", path.display())))?;
         let scene =
             fractal_dsl::parse::parse_str(&text).map_err(|e| CliError::failure(format!("{}:{e}", path.display())))?;
-        let kernels = fractal_dsl::compile(&scene);
-        let interpreter = Interpreter::new(&scene);
+        let invalid = |e: fractal_dsl::validate::InvalidScene| CliError::failure(format!("{}: {e}", path.display()));
+        let kernels = fractal_dsl::compile(&scene).map_err(invalid)?;
+        let interpreter = Interpreter::new(&scene).map_err(invalid)?;
         let name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| arg.to_string());
         Ok(LoadedScene {
             name,

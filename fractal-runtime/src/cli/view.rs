@@ -18,7 +18,8 @@ pub fn view(args: &ViewArgs, library: &SceneLibrary) -> Result<(), CliError> {
         SceneOrigin::File(path) => ViewerScene::file(path),
         SceneOrigin::BuiltIn => match library.scenes.iter().find(|(name, _)| *name == loaded.name) {
             Some(&(name, compiled)) => ViewerScene::compiled(name, compiled),
-            None => ViewerScene::built(loaded.name.clone(), loaded.scene.clone()),
+            None => ViewerScene::built(loaded.name.clone(), loaded.scene.clone())
+                .map_err(|e| CliError::failure(e.to_string()))?,
         },
     };
     let options = ViewerOptions {

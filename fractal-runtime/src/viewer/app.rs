@@ -439,7 +439,10 @@ impl App {
 
     /// Recompiles the kernels with the current effect overrides.
     fn apply_overrides(&mut self) {
-        let next = self.live.with_overrides(&self.overrides);
+        let next = match self.live.with_overrides(&self.overrides) {
+            Ok(next) => next,
+            Err(e) => return eprintln!("{e}"),
+        };
         println!("{} (kernels recompiled)", describe(&next.scene.settings));
         let previous = std::mem::replace(&mut self.live, next);
         if self.last_good.is_none() {
@@ -455,11 +458,13 @@ impl App {
         let Some(text) = watch.poll() else {
             return;
         };
-        let loaded = text.and_then(|text| LiveScene::from_text(self.live.name.clone(), path, &text));
+        let loaded = text
+            .and_then(|text| LiveScene::from_text(self.live.name.clone(), path, &text))
+            .and_then(|loaded| loaded.with_overrides(&self.overrides));
         match loaded {
             Ok(loaded) => {
                 println!("reloaded {}", path.display());
-                let next = loaded.with_overrides(&self.overrides);
+                let next = loaded;
                 let params = ParamControl::new(&next.scene, Some(&self.params));
                 let previous = std::mem::replace(&mut self.live, next);
                 let previous_params = std::mem::replace(&mut self.params, params);

@@ -47,7 +47,7 @@ impl LiveScene {
                 opencl: scene.opencl().to_string(),
                 evaluator: CpuEvaluator::Native(scene.native()),
             }),
-            ViewerScene::Built { name, scene } => Ok(LiveScene::from_scene(name.clone(), (**scene).clone())),
+            ViewerScene::Built { name, scene } => LiveScene::from_scene(name.clone(), (**scene).clone()),
             ViewerScene::File(path) => {
                 let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
                 LiveScene::from_text(source.name(), path, &text)
@@ -58,19 +58,20 @@ impl LiveScene {
     /// Parses and compiles scene text; errors read `file:line:column: message`.
     pub fn from_text(name: String, path: &Path, text: &str) -> Result<LiveScene, String> {
         let scene = fractal_dsl::parse::parse_str(text).map_err(|e| format!("{}:{e}", path.display()))?;
-        Ok(LiveScene::from_scene(name, scene))
+        LiveScene::from_scene(name, scene).map_err(|e| format!("{}: {e}", path.display()))
     }
 
-    fn from_scene(name: String, scene: Scene) -> LiveScene {
-        let kernels = fractal_dsl::compile(&scene);
-        LiveScene {
+    fn from_scene(name: String, scene: Scene) -> Result<LiveScene, String> {
+        let kernels = fractal_dsl::compile(&scene).map_err(|e| e.to_string())?;
+        let interpreter = Interpreter::new(&scene).map_err(|e| e.to_string())?;
+        Ok(LiveScene {
             name,
-            evaluator: CpuEvaluator::Interpreted(Box::new(Interpreter::new(&scene))),
+            evaluator: CpuEvaluator::Interpreted(Box::new(interpreter)),
             authored: scene.clone(),
             scene,
             wgsl: kernels.wgsl,
             opencl: kernels.opencl,
-        }
+        })
     }
 
     pub fn authored(&self) -> &Scene {
@@ -78,16 +79,17 @@ impl LiveScene {
     }
 
     /// The same scene with `overrides` applied; the kernels are recompiled when the settings change. The evaluator
-    /// is kept: it reads geometry and materials only, and the CPU renderer takes the settings from the scene.
-    pub fn with_overrides(&self, overrides: &EffectOverrides) -> LiveScene {
+    /// is kept: it reads geometry and materials only, and the CPU renderer takes the settings from the scene. An
+    /// override the scene's rules refuse is an error naming the setting; the caller keeps the current scene.
+    pub fn with_overrides(&self, overrides: &EffectOverrides) -> Result<LiveScene, String> {
         let settings = overrides.apply(&self.authored.settings);
         if settings == self.scene.settings {
-            return self.clone();
+            return Ok(self.clone());
         }
         let mut scene = self.authored.clone();
         scene.settings = settings;
-        let kernels = fractal_dsl::compile(&scene);
-        LiveScene { scene, wgsl: kernels.wgsl, opencl: kernels.opencl, ..self.clone() }
+        let kernels = fractal_dsl::compile(&scene).map_err(|e| e.to_string())?;
+        Ok(LiveScene { scene, wgsl: kernels.wgsl, opencl: kernels.opencl, ..self.clone() })
     }
 
     pub fn wgsl(&self) -> &str {
@@ -167,13 +169,14 @@ mod tests {
 
     #[test]
     fn overrides_recompile_only_when_settings_change() {
-        let source = ViewerScene::built("ball", fractal_dsl::builder::scene(fractal_dsl::builder::sphere(1.0)));
+        let source =
+            ViewerScene::built("ball", fractal_dsl::builder::scene(fractal_dsl::builder::sphere(1.0))).unwrap();
         let live = LiveScene::load(&source).unwrap();
-        let same = live.with_overrides(&EffectOverrides::default());
+        let same = live.with_overrides(&EffectOverrides::default()).unwrap();
         assert_eq!(same.wgsl(), live.wgsl());
         let mut overrides = EffectOverrides::default();
         overrides.toggle_ambient_occlusion(&live.authored().settings);
-        let with_ao = live.with_overrides(&overrides);
+        let with_ao = live.with_overrides(&overrides).unwrap();
         assert!(with_ao.scene.settings.ambient_occlusion.is_some());
         assert_ne!(with_ao.wgsl(), live.wgsl(), "the kernel gains the ambient occlusion code");
         assert_eq!(with_ao.authored(), live.authored());

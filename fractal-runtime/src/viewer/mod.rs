@@ -87,8 +87,10 @@ impl ViewerScene {
     pub fn file(path: impl Into<PathBuf>) -> ViewerScene {
         ViewerScene::File(path.into())
     }
-    pub fn built(name: impl Into<String>, scene: Scene) -> ViewerScene {
-        ViewerScene::Built { name: name.into(), scene: Box::new(scene) }
+    /// A scene made with the builder, validated here so a broken one is refused before any window opens.
+    pub fn built(name: impl Into<String>, scene: Scene) -> Result<ViewerScene, fractal_dsl::validate::InvalidScene> {
+        fractal_dsl::validate::checked(&scene)?;
+        Ok(ViewerScene::Built { name: name.into(), scene: Box::new(scene) })
     }
     /// The name shown in the title and used for screenshot files.
     pub fn name(&self) -> String {

@@ -196,7 +196,7 @@ impl Writer<'_> {
                 quote!(#k::Node::Prim(#p))
             }
             Node::Fractal(f) => {
-                let f = self.fractal(f);
+                let f = self.boxed(self.fractal(f));
                 quote!(#k::Node::Fractal(#f))
             }
             Node::Op(op) => {
@@ -204,7 +204,7 @@ impl Writer<'_> {
                 quote!(#k::Node::Op(#op))
             }
             Node::Material(c, m) => {
-                let (c, m) = (self.boxed(self.node(c)), self.material(m));
+                let (c, m) = (self.boxed(self.node(c)), self.boxed(self.material(m)));
                 quote!(#k::Node::Material(#c, #m))
             }
         }

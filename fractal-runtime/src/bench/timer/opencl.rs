@@ -114,7 +114,7 @@ mod tests {
             }
         };
         let s = scene(mandelbulb(8));
-        let kernels = fractal_dsl::compile(&s);
+        let kernels = fractal_dsl::compile(&s).unwrap();
         let pose = Pose::from_camera(&s.camera, 0.0, &|p| p.default).unwrap();
         let frame = Frame::new(&s, &pose, 0.0, 24, 16, &ParamValues::defaults(&s)).unwrap();
         let job = RenderJob::new(KernelSources::compiled(&kernels), &frame);

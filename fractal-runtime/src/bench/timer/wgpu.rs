@@ -263,7 +263,7 @@ mod tests {
         };
         let (mut timer, mut renderer) = (timer, renderer);
         let s = scene(union(mandelbulb(8), sphere(0.5).translate(vec3(1.2, 0.0, 0.0))));
-        let kernels = fractal_dsl::compile(&s);
+        let kernels = fractal_dsl::compile(&s).unwrap();
         let pose = Pose::from_camera(&s.camera, 0.0, &|p| p.default).unwrap();
         let frame = Frame::new(&s, &pose, 0.0, 40, 24, &ParamValues::defaults(&s)).unwrap();
         let job = RenderJob::new(KernelSources::compiled(&kernels), &frame);
