@@ -56,6 +56,11 @@ fn files_in(dir: &Path) -> BTreeSet<String> {
         .unwrap_or_default()
 }
 
+/// The frames of a sequence directory: its files less the record of the settings they were drawn with.
+fn frames_in(dir: &Path) -> BTreeSet<String> {
+    files_in(dir).into_iter().filter(|f| !f.ends_with(".settings")).collect()
+}
+
 fn modified(path: &Path) -> SystemTime {
     fs::metadata(path).and_then(|m| m.modified()).expect("file exists")
 }
@@ -240,7 +245,8 @@ fn an_interrupted_sequence_resumes_without_losing_or_rewriting_frames() {
     let run = || run_in(&dir, &[&args[..], &["out/%05d.png"]].concat());
     assert_ok(&run());
     let all: BTreeSet<String> = (0..6).map(|f| format!("{f:05}.png")).collect();
-    assert_eq!(files_in(&dir.join("out")), all);
+    assert_eq!(frames_in(&dir.join("out")), all);
+    assert!(dir.join("out/sequence.png.settings").exists(), "the sequence's settings are not recorded");
     let frame = |f: u32| dir.join(format!("out/{f:05}.png"));
     let first: Vec<Image> = (0..6).map(|f| read_png(&frame(f)).unwrap()).collect();
     assert!(first[0] != first[5], "time does not advance the scene");
@@ -257,7 +263,7 @@ fn an_interrupted_sequence_resumes_without_losing_or_rewriting_frames() {
     let out = run();
     assert_ok(&out);
     assert!(stderr(&out).contains("resuming: 4 of 6"), "{}", stderr(&out));
-    assert_eq!(files_in(&dir.join("out")), all, "missing frames or leftover partial files");
+    assert_eq!(frames_in(&dir.join("out")), all, "missing frames or leftover partial files");
     for (f, time) in kept {
         assert_eq!(modified(&frame(f)), time, "complete frame {f} was rewritten");
     }
@@ -292,7 +298,7 @@ fn shards_cover_every_frame_exactly_once() {
     };
     shard("0/2", "a/%d.png");
     shard("1/2", "b/%d.png");
-    let (a, b) = (files_in(&dir.join("a")), files_in(&dir.join("b")));
+    let (a, b) = (frames_in(&dir.join("a")), frames_in(&dir.join("b")));
     assert!(a.is_disjoint(&b), "{a:?} and {b:?} overlap");
     let all: BTreeSet<String> = (3..10).map(|f| format!("{f}.png")).collect();
     assert_eq!(a.union(&b).cloned().collect::<BTreeSet<_>>(), all);
@@ -300,7 +306,7 @@ fn shards_cover_every_frame_exactly_once() {
     // Shards may share one directory.
     shard("1/2", "both/%d.png");
     shard("0/2", "both/%d.png");
-    assert_eq!(files_in(&dir.join("both")), all);
+    assert_eq!(frames_in(&dir.join("both")), all);
 }
 
 #[test]
@@ -482,4 +488,79 @@ fn bad_input_is_one_clear_line_and_the_right_exit_status() {
     assert!(stderr(&out).contains("ffmpeg was not found on PATH"), "{}", stderr(&out));
     assert!(stderr(&out).contains("%05d.png"), "the error does not suggest a PNG sequence: {}", stderr(&out));
     assert!(!dir.join("clip.mp4").exists() && !dir.join("clip.mp4.partial").exists());
+}
+
+/// The hostile inputs: counts, sizes and times a user can type are bounded before any work starts, files are read
+/// with a cap, echoed text is escaped and cut, and nothing is written by a refused command.
+#[test]
+fn hostile_input_is_refused_before_anything_is_written() {
+    let dir = scratch("hostile_input");
+    fs::create_dir_all(dir.join("existing")).unwrap();
+    let long_name = format!("scene({}(1.0))", "x".repeat(1 << 20));
+    let files = [
+        ("long_name.fractal", long_name.as_str()),
+        ("nul.fractal", "scene(sph\0ere(1.0))"),
+        ("suffix.fractal", "scene(sphere(300u8))"),
+        ("setting.fractal", "scene(sphere(1.0).max_steps(10))"),
+        ("sqrt_time.fractal", "scene(sphere(1.0).translate(vec3(sqrt(t - 5.0), 0.0, 0.0)))"),
+    ];
+    for (name, text) in files {
+        fs::write(dir.join(name), text).unwrap();
+    }
+    let sum = format!("scene(sphere({}))", vec!["0.001"; 2000].join(" + "));
+    fs::write(dir.join("sum.fractal"), sum).unwrap();
+    let param = fixture("sphere_param.fractal");
+    let before = files_in(&dir);
+    let cases: Vec<(Vec<&str>, i32, &str)> = vec![
+        (vec!["render", "hello_world", "--frames", "0..18446744073709551615"], 2, "at most 1000000 are rendered"),
+        (
+            vec!["render", "hello_world", "--frames", "0..100", "--fps", "1e-320"],
+            2,
+            "frame 1 at 1e-320 fps: time inf is outside",
+        ),
+        (vec!["render", "hello_world", "--frames", "0..10", "--fps", "-30"], 2, "frame rate `-30` must be greater"),
+        (vec!["render", "hello_world", "--time", "1e300"], 2, "time 1e300 is outside ±100000 s"),
+        (vec!["bench", "hello_world", "--seconds", "1e300"], 2, "must be in (0, 3600] seconds"),
+        (vec!["bench", "hello_world", "--frames", "4294967295"], 2, "4294967295 is not in 1..=100000"),
+        (vec!["render", "/dev/zero"], 1, "larger than 8 MiB: not a scene file"),
+        (vec!["render", "hello_world", "-o", "out/.png"], 2, "the file name before .png is empty"),
+        (vec!["render", "hello_world", "-o", "existing"], 2, "existing: it is a directory"),
+        (vec!["render", &param, "--param", "radius=1e308"], 2, "= 1e308 is outside its range 0.1..1.5"),
+        (vec!["render", "long_name.fractal"], 1, "unknown function `xxxxxxxx"),
+        (vec!["render", "nul.fractal"], 1, "`\\u{0}` is not part of the scene language"),
+        (vec!["render", "suffix.fractal"], 1, "integer suffixes such as `u8` are not part of the scene language"),
+        (vec!["render", "setting.fractal"], 1, "settings such as max_steps go on scene(..)"),
+        (vec!["render", "sum.fractal"], 1, "chains more than 256 operators"),
+        (vec!["render", "sqrt_time.fractal"], 1, "`sqrt(t - 5.0)` is NaN at time 0"),
+    ];
+    for (args, code, message) in &cases {
+        let out = run_in(&dir, args);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(*code), "fractal {}: exit status\n{err}", args.join(" "));
+        assert!(err.contains(message), "fractal {}: expected `{message}` in\n{err}", args.join(" "));
+        assert_eq!(err.trim().lines().count(), 1, "fractal {}: not one line:\n{err}", args.join(" "));
+        assert!(err.len() < 400, "fractal {}: the message is {} bytes", args.join(" "), err.len());
+        assert!(!err.contains('\0') && !err.contains("panicked"), "{err}");
+        assert_eq!(files_in(&dir), before, "fractal {} wrote something", args.join(" "));
+    }
+}
+
+/// A finished sequence rerun with other settings is refused, not reported as done with the old frames kept.
+#[test]
+fn a_sequence_resumed_with_other_settings_is_refused() {
+    let dir = scratch("sequence_settings");
+    let render = |size: &str| {
+        run_in(
+            &dir,
+            &["render", "hello_world", "--backend", "cpu", "--size", size, "--frames", "0..2", "-o", "f/%02d.png"],
+        )
+    };
+    assert_ok(&render("16x8"));
+    let first = fs::read(dir.join("f/00.png")).unwrap();
+    assert_ok(&render("16x8"));
+    let out = render("8x8");
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(stderr(&out).contains("2 frames of f/%02d.png were rendered with other settings"), "{}", stderr(&out));
+    assert!(stderr(&out).contains("size 16x8"), "{}", stderr(&out));
+    assert_eq!(fs::read(dir.join("f/00.png")).unwrap(), first);
 }

@@ -30,6 +30,7 @@ pub mod analyse;
 pub mod back;
 pub mod builder;
 pub mod compiled;
+pub mod echo;
 pub mod eval;
 pub mod fractals;
 pub mod geom;

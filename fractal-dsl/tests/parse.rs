@@ -419,6 +419,13 @@ fn errors_name_the_problem_at_line_and_column() {
         ),
         ("sphere(1.0e400)", "1:8: the number `1.0e400` is out of range (numbers must be finite)"),
         ("sphere(1.0u8x)", "1:8: unknown number suffix `u8x`"),
+        (
+            "scene(sphere(1.0).max_steps(10))",
+            "1:7: `scene` argument `shape` must be a shape, found a scene: settings such as max_steps go on \
+             scene(..), e.g. scene(sphere(1.0)).max_steps(200)",
+        ),
+        ("sphere(300u8)", "1:8: integer suffixes such as `u8` are not part of the scene language: write `300`"),
+        ("menger(3u32)", "1:8: integer suffixes such as `u32` are not part of the scene language: write `3`"),
         ("sphere(1.0).linear()", "1:13: `linear` is a method of a camera, found a shape"),
         (
             "scene(sphere(1.0)).camera(camera(vec3(0, 0, -3), vec3(0, 0, 0)).looped())",

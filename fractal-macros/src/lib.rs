@@ -26,7 +26,7 @@ pub fn scene_file(input: TokenStream) -> TokenStream {
     let lit = syn::parse_macro_input!(input as syn::LitStr);
     let dir = std::env::var("CARGO_MANIFEST_DIR").unwrap_or_default();
     let path = std::path::Path::new(&dir).join(lit.value());
-    let text = match std::fs::read_to_string(&path) {
+    let text = match fractal_dsl::parse::read_source(&path) {
         Ok(t) => t,
         Err(e) => {
             return syn::Error::new(lit.span(), format!("cannot read {}: {e}", path.display()))

@@ -114,6 +114,12 @@ fn accepts(to: Ty, from: Ty) -> bool {
 
 const INT_SUFFIXES: &[&str] = &["u8", "u16", "u32", "u64", "u128", "usize", "i8", "i16", "i32", "i64", "i128", "isize"];
 
+/// Rust's integer suffixes read as Rust would check them (`300u8` does not fit) or as the bare number would be a
+/// different value than the text promises; the language has one number type, so they are refused.
+fn int_suffix(digits: &str, suffix: &str) -> String {
+    format!("integer suffixes such as `{suffix}` are not part of the scene language: write `{digits}`")
+}
+
 /// The value of a number literal, honouring Rust's `f32` suffix the way the builder would see it.
 fn number_literal(lit: &syn::Lit) -> Result<f64, String> {
     let (digits, suffix, is_int) = match lit {
@@ -127,7 +133,7 @@ fn number_literal(lit: &syn::Lit) -> Result<f64, String> {
     let value = match suffix {
         "" | "f64" => digits.parse::<f64>().ok(),
         "f32" => digits.parse::<f32>().ok().map(f64::from),
-        s if is_int && INT_SUFFIXES.contains(&s) => digits.parse::<f64>().ok(),
+        s if is_int && INT_SUFFIXES.contains(&s) => return Err(int_suffix(digits, s)),
         s => return Err(format!("unknown number suffix `{s}`")),
     };
     match value {
@@ -140,9 +146,10 @@ fn number_literal(lit: &syn::Lit) -> Result<f64, String> {
 fn int_literal(e: &syn::Expr) -> Option<Result<u32, String>> {
     match e {
         syn::Expr::Group(g) => int_literal(&g.expr),
-        syn::Expr::Lit(syn::ExprLit { lit: syn::Lit::Int(i), .. })
-            if i.suffix().is_empty() || INT_SUFFIXES.contains(&i.suffix()) =>
-        {
+        syn::Expr::Lit(syn::ExprLit { lit: syn::Lit::Int(i), .. }) if INT_SUFFIXES.contains(&i.suffix()) => {
+            Some(Err(int_suffix(i.base10_digits(), i.suffix())))
+        }
+        syn::Expr::Lit(syn::ExprLit { lit: syn::Lit::Int(i), .. }) if i.suffix().is_empty() => {
             Some(i.base10_parse::<u32>().map_err(|_| format!("the integer `{i}` is too large")))
         }
         _ => None,
@@ -168,7 +175,16 @@ struct Lower {
 impl Lower {
     fn eval(&mut self, e: &syn::Expr, depth: usize) -> syn::Result<Value> {
         if depth > MAX_EVAL_DEPTH {
-            return Err(error(e, format!("the scene nests more than {MAX_EVAL_DEPTH} levels deep")));
+            let message = match e {
+                // A long sum or product is a chain of binary operators, each one level: say so, or the message
+                // reads wrong for text that does not look nested.
+                syn::Expr::Binary(_) => format!(
+                    "this expression chains more than {MAX_EVAL_DEPTH} operators (each `+`, `-`, `*`, `/` nests one \
+                     level): use fewer terms"
+                ),
+                _ => format!("the scene nests more than {MAX_EVAL_DEPTH} levels deep"),
+            };
+            return Err(error(e, message));
         }
         match e {
             syn::Expr::Lit(l) => {
@@ -430,6 +446,14 @@ impl Lower {
                 let value = self.eval(arg, depth)?;
                 let found = value.ty();
                 coerce(value, ty).map_err(|misfit| match misfit {
+                    // A scene where a shape belongs is almost always a setting written on the shape.
+                    Misfit::Type if ty == Ty::Shape && found == Ty::Scene => error(
+                        arg,
+                        format!(
+                            "{slot} must be a shape, found a scene: settings such as max_steps go on scene(..), \
+                             e.g. scene(sphere(1.0)).max_steps(200)"
+                        ),
+                    ),
                     Misfit::Type => error(arg, format!("{slot} must be {}, found {}", ty.a(), found.a())),
                     Misfit::NotConstant => {
                         error(arg, format!("{slot} must be a constant: `t` and `param(..)` cannot be used here"))

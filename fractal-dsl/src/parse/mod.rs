@@ -38,8 +38,28 @@ pub struct SourceError {
 /// the scan bounds nesting, not frame sizes; a thread of its own makes the bound safe whatever thread calls in.
 const PARSE_STACK: usize = 64 << 20;
 
+/// Largest scene (or camera path) file read, in bytes: well above what the token cap ([`MAX_TOKENS`]) admits, and
+/// small enough that `/dev/zero` or a mistyped video path is refused after 8 MiB rather than when memory runs out.
+pub const MAX_SOURCE_BYTES: u64 = 8 << 20;
+
+/// Reads a scene file as text, refusing one over [`MAX_SOURCE_BYTES`] before reading the rest of it.
+pub fn read_source(path: &std::path::Path) -> std::io::Result<String> {
+    use std::io::{Error, ErrorKind, Read};
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)?.take(MAX_SOURCE_BYTES + 1).read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > MAX_SOURCE_BYTES {
+        let limit = MAX_SOURCE_BYTES >> 20;
+        return Err(Error::new(ErrorKind::InvalidData, format!("larger than {limit} MiB: not a scene file")));
+    }
+    String::from_utf8(bytes).map_err(|_| Error::new(ErrorKind::InvalidData, "not UTF-8 text: not a scene file"))
+}
+
 /// Parses scene text (the contents of a `.fractal` file).
 pub fn parse_str(src: &str) -> Result<Scene, SourceError> {
+    parse_str_on_own_thread(src).map_err(|e| SourceError { message: crate::echo::tidy(&e.message), ..e })
+}
+
+fn parse_str_on_own_thread(src: &str) -> Result<Scene, SourceError> {
     // The lexer's span table is per thread and only grows; parsing on a thread of our own also frees it afterwards.
     std::thread::scope(|scope| {
         let spawned = std::thread::Builder::new()

@@ -11,6 +11,11 @@ use crate::frame::check_image_size;
 use crate::output::{FrameRange, Shard};
 use crate::select::BackendChoice;
 
+/// Most frames `bench --frames` times.
+pub const MAX_BENCH_FRAMES: u32 = 100_000;
+/// Longest `bench --seconds`, in seconds.
+pub const MAX_BENCH_SECONDS: f64 = 3600.0;
+
 const AFTER_HELP: &str = "\
 <SCENE> is a built-in scene name (see `fractal list`) or a path to a .fractal file.
 
@@ -89,7 +94,7 @@ pub struct RenderArgs {
     #[command(flatten)]
     pub render: RenderOptions,
     /// Scene time in seconds (single images)
-    #[arg(long, value_name = "SECONDS", default_value_t = 0.0, conflicts_with = "frames", value_parser = parse_time)]
+    #[arg(long, allow_negative_numbers = true, value_name = "SECONDS", default_value_t = 0.0, conflicts_with = "frames", value_parser = parse_time)]
     pub time: f64,
     /// Output: a .png file, a frame pattern such as frames/%05d.png, or a video (.mp4, .webm, .mkv, .mov)
     /// [default: SCENE.png, or SCENE/%05d.png with --frames]
@@ -99,7 +104,7 @@ pub struct RenderArgs {
     #[arg(long, value_name = "START..END", value_parser = parse_frames)]
     pub frames: Option<FrameRange>,
     /// Frames per second of the animation
-    #[arg(long, default_value_t = 30.0, requires = "frames", value_parser = parse_fps)]
+    #[arg(long, allow_negative_numbers = true, default_value_t = 30.0, requires = "frames", value_parser = parse_fps)]
     pub fps: f64,
     /// Render only shard I of N of the frames (for job arrays)
     #[arg(long, value_name = "I/N", requires = "frames", value_parser = parse_shard)]
@@ -121,10 +126,10 @@ pub struct BenchArgs {
     #[command(flatten)]
     pub render: RenderOptions,
     /// Number of timed frames [default: 10]
-    #[arg(long, value_name = "N", conflicts_with = "seconds", value_parser = clap::value_parser!(u32).range(1..))]
+    #[arg(long, allow_negative_numbers = true, value_name = "N", conflicts_with = "seconds", value_parser = clap::value_parser!(u32).range(1..=MAX_BENCH_FRAMES as i64))]
     pub frames: Option<u32>,
     /// Time frames until their frame times add up to this many seconds
-    #[arg(long, value_name = "S", value_parser = parse_seconds)]
+    #[arg(long, allow_negative_numbers = true, value_name = "S", value_parser = parse_seconds)]
     pub seconds: Option<f64>,
     /// Append one CSV row to this file (header written when the file is new)
     #[arg(long, value_name = "PATH")]
@@ -212,7 +217,7 @@ pub struct ViewArgs {
     #[arg(long)]
     pub precise: bool,
     /// Scene time at start, in seconds
-    #[arg(long, value_name = "SECONDS", default_value_t = 0.0, value_parser = parse_time)]
+    #[arg(long, allow_negative_numbers = true, value_name = "SECONDS", default_value_t = 0.0, value_parser = parse_time)]
     pub time: f64,
     /// Start with time paused
     #[arg(long)]
@@ -224,10 +229,10 @@ pub struct ViewArgs {
     #[arg(long, value_name = "PATH")]
     pub camera_path: Option<PathBuf>,
     /// Camera speed in scene units per second
-    #[arg(long, value_name = "SPEED", default_value_t = 1.0, value_parser = parse_positive)]
+    #[arg(long, allow_negative_numbers = true, value_name = "SPEED", default_value_t = 1.0, value_parser = parse_positive)]
     pub move_speed: f64,
     /// Mouse sensitivity in radians per pixel
-    #[arg(long, value_name = "RADIANS", default_value_t = 0.003, value_parser = parse_positive)]
+    #[arg(long, allow_negative_numbers = true, value_name = "RADIANS", default_value_t = 0.003, value_parser = parse_positive)]
     pub mouse_sensitivity: f64,
 }
 
@@ -276,7 +281,9 @@ fn finite(text: &str, what: &str) -> Result<f64, String> {
 }
 
 pub fn parse_time(text: &str) -> Result<f64, String> {
-    finite(text, "time")
+    let t = finite(text, "time")?;
+    crate::frame::check_time(t).map_err(|e| e.to_string())?;
+    Ok(t)
 }
 
 pub fn parse_fps(text: &str) -> Result<f64, String> {
@@ -297,8 +304,8 @@ pub fn parse_positive(text: &str) -> Result<f64, String> {
 
 pub fn parse_seconds(text: &str) -> Result<f64, String> {
     let s = finite(text, "duration")?;
-    if s <= 0.0 {
-        return Err(format!("duration `{text}` must be greater than 0"));
+    if s <= 0.0 || s > MAX_BENCH_SECONDS {
+        return Err(format!("duration `{text}` must be in (0, {MAX_BENCH_SECONDS}] seconds"));
     }
     Ok(s)
 }

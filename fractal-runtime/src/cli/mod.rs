@@ -48,7 +48,7 @@ pub fn run_with_args(args: impl IntoIterator<Item = OsString>, library: &SceneLi
     match run(cli.command, library) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e}");
+            eprintln!("error: {}", fractal_dsl::echo::tidy(&e.to_string()));
             e.exit_code()
         }
     }
@@ -60,7 +60,7 @@ fn clap_exit(e: clap::Error) -> ExitCode {
     match e.kind() {
         ClapErrorKind::InvalidValue | ClapErrorKind::ValueValidation => {
             let text = e.to_string();
-            eprintln!("{}", text.lines().next().unwrap_or("error: invalid value"));
+            eprintln!("{}", fractal_dsl::echo::tidy(text.lines().next().unwrap_or("error: invalid value")));
             ExitCode::from(2)
         }
         _ => {

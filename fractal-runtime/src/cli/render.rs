@@ -38,6 +38,17 @@ fn is_png(path: &Path) -> bool {
 }
 
 fn unsupported(path: &Path) -> CliError {
+    if path.is_dir() {
+        return CliError::usage(format!(
+            "cannot write {}: it is a directory; give a file name in it, e.g. {}",
+            path.display(),
+            path.join("image.png").display()
+        ));
+    }
+    // `.png` alone is a hidden file with no extension as far as paths go; say what is missing.
+    if path.file_name().is_some_and(|n| n.to_string_lossy().eq_ignore_ascii_case(".png")) {
+        return CliError::usage(format!("cannot write {}: the file name before .png is empty", path.display()));
+    }
     CliError::usage(format!(
         "cannot write {}: images are written as .png, videos as .mp4, .webm, .mkv or .mov",
         path.display()
@@ -100,6 +111,33 @@ fn open_renderer(options: &RenderOptions) -> Result<Box<dyn Renderer>, CliError>
     Ok(renderer)
 }
 
+/// The uniforms of the scene at `time`, seen from its own camera: where a time, camera or moving value is refused.
+fn frame_at(
+    loaded: &LoadedScene,
+    params: &ParamValues,
+    time: f64,
+    (width, height): (u32, u32),
+) -> Result<Frame, CliError> {
+    let pose = Pose::from_camera(&loaded.scene.camera, time, &|p| params.lookup(p))
+        .map_err(|e| CliError::failure(format!("scene {}: camera at t = {time}: {e}", loaded.name)))?;
+    Ok(Frame::new(&loaded.scene, &pose, time, width, height, params).map_err(RenderError::from)?)
+}
+
+/// Packs every frame a command will draw before a device is opened or a file written, so a time out of range or a
+/// value that goes bad mid-animation is refused up front, not after hours of frames.
+fn check_frames(args: &RenderArgs, loaded: &LoadedScene, params: &ParamValues) -> Result<(), CliError> {
+    let Some(range) = args.frames else {
+        return frame_at(loaded, params, args.time, args.render.size).map(drop);
+    };
+    for f in range.iter() {
+        frame_at(loaded, params, f as f64 / args.fps, args.render.size).map_err(|e| CliError {
+            message: format!("frame {f} at {} fps: {e}", fractal_dsl::validate::num(args.fps)),
+            ..e
+        })?;
+    }
+    Ok(())
+}
+
 /// One frame of the scene at `time`, seen from its own camera.
 fn render_frame(
     renderer: &mut dyn Renderer,
@@ -108,9 +146,7 @@ fn render_frame(
     time: f64,
     (width, height): (u32, u32),
 ) -> Result<Image, CliError> {
-    let pose = Pose::from_camera(&loaded.scene.camera, time, &|p| params.lookup(p))
-        .map_err(|e| CliError::failure(format!("scene {}: camera at t = {time}: {e}", loaded.name)))?;
-    let frame = Frame::new(&loaded.scene, &pose, time, width, height, params).map_err(RenderError::from)?;
+    let frame = frame_at(loaded, params, time, (width, height))?;
     let image = renderer.render(&RenderJob::new(loaded.sources(), &frame));
     for n in renderer.take_notes() {
         note(&n);
@@ -122,6 +158,7 @@ pub fn render(args: &RenderArgs, library: &SceneLibrary) -> Result<(), CliError>
     let loaded = LoadedScene::load(&args.scene, library)?;
     let params = loaded.params(&args.render.params)?;
     let size = args.render.size;
+    check_frames(args, &loaded, &params)?;
     match decide_output(args, &loaded.name)? {
         Output::Image(path) => {
             prepare_output(&path)?;
@@ -148,6 +185,22 @@ fn progress_bar(len: u64) -> ProgressBar {
     ProgressBar::with_draw_target(Some(len), ProgressDrawTarget::stderr()).with_style(style)
 }
 
+/// What decides a sequence's pixels, one setting per line: resuming with any of them changed would mix two
+/// animations in one sequence.
+fn sequence_settings(args: &RenderArgs, loaded: &LoadedScene, params: &ParamValues) -> String {
+    let values: Vec<String> = params.values().iter().map(|v| format!("{v:?}")).collect();
+    format!(
+        "size {}x{}\nfps {:?}\nparams {}\nbackend {}\nprecise {}\nscene {}\n",
+        args.render.size.0,
+        args.render.size.1,
+        args.fps,
+        values.join(" "),
+        args.render.backend,
+        args.render.precise,
+        fractal_dsl::print::to_source(&loaded.scene).replace('\n', " "),
+    )
+}
+
 fn render_sequence(
     args: &RenderArgs,
     loaded: &LoadedScene,
@@ -159,6 +212,21 @@ fn render_sequence(
     };
     let shard = args.shard.unwrap_or(Shard::ALL);
     let plan = plan(pattern, range, shard);
+    // Frames already on disk count as done only if they were drawn with these settings.
+    let settings = sequence_settings(args, loaded, params);
+    let settings_path = pattern.settings_path();
+    if let Ok(recorded) = fractal_dsl::parse::read_source(&settings_path) {
+        if !plan.done.is_empty() && recorded != settings {
+            let differs = recorded.lines().zip(settings.lines()).find(|(a, b)| a != b);
+            let detail = differs.map(|(was, now)| format!(": they have `{was}`, this run `{now}`")).unwrap_or_default();
+            return Err(CliError::usage(format!(
+                "{} frames of {pattern} were rendered with other settings{detail}; remove them (and {}) or render \
+                 to another pattern",
+                plan.done.len(),
+                settings_path.display()
+            )));
+        }
+    }
     let owned = plan.todo.len() + plan.done.len();
     let of_shard = if shard == Shard::ALL { String::new() } else { format!(" of shard {shard}") };
     if plan.todo.is_empty() {
@@ -170,6 +238,12 @@ fn render_sequence(
     }
     prepare_output(&pattern.path(plan.todo[0]))?;
     let mut renderer = open_renderer(&args.render)?;
+    if let Some(dir) = settings_path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir)
+            .map_err(|source| crate::output::OutputError::Write { path: settings_path.clone(), source })?;
+    }
+    std::fs::write(&settings_path, &settings)
+        .map_err(|source| crate::output::OutputError::Write { path: settings_path.clone(), source })?;
     let batch_log = !std::io::stderr().is_terminal();
     let bar = progress_bar(plan.todo.len() as u64);
     let started = Instant::now();

@@ -59,7 +59,7 @@ impl<'a> LoadedScene<'a> {
                 names.join(", ")
             )));
         }
-        let text = std::fs::read_to_string(path)
+        let text = fractal_dsl::parse::read_source(path)
             .map_err(|e| CliError::failure(format!("cannot read scene file {}: {e}", path.display())))?;
         let scene =
             fractal_dsl::parse::parse_str(&text).map_err(|e| CliError::failure(format!("{}:{e}", path.display())))?;

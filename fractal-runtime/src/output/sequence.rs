@@ -30,6 +30,12 @@ pub struct FramePattern {
 pub struct SyntaxError(pub String);
 
 impl FramePattern {
+    /// Where the settings a sequence was drawn with are kept: beside its frames, named after the pattern
+    /// (`frames/%05d.png` → `frames/sequence.png.settings`).
+    pub fn settings_path(&self) -> PathBuf {
+        PathBuf::from(format!("{}sequence{}.settings", self.prefix, self.suffix))
+    }
+
     /// Reads a pattern such as `frames/%05d.png`; it must hold exactly one frame number.
     pub fn parse(pattern: &str) -> Result<FramePattern, SyntaxError> {
         let mut prefix = None;
@@ -121,6 +127,10 @@ impl FrameRange {
     }
 }
 
+/// Most frames one `render --frames` run takes: 4.6 hours at 60 fps. A larger range would be listed and scanned
+/// before the first frame is drawn.
+pub const MAX_FRAMES: u64 = 1_000_000;
+
 impl FromStr for FrameRange {
     type Err = SyntaxError;
     fn from_str(s: &str) -> Result<FrameRange, SyntaxError> {
@@ -137,6 +147,12 @@ impl FromStr for FrameRange {
         let end = if inclusive { last.checked_add(1).ok_or_else(expected)? } else { last };
         if end <= start {
             return Err(SyntaxError(format!("frame range `{s}` is empty: END must be greater than START")));
+        }
+        if end - start > MAX_FRAMES {
+            return Err(SyntaxError(format!(
+                "frame range `{s}` has {} frames; at most {MAX_FRAMES} are rendered in one run (split it into ranges)",
+                end - start
+            )));
         }
         Ok(FrameRange { start, end })
     }

@@ -50,7 +50,7 @@ pub fn run(scene: ViewerScene, options: ViewerOptions) -> Result<ViewerSummary, 
     event_loop.set_control_flow(ControlFlow::Poll);
     let watch = match (&scene, options.watch) {
         (ViewerScene::File(path), true) => {
-            let text = std::fs::read_to_string(path).ok();
+            let text = fractal_dsl::parse::read_source(path).ok();
             match FileWatch::new(path, text) {
                 Ok(watch) => Some(watch),
                 Err(e) => {

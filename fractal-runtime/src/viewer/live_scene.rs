@@ -49,7 +49,7 @@ impl LiveScene {
             }),
             ViewerScene::Built { name, scene } => LiveScene::from_scene(name.clone(), (**scene).clone()),
             ViewerScene::File(path) => {
-                let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+                let text = fractal_dsl::parse::read_source(path).map_err(|e| format!("{}: {e}", path.display()))?;
                 LiveScene::from_text(source.name(), path, &text)
             }
         }
@@ -150,7 +150,7 @@ impl FileWatch {
             return None;
         }
         self.last_event = None;
-        match std::fs::read_to_string(&self.path) {
+        match fractal_dsl::parse::read_source(&self.path) {
             Ok(text) if Some(&text) == self.last_text.as_ref() => None,
             Ok(text) => {
                 self.last_text = Some(text.clone());

@@ -82,7 +82,7 @@ pub fn parse_camera_path(text: &str) -> Result<CameraPathFile, String> {
 
 /// Reads and parses a camera path file; errors start with the file name.
 pub fn load_camera_path(file: &Path) -> Result<CameraPathFile, String> {
-    let text = std::fs::read_to_string(file).map_err(|e| format!("{}: {e}", file.display()))?;
+    let text = fractal_dsl::parse::read_source(file).map_err(|e| format!("{}: {e}", file.display()))?;
     parse_camera_path(&text).map_err(|e| format!("{}: {e}", file.display()))
 }
 
