@@ -113,3 +113,30 @@ fn every_broken_rule_reaches_the_caller() {
     let InvalidScene(errors) = refusal(compile(&s), "compile");
     assert_eq!(errors.len(), 2, "{errors:?}");
 }
+
+/// A number that goes bad only at run time — `sqrt(t - 5)` before t = 5, a `param` divided into 0 — is refused when the
+/// frame is packed, which every backend does the same way, instead of drawing NaN geometry (nothing on one backend,
+/// something on another). The same scene draws where the number is finite.
+#[test]
+fn numbers_that_go_bad_at_run_time_refuse_the_frame_on_every_backend() {
+    use fractal::runtime::{Frame, FrameError, ParamValues, Pose};
+    let s = scene(sphere(1.0).translate(vec3(sqrt(time() - 5.0), 0.0, 0.0)));
+    let pose = Pose::look_at(glam::DVec3::new(0.0, 0.0, -4.0), glam::DVec3::ZERO, 50.0).unwrap();
+    let params = ParamValues::defaults(&s);
+    match Frame::new(&s, &pose, 0.0, 8, 8, &params) {
+        Err(e @ FrameError::NonFiniteValue { .. }) => {
+            assert_eq!(
+                e.to_string(),
+                "`sqrt(t - 5.0)` is NaN at time 0: the shape it sizes or places cannot be drawn then"
+            )
+        }
+        other => panic!("expected a refused frame, got {other:?}"),
+    }
+    assert!(Frame::new(&s, &pose, 6.0, 8, 8, &params).is_ok());
+
+    let s = scene(sphere(1.0 / param("r", 1.0, 0.0..2.0)));
+    let mut zero = ParamValues::defaults(&s);
+    zero.set("r", 0.0).unwrap();
+    let e = Frame::new(&s, &pose, 0.0, 8, 8, &zero).unwrap_err();
+    assert!(e.to_string().starts_with("`1.0 / param(\"r\", 1.0, 0.0..2.0)` is inf at time 0"), "{e}");
+}

@@ -31,6 +31,9 @@ pub const MAX_EXPR_NODES: usize = 100_000;
 pub const MAX_LIGHTS: usize = 16;
 /// Largest `max_steps`.
 pub const MAX_MARCH_STEPS: u32 = 10_000;
+/// Largest `max_distance`. The kernels keep the ray parameter in f32, whose spacing is 64 units at 1e9; beyond the f32
+/// range (3.4e38) one backend would march to infinity and another draw nothing.
+pub const MAX_DISTANCE: f64 = 1e9;
 pub use crate::ops::MAX_REPEAT_COUNT;
 
 /// A broken rule in a scene, located by the path of the node (or the scene part) it concerns.
@@ -364,12 +367,27 @@ pub fn constant_value(e: &Expr) -> Option<f64> {
     is_constant(e).then(|| e.eval_default(0.0))
 }
 
-/// The message for a literal that is not finite, if the expression holds one.
+/// Largest magnitude a number of a scene may have: the kernels compute in f32, where anything larger is infinite.
+pub const MAX_MAGNITUDE: f64 = f32::MAX as f64;
+
+/// Why `v` cannot be a number of a scene, if it cannot: not finite, or beyond the f32 range the kernels compute in
+/// (`1e308` is finite in f64 and `inf` on every GPU).
+pub fn value_problem(v: f64) -> Option<String> {
+    if !v.is_finite() {
+        Some(format!("numbers must be finite, found {}", num(v)))
+    } else if v.abs() > MAX_MAGNITUDE {
+        Some(format!("numbers must lie within ±3.4e38 (the kernels compute in f32), found {}", num(v)))
+    } else {
+        None
+    }
+}
+
+/// The message for a literal that is not finite or beyond the f32 range, if the expression holds one.
 pub fn literal_problem(e: &Expr) -> Option<String> {
     let mut stack = vec![e];
     while let Some(e) = stack.pop() {
         match e {
-            Expr::Lit(v) if !v.is_finite() => return Some(format!("numbers must be finite, found {}", num(*v))),
+            Expr::Lit(v) if value_problem(*v).is_some() => return value_problem(*v),
             Expr::Lit(_) | Expr::Time | Expr::Param(_) => {}
             Expr::Neg(a) => stack.push(a),
             Expr::Bin(_, a, b) => stack.extend([&**a, &**b]),
@@ -701,8 +719,8 @@ pub fn check_camera(c: &Camera) -> Vec<Problem> {
             for (i, k) in keys.iter().enumerate() {
                 let problem = |message: String| Problem { arg: "keys", index: Some(i), message };
                 let values = [k.time].into_iter().chain(k.position).chain(k.target);
-                if let Some(v) = values.into_iter().find(|v| !v.is_finite()) {
-                    o.push(problem(format!("camera key {}: numbers must be finite, found {}", i + 1, num(v))));
+                if let Some(m) = values.into_iter().find_map(value_problem) {
+                    o.push(problem(format!("camera key {}: {m}", i + 1)));
                 } else if k.position == k.target {
                     o.push(problem(format!("camera key {}: target must differ from the position", i + 1)));
                 } else if i > 0 && k.time <= keys[i - 1].time {
@@ -737,7 +755,7 @@ pub fn check_settings(s: &RenderSettings) -> Vec<Problem> {
     let mut out = Vec::new();
     let o = &mut out;
     integer(o, "steps", "max_steps", s.max_steps, 1, MAX_MARCH_STEPS);
-    constant(o, "distance", "max_distance", s.max_distance, gt(0.0));
+    constant(o, "distance", "max_distance", s.max_distance, within(0.0, false, MAX_DISTANCE, true));
     match s.epsilon {
         HitEpsilon::Fixed(e) => constant(o, "epsilon", "epsilon", e, gt(0.0)),
         HitEpsilon::Pixel(k) => constant(o, "pixels", "pixel_epsilon", k, gt(0.0)),
@@ -749,8 +767,8 @@ pub fn check_settings(s: &RenderSettings) -> Vec<Problem> {
         constant(o, "strength", "ambient_occlusion strength", a, within(0.0, false, 10.0, true));
     }
     let color = |o: &mut Vec<Problem>, what: &str, c: [f64; 3]| {
-        if let Some(v) = c.into_iter().find(|v| !v.is_finite()) {
-            o.push(Problem::new("color", format!("{what} color must be finite, found {}", num(v))));
+        if let Some(m) = c.into_iter().find_map(value_problem) {
+            o.push(Problem::new("color", format!("{what} color: {m}")));
         }
     };
     if let Some(g) = s.glow {
@@ -778,8 +796,8 @@ pub fn check_param(p: &ParamDecl) -> Vec<Problem> {
             format!("param name must be an identifier of at most 64 letters, digits and `_`, found {name:?}"),
         ));
     }
-    if let Some(v) = [p.default, p.min, p.max].into_iter().find(|v| !v.is_finite()) {
-        out.push(Problem::new("", format!("param {name:?}: numbers must be finite, found {}", num(v))));
+    if let Some(m) = [p.default, p.min, p.max].into_iter().find_map(value_problem) {
+        out.push(Problem::new("", format!("param {name:?}: {m}")));
     } else if p.min >= p.max {
         out.push(Problem::new(
             "range",

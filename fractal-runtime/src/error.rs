@@ -3,6 +3,7 @@
 //! on.
 
 use crate::device::Backend;
+use fractal_dsl::validate::num;
 
 /// A camera that cannot be placed.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -30,13 +31,16 @@ pub enum FrameError {
     ParamMismatch { expected: String, found: String },
     #[error("the scene has no parameter named `{0}`")]
     UnknownParam(String),
-    #[error("parameter `{name}` = {value} is outside its range {min}..{max}")]
+    #[error("parameter `{name}` = {} is outside its range {}..{}", num(*.value), num(*.min), num(*.max))]
     ParamOutOfRange { name: String, value: f64, min: f64, max: f64 },
-    #[error("light {index}: {what} is not finite at time {time}")]
+    /// `index` counts from 0; messages number lights from 1, as the validator does.
+    #[error("light {}: {what} is not finite at time {}", index + 1, num(*time))]
     NonFiniteLight { index: usize, what: &'static str, time: f64 },
-    #[error("light {index}: the direction is zero at time {time}")]
+    #[error("`{expr}` is {} at time {}: the shape it sizes or places cannot be drawn then", num(*.value), num(*.time))]
+    NonFiniteValue { expr: String, value: f64, time: f64 },
+    #[error("light {}: the direction is zero at time {}", index + 1, num(*time))]
     ZeroLightDirection { index: usize, time: f64 },
-    #[error("time {0} is not finite")]
+    #[error("time {} is outside ±{} s: the kernels keep time in f32, which cannot tell frames apart beyond that", num(*.0), num(crate::frame::MAX_TIME))]
     Time(f64),
     #[error("the frame has {got} slots, its layout needs {expected}")]
     SlotCount { expected: usize, got: usize },

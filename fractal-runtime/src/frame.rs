@@ -105,6 +105,35 @@ pub enum LightSlot {
     Point { position: [f32; 3], radiance: [f32; 3] },
 }
 
+/// Largest |scene time| in seconds. The kernels receive time as f32, whose spacing at 1e5 s is 1/128 s: finer than a
+/// frame at 120 fps. Past it frames of an animation collapse onto the same time, and at 1e39 time is infinite.
+pub const MAX_TIME: f64 = 1e5;
+
+/// Checks a scene time against [`MAX_TIME`] (NaN fails too).
+pub fn check_time(time: f64) -> Result<(), FrameError> {
+    if time.abs() <= MAX_TIME {
+        Ok(())
+    } else {
+        Err(FrameError::Time(time))
+    }
+}
+
+/// Checks that every number of the distance tree that moves (reads `t` or a `param`) is finite in f32 at this time
+/// and with these parameter values. Validation cannot see `sqrt(t - 5)` go bad at t < 5 or a `param` divide by 0;
+/// the kernels would draw NaN geometry (nothing, or something else on each backend), so the frame is refused instead.
+fn check_shape_values(scene: &Scene, time: f64, lookup: &dyn Fn(&ParamDecl) -> f64) -> Result<(), FrameError> {
+    let mut bad = None;
+    fractal_dsl::visit::visit_node_exprs(&scene.root, &mut |e| {
+        if bad.is_none() && !fractal_dsl::validate::is_constant(e) {
+            let v = e.eval(time, lookup);
+            if !(v.is_finite() && v.abs() <= f64::from(f32::MAX)) {
+                bad = Some(FrameError::NonFiniteValue { expr: fractal_dsl::print::expr(e), value: v, time });
+            }
+        }
+    });
+    bad.map_or(Ok(()), Err)
+}
+
 /// Checks an image size against [`MAX_IMAGE_SIDE`].
 pub fn check_image_size(width: u32, height: u32) -> Result<(), FrameError> {
     if width == 0 || height == 0 || width > MAX_IMAGE_SIDE || height > MAX_IMAGE_SIDE {
@@ -132,9 +161,7 @@ impl Frame {
         params: &ParamValues,
     ) -> Result<Frame, FrameError> {
         check_image_size(width, height)?;
-        if !time.is_finite() {
-            return Err(FrameError::Time(time));
-        }
+        check_time(time)?;
         let scene_params = scene.params();
         params.check_matches(&scene_params)?;
         let lights = scene.effective_lights();
@@ -162,6 +189,7 @@ impl Frame {
         slots[3] = [f[0], f[1], f[2], (2.0 * tan_half / height as f64) as f32];
 
         let lookup = |d: &ParamDecl| params.lookup(d);
+        check_shape_values(scene, time, &lookup)?;
         for (index, light) in lights.iter().enumerate() {
             let (xyz, kind) = match &light.kind {
                 LightKind::Directional { direction } => {

@@ -110,6 +110,12 @@ pub fn vocabulary() -> Vec<Row> {
         row!("scale", Exact, { torus(1.0, 0.3).scale(1.75) }).within(3.0),
         // ---- domain operations
         row!("repeat", Exact, { sphere(0.3).repeat(vec3(1.0, 0.0, 1.5)) }).within(4.0),
+        // A period slid to 0 at run time leaves its axis unrepeated, as a literal 0 does.
+        row!("repeat (param period at 0)", Exact, {
+            sphere(0.3).repeat(vec3(param("period", 1.0, 0.0..4.0), 0.0, param("depth", 1.5, 0.0..4.0)))
+        })
+        .with_params(&[0.0, 1.5])
+        .within(4.0),
         row!("repeat_limited", Exact, { sphere(0.3).repeat_limited(vec3(1.0, 1.25, 0.0), vec3(2, 1, 0)) }).within(4.0),
         row!("twist", Trig, { box3(vec3(0.5, 1.0, 0.5)).twist(0.8) }),
         row!("bend", Trig, { box3(vec3(1.0, 0.2, 0.3)).bend(0.5) }),

@@ -298,13 +298,20 @@ fn domain<F: Num>(op: &OpStep, p: V3<F>, env: &Env<F>) -> (V3<F>, Post<F>) {
         }
         Meaning::Repeat { limited } => {
             let count = limited.then(|| op.constant3(1));
-            let q = per_axis(p, op.per_axis(0), env, |axis, x, per| {
+            let terms = op.per_axis(0);
+            let q = per_axis(p, terms, env, |axis, x, per| {
                 let cell = floor(x / per + c(0.5));
                 let cell = match count {
                     Some(n) => clamp(cell, c(-n[axis]), c(n[axis])),
                     None => cell,
                 };
-                x - per * cell
+                let repeated = x - per * cell;
+                // A literal 0 leaves its axis unrepeated (folded away above); a period that reaches 0 at run time
+                // (a `param` slid to 0) must mean the same, not 0 · floor(x / 0) = NaN.
+                match terms[axis] {
+                    Some(Term::Lit(_)) => repeated,
+                    _ => select(le(per, c(0.0)), x, repeated),
+                }
             });
             (q, Post::Keep)
         }
