@@ -5,7 +5,7 @@
 //! GPU backends: the wgpu test skips with a note when no adapter opens, and fails instead when
 //! FRACTAL_REQUIRE_GPU_BACKENDS=1 (CI, where lavapipe is installed).
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -563,4 +563,86 @@ fn a_sequence_resumed_with_other_settings_is_refused() {
     assert!(stderr(&out).contains("2 frames of f/%02d.png were rendered with other settings"), "{}", stderr(&out));
     assert!(stderr(&out).contains("size 16x8"), "{}", stderr(&out));
     assert_eq!(fs::read(dir.join("f/00.png")).unwrap(), first);
+}
+
+/// The channels of an OpenEXR file, by name, as f32.
+fn exr_channels(path: &Path) -> BTreeMap<String, Vec<f32>> {
+    let image =
+        exr::prelude::read_all_flat_layers_from_file(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let layer = &image.layer_data[0];
+    layer.channel_data.list.iter().map(|c| (c.name.to_string(), c.sample_data.values_as_f32().collect())).collect()
+}
+
+/// `--aov` writes depth (+inf on misses), unit normals (0 on misses) and steps beside the PNG, and they describe the
+/// same pixels: a pixel has a depth exactly where it has a normal, and where the PNG is not the background.
+#[test]
+fn aovs_are_written_beside_the_image_and_agree_with_it() {
+    let dir = scratch("aov");
+    let size = (40u32, 24u32);
+    let out = run_in(
+        &dir,
+        &["render", "hello_world", "--backend", "cpu", "--size", "40x24", "--aov", "depth,normal,steps", "-o", "s.png"],
+    );
+    assert_ok(&out);
+    let png = read_png(&dir.join("s.png")).unwrap();
+    let depth = exr_channels(&dir.join("s.depth.exr"));
+    let normal = exr_channels(&dir.join("s.normal.exr"));
+    let steps = exr_channels(&dir.join("s.steps.exr"));
+    assert_eq!(depth.keys().collect::<Vec<_>>(), ["Z"]);
+    assert_eq!(normal.keys().collect::<Vec<_>>(), ["B", "G", "R"]);
+    assert_eq!(steps.keys().collect::<Vec<_>>(), ["Y"]);
+    let z = &depth["Z"];
+    assert_eq!(z.len(), (size.0 * size.1) as usize);
+    let background = png.rgba(0, 0).unwrap();
+    let mut hits = 0;
+    for (i, &t) in z.iter().enumerate() {
+        let n = [normal["R"][i], normal["G"][i], normal["B"][i]];
+        let length = n.iter().map(|c| c * c).sum::<f32>().sqrt();
+        let (x, y) = (i as u32 % size.0, i as u32 / size.0);
+        if t.is_finite() {
+            hits += 1;
+            assert!(t > 0.0 && (length - 1.0).abs() < 1e-3, "pixel {i}: depth {t}, normal {n:?}");
+            assert!(steps["Y"][i] >= 1.0, "pixel {i} hit in {} steps", steps["Y"][i]);
+            assert_ne!(png.rgba(x, y).unwrap(), background, "pixel {i} hit but shows the background");
+        } else {
+            assert_eq!((t, length), (f32::INFINITY, 0.0), "pixel {i}");
+            assert_eq!(png.rgba(x, y).unwrap(), background, "pixel {i} missed but is not the background");
+        }
+    }
+    assert!(hits > 0 && hits < z.len(), "{hits} of {} pixels hit", z.len());
+
+    // The AOVs come from the CPU renderer: asked of another backend, the command says so and writes nothing.
+    let out = run_in(&dir, &["render", "hello_world", "--backend", "wgpu", "--aov", "depth", "-o", "g.png"]);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(stderr(&out).contains("add --backend cpu"), "{}", stderr(&out));
+    assert!(!dir.join("g.png").exists() && !dir.join("g.depth.exr").exists());
+}
+
+/// `--camera-pos`, `--camera-target` and `--fov` replace the scene's camera (or camera path) for one render.
+#[test]
+fn the_camera_can_be_placed_from_the_command_line() {
+    let dir = scratch("camera_override");
+    let render = |extra: &[&str], out: &str| {
+        let args = [&["render", "hello_world", "--backend", "cpu", "--size", "32x32", "-o", out][..], extra].concat();
+        let result = run_in(&dir, &args);
+        assert_ok(&result);
+        read_png(&dir.join(out)).unwrap()
+    };
+    let own = render(&[], "own.png");
+    let moved = render(&["--camera-pos", "-3,1,-3", "--camera-target", "0,0,0"], "moved.png");
+    let narrow = render(&["--camera-pos=-3,1,-3", "--camera-target", "0,0,0", "--fov", "20"], "narrow.png");
+    assert!(fraction_unlike(&own, &moved, 8) > 0.05, "the camera did not move");
+    assert!(fraction_unlike(&moved, &narrow, 8) > 0.05, "the field of view did not change");
+
+    for (args, message) in [
+        (&["--camera-pos", "1,2,3"][..], "--camera-target"),
+        (&["--camera-pos", "1,2", "--camera-target", "0,0,0"], "is not a point: write X,Y,Z"),
+        (&["--camera-pos", "1,nan,3", "--camera-target", "0,0,0"], "`nan` in `1,nan,3` is not a finite coordinate"),
+        (&["--fov", "180"], "field of view `180` must be a number of degrees in (0, 180)"),
+    ] {
+        let out = run_in(&dir, &[&["render", "hello_world", "-o", "bad.png"][..], args].concat());
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {}", stderr(&out));
+        assert!(stderr(&out).contains(message), "{args:?}: expected `{message}` in {}", stderr(&out));
+        assert!(!dir.join("bad.png").exists());
+    }
 }

@@ -44,7 +44,8 @@ pub fn accuracy(args: &AccuracyArgs, library: &SceneLibrary) -> Result<(), CliEr
     let budget = Budget::default();
     let mut report = String::new();
     for name in &names {
-        let loaded = LoadedScene::load(name, library)?;
+        let mut loaded = LoadedScene::load(name, library)?;
+        args.camera.apply(&mut loaded.scene.camera);
         let section = study(&loaded, args, backend, &budget)?;
         report += &section;
     }

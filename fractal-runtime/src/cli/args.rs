@@ -8,7 +8,7 @@ use clap::{Args, Parser, Subcommand};
 
 use crate::export::Target;
 use crate::frame::check_image_size;
-use crate::output::{FrameRange, Shard};
+use crate::output::{Aov, FrameRange, Shard};
 use crate::select::BackendChoice;
 
 /// Most frames `bench --frames` times.
@@ -109,6 +109,65 @@ pub struct RenderArgs {
     /// Render only shard I of N of the frames (for job arrays)
     #[arg(long, value_name = "I/N", requires = "frames", value_parser = parse_shard)]
     pub shard: Option<Shard>,
+    /// Also write per-pixel depth, normal and/or steps as 32-bit float OpenEXR beside the PNG (NAME.depth.exr, ...);
+    /// computed by the CPU renderer
+    #[arg(long, value_name = "depth,normal,steps", value_delimiter = ',', conflicts_with = "frames", value_parser = parse_aov)]
+    pub aov: Vec<Aov>,
+    #[command(flatten)]
+    pub camera: CameraOverride,
+}
+
+/// A camera that replaces the scene's own (its camera or camera path), so any view can be rendered and compared.
+#[derive(Clone, Debug, Default, Args)]
+pub struct CameraOverride {
+    /// Camera position X,Y,Z (with --camera-target): replaces the scene's camera or camera path
+    #[arg(long, value_name = "X,Y,Z", requires = "camera_target", allow_hyphen_values = true, value_parser = parse_point)]
+    pub camera_pos: Option<[f64; 3]>,
+    /// The point the camera looks at, X,Y,Z (with --camera-pos)
+    #[arg(long, value_name = "X,Y,Z", requires = "camera_pos", allow_hyphen_values = true, value_parser = parse_point)]
+    pub camera_target: Option<[f64; 3]>,
+    /// Vertical field of view in degrees, in (0, 180)
+    #[arg(long, value_name = "DEGREES", allow_negative_numbers = true, value_parser = parse_fov)]
+    pub fov: Option<f64>,
+}
+
+impl CameraOverride {
+    /// `camera` with what was given replaced.
+    pub fn apply(&self, camera: &mut fractal_dsl::Camera) {
+        if let (Some(position), Some(target)) = (self.camera_pos, self.camera_target) {
+            camera.placement =
+                fractal_dsl::CameraPlacement::LookAt { position: position.into(), target: target.into() };
+        }
+        if let Some(fov) = self.fov {
+            camera.fov_degrees = fov;
+        }
+    }
+}
+
+pub fn parse_point(text: &str) -> Result<[f64; 3], String> {
+    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
+    let [x, y, z] = parts[..] else {
+        return Err(format!("`{text}` is not a point: write X,Y,Z, e.g. 0,1.5,-4"));
+    };
+    let coordinate = |c: &str| match c.parse::<f64>() {
+        Ok(v) if fractal_dsl::validate::value_problem(v).is_none() => Ok(v),
+        _ => Err(format!("`{c}` in `{text}` is not a finite coordinate within ±3.4e38")),
+    };
+    Ok([coordinate(x)?, coordinate(y)?, coordinate(z)?])
+}
+
+pub fn parse_fov(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(v) if v > 0.0 && v < 180.0 => Ok(v),
+        _ => Err(format!("field of view `{text}` must be a number of degrees in (0, 180)")),
+    }
+}
+
+pub fn parse_aov(text: &str) -> Result<Aov, String> {
+    Aov::parse(text).ok_or_else(|| {
+        let names: Vec<&str> = Aov::ALL.iter().map(|a| a.name()).collect();
+        format!("unknown output `{text}`: the outputs are {}", names.join(", "))
+    })
 }
 
 #[derive(Debug, Args)]
@@ -169,12 +228,14 @@ pub struct AccuracyArgs {
     /// Append the table to this CSV file (header written when the file is new)
     #[arg(long, value_name = "PATH")]
     pub csv: Option<PathBuf>,
-    /// Every built-in scene, written as a Markdown report
-    #[arg(long)]
+    /// Every built-in scene, written as a Markdown report (each from its own camera)
+    #[arg(long, conflicts_with_all = ["camera_pos", "fov"])]
     pub report: bool,
     /// Where --report writes
     #[arg(long, value_name = "PATH", default_value = "docs/accuracy.md")]
     pub out: PathBuf,
+    #[command(flatten)]
+    pub camera: CameraOverride,
 }
 
 fn parse_truth_step(text: &str) -> Result<f64, String> {

@@ -8,14 +8,17 @@ use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
+use crate::backend::cpu::trace_scene;
 use crate::camera::Pose;
 use crate::cli::args::{RenderArgs, RenderOptions};
 use crate::cli::error::CliError;
 use crate::cli::scene::LoadedScene;
 use crate::cli::SceneLibrary;
+use crate::device::Backend;
 use crate::error::RenderError;
 use crate::frame::{Frame, ParamValues};
 use crate::image::Image;
+use crate::output::aov::write_aov;
 use crate::output::png::{prepare_output, write_png};
 use crate::output::sequence::{plan, FramePattern, Shard};
 use crate::output::video::{Container, VideoWriter};
@@ -138,6 +141,21 @@ fn check_frames(args: &RenderArgs, loaded: &LoadedScene, params: &ParamValues) -
     Ok(())
 }
 
+/// The `--aov` images beside the PNG at `png`, from the CPU renderer's per-pixel traces of the same frame.
+fn write_aovs(args: &RenderArgs, loaded: &LoadedScene, params: &ParamValues, png: &Path) -> Result<(), CliError> {
+    if args.aov.is_empty() {
+        return Ok(());
+    }
+    let frame = frame_at(loaded, params, args.time, args.render.size)?;
+    let traces = trace_scene::<f32, _>(loaded.evaluator(), &loaded.scene, &frame)?;
+    for &aov in &args.aov {
+        let path = aov.path_beside(png);
+        write_aov(&path, aov, frame.width(), frame.height(), &traces)?;
+        eprintln!("wrote {} ({})", path.display(), aov.name());
+    }
+    Ok(())
+}
+
 /// One frame of the scene at `time`, seen from its own camera.
 fn render_frame(
     renderer: &mut dyn Renderer,
@@ -155,8 +173,14 @@ fn render_frame(
 }
 
 pub fn render(args: &RenderArgs, library: &SceneLibrary) -> Result<(), CliError> {
-    let loaded = LoadedScene::load(&args.scene, library)?;
+    let mut loaded = LoadedScene::load(&args.scene, library)?;
+    args.camera.apply(&mut loaded.scene.camera);
     let params = loaded.params(&args.render.params)?;
+    if !args.aov.is_empty() && !matches!(args.render.backend, BackendChoice::Only(Backend::Cpu)) {
+        return Err(CliError::usage(
+            "--aov is computed by the CPU renderer, whose depth, normals and steps match its image: add --backend cpu",
+        ));
+    }
     let size = args.render.size;
     check_frames(args, &loaded, &params)?;
     match decide_output(args, &loaded.name)? {
@@ -168,7 +192,7 @@ pub fn render(args: &RenderArgs, library: &SceneLibrary) -> Result<(), CliError>
             let elapsed = start.elapsed().as_secs_f64();
             write_png(&path, &image)?;
             eprintln!("wrote {} ({}x{}, t = {}, {elapsed:.2} s)", path.display(), size.0, size.1, args.time);
-            Ok(())
+            write_aovs(args, &loaded, &params, &path)
         }
         Output::Sequence(pattern) => render_sequence(args, &loaded, &params, &pattern),
         Output::Video(path) => render_video(args, &loaded, &params, &path),

@@ -78,13 +78,19 @@ impl<'a> LoadedScene<'a> {
     /// Every form of the scene a renderer may run.
     pub fn sources(&self) -> KernelSources<'_> {
         match &self.forms {
-            Forms::BuiltIn { compiled, native } => KernelSources::default()
+            Forms::BuiltIn { compiled, .. } => KernelSources::default()
                 .with_wgsl(compiled.wgsl())
                 .with_opencl(compiled.opencl())
-                .with_cpu(native as &dyn Evaluator<f32>, &self.scene),
-            Forms::File { kernels, interpreter } => {
-                KernelSources::compiled(kernels).with_cpu(&**interpreter as &dyn Evaluator<f32>, &self.scene)
-            }
+                .with_cpu(self.evaluator(), &self.scene),
+            Forms::File { kernels, .. } => KernelSources::compiled(kernels).with_cpu(self.evaluator(), &self.scene),
+        }
+    }
+
+    /// The CPU evaluator of the scene: the native one of a built-in, the interpreter of a file.
+    pub fn evaluator(&self) -> &dyn Evaluator<f32> {
+        match &self.forms {
+            Forms::BuiltIn { native, .. } => native,
+            Forms::File { interpreter, .. } => &**interpreter,
         }
     }
 

@@ -1,6 +1,8 @@
 //! Offline output of rendered images: PNG files written atomically ([`png`]), numbered frame sequences that resume
-//! after an interruption and split into shards across machines ([`sequence`]), and video through ffmpeg ([`video`]).
+//! after an interruption and split into shards across machines ([`sequence`]), video through ffmpeg ([`video`]), and
+//! per-pixel depth, normals and steps as OpenEXR beside an image ([`aov`]).
 
+pub mod aov;
 pub mod png;
 pub mod sequence;
 pub mod video;
@@ -8,6 +10,7 @@ pub mod video;
 use std::io;
 use std::path::PathBuf;
 
+pub use aov::{write_aov, Aov};
 pub use png::{partial_path, read_png, write_atomic, write_png};
 pub use sequence::{plan, FramePattern, FrameRange, SequencePlan, Shard};
 pub use video::{Container, VideoWriter};
