@@ -11,9 +11,14 @@
 //! crossing to 2⁻⁴⁰ of a step. What it can miss: a feature thinner than one step along the ray
 //! ([`DEFAULT_STEP_FOOTPRINTS`]), far below what a pixel resolves.
 //!
-//! **Normal.** From the true surface: four neighbouring rays half a pixel to each side find their crossings within
-//! [`NORMAL_WINDOW`] footprints of the centre's, and the normal is the cross product of the surface's differences
-//! across x and y (central where both sides continue the surface, one-sided at a crease or silhouette).
+//! **Normal.** Where the hit lies on an exact distance (a primitive, or CSG of them, away from any fractal), the
+//! gradient of that distance at the hit, by f64 central differences: the exact normal. Elsewhere from the true
+//! surface: four neighbouring rays half a pixel to each side find their crossings within [`NORMAL_WINDOW`] footprints
+//! of the centre's, and the normal is the cross product of the surface's differences across x and y (central where
+//! both sides continue the surface, one-sided at a crease or silhouette). Where that normal and the same one from
+//! rays a quarter pixel away differ by more than [`ROUGH_DEGREES`], the surface has no single normal at the pixel's
+//! scale (a fractal's detail below a pixel, a crease through the pixel): the pixel is *rough* and no normal error is
+//! measured there, since any one normal a renderer picks is as right as another.
 //!
 //! **Colour.** The true hit shaded by the render algorithm ([`crate::backend::cpu`]) in f64 with the true normal;
 //! materials, shadows and occlusion are what the algorithm defines them to be (from the f64 scene distance). Glow is
@@ -45,6 +50,9 @@ use ray::TruthRay;
 pub const NORMAL_WINDOW: f64 = 4.0;
 /// Offset of the normal's neighbouring rays, in pixels.
 pub const NORMAL_OFFSET: f64 = 0.5;
+/// Largest angle between the normals from neighbours [`NORMAL_OFFSET`] and half that away for which the true surface
+/// still counts as smooth at the pixel's scale.
+pub const ROUGH_DEGREES: f64 = 10.0;
 /// Below this distance the truth march steps as if it were this far (scene units), so it never crawls at the camera.
 pub const NEAR: f64 = 0.1;
 
@@ -75,6 +83,9 @@ pub struct TruthPixel {
     pub t: f64,
     /// The true surface's normal at the hit (facing the camera), when the neighbouring rays found the surface.
     pub normal: Option<[f64; 3]>,
+    /// The surface has no single normal at this pixel's scale (see the module notes): `normal` shades the truth but
+    /// is not a reference to measure a renderer's normal against.
+    pub rough: bool,
     /// Linear colour of the true hit (the background for a miss).
     pub colour: [f64; 3],
 }
@@ -120,8 +131,10 @@ impl Truth {
         };
         let shading = Interpreter::new(&scene)?;
         let width = frame.width() as usize;
-        let mut pixels =
-            vec![TruthPixel { t: f64::INFINITY, normal: None, colour: [0.0; 3] }; width * truth.height as usize];
+        let mut pixels = vec![
+            TruthPixel { t: f64::INFINITY, normal: None, rough: false, colour: [0.0; 3] };
+            width * truth.height as usize
+        ];
         pixels.par_chunks_mut(width).enumerate().for_each(|(y, row)| {
             for (x, out) in row.iter_mut().enumerate() {
                 *out = truth.pixel(&shading, x as f64 + 0.5, y as f64 + 0.5);
@@ -161,19 +174,38 @@ impl Truth {
 
     fn pixel(&self, shading: &Interpreter, px: f64, py: f64) -> TruthPixel {
         let background = self.view.background();
-        let miss = TruthPixel { t: f64::INFINITY, normal: None, colour: [background.x, background.y, background.z] };
+        let miss = TruthPixel {
+            t: f64::INFINITY,
+            normal: None,
+            rough: false,
+            colour: [background.x, background.y, background.z],
+        };
         let Some(t) = self.with_ray(px, py, |ray| ray.first_crossing(0.0, self.view.max_distance(), |t| self.step(t)))
         else {
             return miss;
         };
-        let normal = self.normal(px, py, t);
         let (ro, rd) = self.view.ray(px, py);
         let p = ro + rd * t;
+        let (normal, rough) = match self.exact_normal(p, rd, t) {
+            Some(n) => (Some(n), false),
+            None => {
+                let normal = self.normal(px, py, t, NORMAL_OFFSET);
+                let finer = self.normal(px, py, t, 0.5 * NORMAL_OFFSET);
+                let agree = match (normal, finer) {
+                    (Some(a), Some(b)) => {
+                        let cos = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+                        cos >= ROUGH_DEGREES.to_radians().cos()
+                    }
+                    _ => false,
+                };
+                (normal, !agree)
+            }
+        };
         // Without a normal from the surface (a lone sample of it), shade facing the camera.
         let n = normal.map_or(-rd, |n| v3(n[0], n[1], n[2]));
         let env = self.view.env();
         let colour = self.view.shade_hit(shading, &env, p, n, rd, t, self.view.hit_epsilon(t));
-        TruthPixel { t, normal, colour: [colour.x, colour.y, colour.z] }
+        TruthPixel { t, normal, rough, colour: [colour.x, colour.y, colour.z] }
     }
 
     /// The surface point a neighbouring ray at (px, py) finds within the window around depth `t`, if the surface
@@ -192,11 +224,44 @@ impl Truth {
         Some(ro + rd * hit)
     }
 
-    /// The true surface's normal at the hit `t` of the ray through (px, py), facing the camera.
-    fn normal(&self, px: f64, py: f64, t: f64) -> Option<[f64; 3]> {
+    /// The gradient of the scene's value at the hit `p` (ray distance `t`, direction `rd`), facing the camera, when
+    /// the value there is an exact distance: unit length, and the same slope on both sides of `p` along each axis
+    /// (a crease, a fractal's sign-only membership or a fractal's bound nearby fail one of the two).
+    fn exact_normal(&self, p: V3<f64>, rd: V3<f64>, t: f64) -> Option<[f64; 3]> {
+        let h = 1e-3 * self.footprint_at(t.max(NEAR));
+        let value = |q: V3<f64>| {
+            let (member_time, member_params) =
+                (Member(self.time), self.params.iter().map(|&p| Member(p)).collect::<Vec<_>>());
+            self.membership.value([q.x, q.y, q.z], &Env { time: member_time, params: &member_params })
+        };
+        let at = value(p);
+        let mut g = [0.0; 3];
+        for (axis, slope) in g.iter_mut().enumerate() {
+            let mut e = [0.0; 3];
+            e[axis] = h;
+            let e = v3(e[0], e[1], e[2]);
+            let (ahead, behind) = ((value(p + e) - at) / h, (at - value(p - e)) / h);
+            if (ahead - behind).abs() > 1e-3 {
+                return None;
+            }
+            *slope = 0.5 * (ahead + behind);
+        }
+        let n = v3(g[0], g[1], g[2]);
+        let len = fractal_dsl::math::length(n);
+        if !((1.0 - 1e-3)..=(1.0 + 1e-3)).contains(&len) {
+            return None;
+        }
+        let n = n / len;
+        let n = if fractal_dsl::math::dot(n, rd) > 0.0 { -n } else { n };
+        Some([n.x, n.y, n.z])
+    }
+
+    /// The true surface's normal at the hit `t` of the ray through (px, py), facing the camera, from neighbouring
+    /// rays `offset` pixels away.
+    fn normal(&self, px: f64, py: f64, t: f64, offset: f64) -> Option<[f64; 3]> {
         let (ro, rd) = self.view.ray(px, py);
         let centre = ro + rd * t;
-        let d = NORMAL_OFFSET;
+        let d = offset;
         let across = |minus: Option<V3<f64>>, plus: Option<V3<f64>>| -> Option<V3<f64>> {
             let gap = |q: V3<f64>| fractal_dsl::math::length(q - centre);
             match (minus, plus) {
@@ -290,20 +355,29 @@ mod tests {
                     assert!((pixel.t - t).abs() < 1e-9, "pixel ({x}, {y}): {} against {t}", pixel.t);
                     let p = ro + rd * t;
                     let n = (p - centre) / fractal_dsl::math::length(p - centre);
+                    // The exact distance's own gradient, at the silhouette too.
                     let got = pixel.normal.expect("a normal");
-                    // At the silhouette the difference is one-sided across a grazing surface: checked inside only.
-                    let inside = x > 0 && y > 0 && x < 39 && y < 29;
-                    if !inside
-                        || ![(x - 1, y), (x + 1, y), (x, y - 1), (x, y + 1)].iter().all(|&(i, j)| truth.at(i, j).hit())
-                    {
-                        continue;
-                    }
                     let cos = n.x * got[0] + n.y * got[1] + n.z * got[2];
-                    assert!(cos > 0.9995, "pixel ({x}, {y}): normal {got:?} against {n:?}");
+                    assert!(cos > 1.0 - 1e-9, "pixel ({x}, {y}): normal {got:?} against {n:?}");
+                    assert!(!pixel.rough, "pixel ({x}, {y}) of a sphere is rough");
                 }
             }
         }
         assert!(hits > 100, "only {hits} hits");
+    }
+
+    /// On a fractal the membership gives no gradient: normals come from neighbouring rays, and where the set's
+    /// detail is finer than a pixel the pixel is rough and left out of the normal error.
+    #[test]
+    fn fractal_normals_come_from_neighbouring_rays_and_fine_detail_is_rough() {
+        let bulb = scene(mandelbulb(8).iterations(8)).camera(camera([1.2, 1.0, -2.2], [0.0; 3]));
+        let truth = Truth::compute(&bulb, &frame(&bulb, 48, 27), TruthSettings::default()).unwrap();
+        let hits: Vec<&TruthPixel> = truth.pixels.iter().filter(|p| p.hit()).collect();
+        let rough = hits.iter().filter(|p| p.rough).count();
+        assert!(hits
+            .iter()
+            .all(|p| p.normal.is_none_or(|n| (n[0] * n[0] + n[1] * n[1] + n[2] * n[2] - 1.0).abs() < 1e-9)));
+        assert!(rough > 0 && rough < hits.len(), "{rough} of {} hits rough", hits.len());
     }
 
     #[test]

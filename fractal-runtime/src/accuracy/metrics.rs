@@ -11,7 +11,9 @@
 //!   hits whose 8 neighbours are truth hits too).
 //! - **Overshoot**: the truth hits and the ray ended more than a footprint past the true hit (hit or miss): it passed
 //!   through the surface.
-//! - **Normals** where both hit: the angle between the render's shading normal and the true surface's, in degrees.
+//! - **Normals** where both hit and the true surface is smooth at the pixel's scale (not [`crate::truth::TruthPixel::rough`]): the
+//!   angle between the render's shading normal and the true surface's, in degrees; and the share of both-hit pixels
+//!   measured.
 //! - **Colour**: PSNR of the 8-bit image against the true hit shaded the same way, over all pixels.
 //! - **Health**: pixels with NaN or Inf anywhere (colour, depth of a hit, normal); rays that ran out of steps;
 //!   distance evaluations per pixel.
@@ -74,6 +76,8 @@ pub struct TracedError {
     pub overshoot: f64,
     /// Degrees.
     pub normal: Spread,
+    /// Fraction of the pixels both hit where the normal was measured (the rest are rough at the pixel's scale).
+    pub normal_measured: f64,
     /// Pixels with NaN or Inf.
     pub non_finite: usize,
     /// Fraction of pixels whose march ran out of steps.
@@ -112,8 +116,8 @@ impl TrueError {
         if let Some(t) = &self.traced {
             s += &format!(
                 "; depth error (footprints) median {:.2}, p99 {:.2} thin-ray / {:.2} cone-consistent, interior p99 \
-                 {:.2} cone-consistent; overshoot {:.3} %; normal error median {:.1}°, p99 {:.1}°; {:.3} % out of \
-                 steps; {} NaN/Inf pixels; {:.1} distance evaluations per pixel",
+                 {:.2} cone-consistent; overshoot {:.3} %; normal error median {:.1}°, p99 {:.1}° (on {:.0} % of \
+                 hits); {:.3} % out of steps; {} NaN/Inf pixels; {:.1} distance evaluations per pixel",
                 t.depth_thin.median,
                 t.depth_thin.p99,
                 t.depth_cone.p99,
@@ -121,6 +125,7 @@ impl TrueError {
                 100.0 * t.overshoot,
                 t.normal.median,
                 t.normal.p99,
+                100.0 * t.normal_measured,
                 100.0 * t.out_of_steps,
                 t.non_finite,
                 t.evaluations_per_pixel
@@ -220,7 +225,7 @@ fn traced_error(truth: &Truth, traces: &[PixelTrace]) -> TracedError {
                 thin
             };
             let normal = match (r.normal, t.normal) {
-                (Some(a), Some(b)) => Some(angle_degrees(a, b)),
+                (Some(a), Some(b)) if !t.rough => Some(angle_degrees(a, b)),
                 _ => None,
             };
             (Some((thin, cone, interior(truth, x, y))), normal, overshoot)
@@ -242,6 +247,8 @@ fn traced_error(truth: &Truth, traces: &[PixelTrace]) -> TracedError {
         depth_cone_interior: Spread::of(depths().filter(|d| d.2).map(|d| d.1).collect()),
         overshoot: per_pixel.iter().filter(|p| p.2).count() as f64 / n,
         normal: Spread::of(per_pixel.iter().filter_map(|p| p.1).collect()),
+        normal_measured: per_pixel.iter().filter(|p| p.1.is_some()).count() as f64
+            / per_pixel.iter().filter(|p| p.0.is_some()).count().max(1) as f64,
         non_finite,
         out_of_steps: traces.iter().filter(|r| r.out_of_steps).count() as f64 / n,
         false_misses_out_of_steps: traces

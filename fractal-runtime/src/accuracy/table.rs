@@ -32,6 +32,10 @@ const COLUMNS: &[Column] = &[
     Column { header: "overshoot %", cell: |p| traced(&p.error, |t| pct(t.overshoot)).flatten() },
     Column { header: "normal p50°", cell: |p| traced(&p.error, |t| format!("{:.1}", t.normal.median)) },
     Column { header: "normal p99°", cell: |p| traced(&p.error, |t| format!("{:.1}", t.normal.p99)) },
+    Column {
+        header: "normals measured %",
+        cell: |p| traced(&p.error, |t| format!("{:.0}", 100.0 * t.normal_measured)),
+    },
     Column { header: "PSNR dB", cell: |p| Some(format!("{:.1}", p.error.psnr)) },
     Column { header: "NaN/Inf", cell: |p| traced(&p.error, |t| t.non_finite.to_string()) },
 ];
