@@ -432,6 +432,10 @@ fn accuracy_sweeps_settings_against_the_truth_and_writes_a_report() {
     let report = fs::read_to_string(dir.join("r.md")).unwrap();
     for name in scenes::names() {
         assert!(report.contains(&format!("## {name}")), "no section for {name}:\n{report}");
+        // Each section shows its time-against-error plot, written beside the report.
+        assert!(report.contains(&format!("](r/{name}.svg)")), "no plot linked for {name}:\n{report}");
+        let svg = fs::read_to_string(dir.join(format!("r/{name}.svg"))).unwrap();
+        assert!(svg.starts_with("<svg") && svg.contains("hit mismatch"), "{name}: {svg}");
     }
 }
 

@@ -1,7 +1,9 @@
 //! Speed against true error: renders measured against the ground truth ([`crate::truth`]) — [`metrics`] — and sweeps
-//! of the quality settings ([`crate::quality`]) behind `fractal accuracy`.
+//! of the quality settings ([`crate::quality`]) behind `fractal accuracy`, as tables ([`table`]) and time-against-error
+//! plots ([`plot`]).
 
 pub mod metrics;
+pub mod plot;
 pub mod sweep;
 pub mod table;
 

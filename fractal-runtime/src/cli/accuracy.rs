@@ -7,7 +7,7 @@ use std::io::Write as _;
 use std::time::Instant;
 
 use crate::accuracy::sweep::{self, Budget};
-use crate::accuracy::table;
+use crate::accuracy::{plot, table};
 use crate::cli::args::AccuracyArgs;
 use crate::cli::error::CliError;
 use crate::cli::scene::LoadedScene;
@@ -111,6 +111,19 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
         eprintln!("  measured {} ({:.1} ms)", p.quality, p.time_ms);
     })?;
     let _ = write!(out, "{}", table::text(&points, budget));
+    if let Some(dir) = plot_dir(args) {
+        let path = dir.join(format!("{}.svg", loaded.name));
+        let svg = plot::svg(&loaded.name, &points, budget)
+            .map_err(|e| CliError::failure(format!("cannot draw {}: {e}", path.display())))?;
+        std::fs::create_dir_all(&dir)
+            .and_then(|()| std::fs::write(&path, svg))
+            .map_err(|e| CliError::failure(format!("cannot write {}: {e}", path.display())))?;
+        let _ = writeln!(out, "  wrote {}", path.display());
+        if args.report {
+            let folder = dir.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+            md += &format!("![{0}: time against true error]({folder}/{0}.svg)\n\n", loaded.name);
+        }
+    }
     md += &table::markdown(&points, budget);
     let verdict = match sweep::recommended(&points, budget) {
         Some(p) => format!("fastest within budget: {} ({:.1} ms)", p.quality, p.time_ms),
@@ -128,6 +141,15 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
         append_csv(path, &table::csv_rows(&loaded.name, &backend.to_string(), args.size, &points, budget))?;
     }
     Ok(md)
+}
+
+/// Where plots go: `--plot`, or with `--report` the folder named after the report beside it.
+fn plot_dir(args: &AccuracyArgs) -> Option<std::path::PathBuf> {
+    match (&args.plot, args.report) {
+        (Some(dir), _) => Some(dir.clone()),
+        (None, true) => Some(args.out.with_extension("")),
+        (None, false) => None,
+    }
 }
 
 fn append_csv(path: &std::path::Path, rows: &str) -> Result<(), CliError> {

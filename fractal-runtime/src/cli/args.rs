@@ -231,9 +231,12 @@ pub struct AccuracyArgs {
     /// Every built-in scene, written as a Markdown report (each from its own camera)
     #[arg(long, conflicts_with_all = ["camera_pos", "fov"])]
     pub report: bool,
-    /// Where --report writes
+    /// Where --report writes (its plots go in the folder of the same name: docs/accuracy/SCENE.svg)
     #[arg(long, value_name = "PATH", default_value = "docs/accuracy.md")]
     pub out: PathBuf,
+    /// Write a time-against-error plot of each scene, SCENE.svg, into this folder
+    #[arg(long, value_name = "DIR")]
+    pub plot: Option<PathBuf>,
     #[command(flatten)]
     pub camera: CameraOverride,
 }
