@@ -29,6 +29,7 @@
 //! approaches a limit ([`fractal_dsl::ir::fractal::Membership::approaches_limit`]). IFS level counts are the shape and
 //! stay.
 
+pub mod estimate;
 pub mod member;
 mod ray;
 

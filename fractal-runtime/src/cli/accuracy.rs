@@ -17,7 +17,7 @@ use crate::frame::Frame;
 use crate::output::png::prepare_output;
 use crate::quality::Quality;
 use crate::select::{BackendChoice, RendererOptions};
-use crate::truth::{Truth, TruthSettings};
+use crate::truth::{self, Truth, TruthSettings};
 use crate::Pose;
 
 /// Factor on the iteration count of the converged truth of escape-time fractals (against the scene's count).
@@ -36,6 +36,10 @@ pub fn accuracy(args: &AccuracyArgs, library: &SceneLibrary) -> Result<(), CliEr
     if args.report {
         prepare_output(&args.out)?;
     }
+    if args.estimators {
+        let _ = estimator_study(args.estimator_samples as usize);
+        return Ok(());
+    }
     let names: Vec<String> = match (&args.scene, args.report) {
         (Some(name), false) => vec![name.clone()],
         (Some(_), true) => return Err(CliError::usage("--report studies every built-in scene: give no scene with it")),
@@ -50,6 +54,7 @@ pub fn accuracy(args: &AccuracyArgs, library: &SceneLibrary) -> Result<(), CliEr
         report += &section;
     }
     if args.report {
+        report += &estimator_study(args.estimator_samples as usize);
         let text = report_text(args, backend, &budget, &report);
         std::fs::write(&args.out, text)
             .map_err(|e| CliError::failure(format!("cannot write {}: {e}", args.out.display())))?;
@@ -141,6 +146,53 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
         append_csv(path, &table::csv_rows(&loaded.name, &backend.to_string(), args.size, &points, budget))?;
     }
     Ok(md)
+}
+
+/// Every studied fractal's estimate against its true distance: printed, and returned as a Markdown section.
+fn estimator_study(samples: usize) -> String {
+    let started = Instant::now();
+    let out = &mut std::io::stdout().lock();
+    let mut md = format!(
+        "## Distance estimators against the true distance\n\n         Written by `fractal accuracy --estimators --estimator-samples {samples}`: per fractal and region, {samples} \
+         points outside the set and near it, escape-time sets at {CONVERGED_FACTOR}x their iterations; ratio = raw \
+         estimate (the kernel's estimate divided by the family's step \
+         factor) / true distance, the true distance searched from membership alone \
+         (`fractal-runtime/src/truth/estimate.rs`). A march is safe where step factor × ratio ≤ 1: *unsafe* is the \
+         share of points where it is not.\n\n\
+         | fractal | region | step factor | points | median | p99.9 | max | ratio > 1 % | unsafe % |\n\
+         |---|---|---|---|---|---|---|---|---|\n"
+    );
+    let _ = writeln!(
+        out,
+        "estimate / true distance ({samples} points per fractal and region, escape-time sets at {CONVERGED_FACTOR}x \
+         their iterations)"
+    );
+    let _ = writeln!(
+        out,
+        "{:>28} {:>24} {:>6} {:>6} {:>7} {:>7} {:>7} {:>8} {:>8}",
+        "fractal", "region", "factor", "points", "median", "p99.9", "max", ">1 %", "unsafe %"
+    );
+    for (name, fractal) in truth::estimate::studied() {
+        for row in truth::estimate::study(&name, fractal, samples, CONVERGED_FACTOR, 0x5eed) {
+            let cells = [
+                format!("{:.2}", row.step_factor),
+                row.samples.to_string(),
+                format!("{:.3}", row.median),
+                format!("{:.3}", row.p999),
+                format!("{:.3}", row.max),
+                format!("{:.2}", 100.0 * row.above_one),
+                format!("{:.2}", 100.0 * row.unsafe_stepped),
+            ];
+            let _ = writeln!(
+                out,
+                "{:>28} {:>24} {:>6} {:>6} {:>7} {:>7} {:>7} {:>8} {:>8}",
+                row.fractal, row.region, cells[0], cells[1], cells[2], cells[3], cells[4], cells[5], cells[6]
+            );
+            md += &format!("| {} | {} | {} |\n", row.fractal, row.region, cells.join(" | "));
+        }
+    }
+    let _ = writeln!(out, "  ({:.1} s)", started.elapsed().as_secs_f64());
+    md + "\n"
 }
 
 /// Where plots go: `--plot`, or with `--report` the folder named after the report beside it.

@@ -211,7 +211,7 @@ interior depth p99 <= 1 footprint, pixel-cone consistent).
 --report does it for every built-in scene and writes the Markdown report (docs/accuracy.md).")]
 pub struct AccuracyArgs {
     /// Built-in scene name or .fractal file (every built-in scene with --report)
-    #[arg(required_unless_present = "report")]
+    #[arg(required_unless_present_any = ["report", "estimators"])]
     pub scene: Option<String>,
     /// Image size, WIDTHxHEIGHT
     #[arg(long, value_name = "WxH", default_value = "192x108", value_parser = parse_size)]
@@ -237,6 +237,12 @@ pub struct AccuracyArgs {
     /// Write a time-against-error plot of each scene, SCENE.svg, into this folder
     #[arg(long, value_name = "DIR")]
     pub plot: Option<PathBuf>,
+    /// Measure each fractal family's distance estimate against the true distance instead (also part of --report)
+    #[arg(long, conflicts_with = "scene")]
+    pub estimators: bool,
+    /// Points per family and region for the estimator study
+    #[arg(long, value_name = "N", default_value_t = 300, value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    pub estimator_samples: u32,
     #[command(flatten)]
     pub camera: CameraOverride,
 }
