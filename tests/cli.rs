@@ -427,7 +427,9 @@ fn accuracy_sweeps_settings_against_the_truth_and_writes_a_report() {
     let rows: Vec<&str> = csv.lines().collect();
     assert!(rows[0].starts_with("scene,backend,size,setting,ms"), "{}", rows[0]);
     assert!(rows.len() > 15 && rows[1..].iter().all(|r| r.starts_with("mandelbulb,cpu,24x14,")), "{csv}");
-    let out = run_in(&dir, &["accuracy", "--report", "--size", "16x9", "--truth-step", "0.05", "--out", "r.md"]);
+    let report_args =
+        ["--report", "--size", "16x9", "--truth-step", "0.05", "--estimator-samples", "4", "--out", "r.md"];
+    let out = run_in(&dir, &[&["accuracy"][..], &report_args].concat());
     assert_ok(&out);
     let report = fs::read_to_string(dir.join("r.md")).unwrap();
     for name in scenes::names() {
@@ -437,6 +439,8 @@ fn accuracy_sweeps_settings_against_the_truth_and_writes_a_report() {
         let svg = fs::read_to_string(dir.join(format!("r/{name}.svg"))).unwrap();
         assert!(svg.starts_with("<svg") && svg.contains("hit mismatch"), "{name}: {svg}");
     }
+    assert!(report.contains("## Distance estimators against the true distance"), "{report}");
+    assert!(report.contains("| mandelbulb(8) | near coordinate axes | 0.75 |"), "{report}");
 }
 
 #[test]
