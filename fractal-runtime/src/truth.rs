@@ -15,10 +15,11 @@
 //! gradient of that distance at the hit, by f64 central differences: the exact normal. Elsewhere from the true
 //! surface: four neighbouring rays half a pixel to each side find their crossings within [`NORMAL_WINDOW`] footprints
 //! of the centre's, and the normal is the cross product of the surface's differences across x and y (central where
-//! both sides continue the surface, one-sided at a crease or silhouette). Where that normal and the same one from
-//! rays a quarter pixel away differ by more than [`ROUGH_DEGREES`], the surface has no single normal at the pixel's
-//! scale (a fractal's detail below a pixel, a crease through the pixel): the pixel is *rough* and no normal error is
-//! measured there, since any one normal a renderer picks is as right as another.
+//! both sides continue the surface, one-sided at a silhouette). Where the surface bends by more than
+//! [`ROUGH_DEGREES`] from one side of the centre to the other (a crease through the pixel), or that normal and the
+//! same one from rays a quarter pixel away differ by more than that (a fractal's detail below a pixel), the surface
+//! has no single normal at the pixel's scale: the pixel is *rough* and no normal error is measured there, since any
+//! one normal a renderer picks is as right as another.
 //!
 //! **Colour.** The true hit shaded by the render algorithm ([`crate::backend::cpu`]) in f64 with the true normal;
 //! materials, shadows and occlusion are what the algorithm defines them to be (from the f64 scene distance). Glow is
@@ -192,14 +193,14 @@ impl Truth {
             None => {
                 let normal = self.normal(px, py, t, NORMAL_OFFSET);
                 let finer = self.normal(px, py, t, 0.5 * NORMAL_OFFSET);
-                let agree = match (normal, finer) {
-                    (Some(a), Some(b)) => {
+                let smooth = match (normal, finer) {
+                    (Some((a, false)), Some((b, false))) => {
                         let cos = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
                         cos >= ROUGH_DEGREES.to_radians().cos()
                     }
                     _ => false,
                 };
-                (normal, !agree)
+                (normal.map(|(n, _)| n), !smooth)
             }
         };
         // Without a normal from the surface (a lone sample of it), shade facing the camera.
@@ -258,24 +259,32 @@ impl Truth {
     }
 
     /// The true surface's normal at the hit `t` of the ray through (px, py), facing the camera, from neighbouring
-    /// rays `offset` pixels away.
-    fn normal(&self, px: f64, py: f64, t: f64, offset: f64) -> Option<[f64; 3]> {
+    /// rays `offset` pixels away; and whether the surface bends by more than [`ROUGH_DEGREES`] between the two sides
+    /// of the centre (a crease through the pixel, on whose either face the centre ray may lie).
+    fn normal(&self, px: f64, py: f64, t: f64, offset: f64) -> Option<([f64; 3], bool)> {
         let (ro, rd) = self.view.ray(px, py);
         let centre = ro + rd * t;
         let d = offset;
-        let across = |minus: Option<V3<f64>>, plus: Option<V3<f64>>| -> Option<V3<f64>> {
+        let bent = |a: V3<f64>, b: V3<f64>| {
+            let cos = fractal_dsl::math::dot(a, b) / (fractal_dsl::math::length(a) * fractal_dsl::math::length(b));
+            !(cos >= ROUGH_DEGREES.to_radians().cos())
+        };
+        let across = |minus: Option<V3<f64>>, plus: Option<V3<f64>>| -> Option<(V3<f64>, bool)> {
             let gap = |q: V3<f64>| fractal_dsl::math::length(q - centre);
             match (minus, plus) {
                 // Central where both sides continue the surface about equally, else the nearer side.
-                (Some(m), Some(p)) if gap(m) < 2.0 * gap(p) && gap(p) < 2.0 * gap(m) => Some(p - m),
-                (Some(m), Some(p)) if gap(m) < gap(p) => Some(centre - m),
-                (_, Some(p)) => Some(p - centre),
-                (Some(m), None) => Some(centre - m),
+                (Some(m), Some(p)) if gap(m) < 2.0 * gap(p) && gap(p) < 2.0 * gap(m) => {
+                    Some((p - m, bent(centre - m, p - centre)))
+                }
+                (Some(m), Some(p)) if gap(m) < gap(p) => Some((centre - m, bent(centre - m, p - centre))),
+                (Some(m), Some(p)) => Some((p - centre, bent(centre - m, p - centre))),
+                (None, Some(p)) => Some((p - centre, false)),
+                (Some(m), None) => Some((centre - m, false)),
                 (None, None) => None,
             }
         };
-        let dx = across(self.neighbour(px - d, py, t), self.neighbour(px + d, py, t))?;
-        let dy = across(self.neighbour(px, py - d, t), self.neighbour(px, py + d, t))?;
+        let (dx, crease_x) = across(self.neighbour(px - d, py, t), self.neighbour(px + d, py, t))?;
+        let (dy, crease_y) = across(self.neighbour(px, py - d, t), self.neighbour(px, py + d, t))?;
         let n = fractal_dsl::math::cross(dx, dy);
         let len = fractal_dsl::math::length(n);
         if len.is_nan() || len <= 0.0 {
@@ -283,7 +292,7 @@ impl Truth {
         }
         let n = n / len;
         let n = if fractal_dsl::math::dot(n, rd) > 0.0 { -n } else { n };
-        Some([n.x, n.y, n.z])
+        Some(([n.x, n.y, n.z], crease_x || crease_y))
     }
 
     /// Pixel-cone consistency of a render that stopped at depth `t` in pixel (x, y): the smallest depth difference,

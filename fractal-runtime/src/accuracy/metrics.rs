@@ -11,9 +11,11 @@
 //!   hits whose 8 neighbours are truth hits too).
 //! - **Overshoot**: the truth hits and the ray ended more than a footprint past the true hit (hit or miss): it passed
 //!   through the surface.
-//! - **Normals** where both hit and the true surface is smooth at the pixel's scale (not [`crate::truth::TruthPixel::rough`]): the
-//!   angle between the render's shading normal and the true surface's, in degrees; and the share of both-hit pixels
-//!   measured.
+//! - **Normals** where both hit the same surface (within [`NORMAL_SAME_SURFACE`] footprints along the ray; a render
+//!   that stopped on another surface has a depth error, counted above) and the true surface is smooth at the pixel's
+//!   scale (not [`crate::truth::TruthPixel::rough`]): the angle between the render's shading normal and the true
+//!   surface's, in degrees; and the share of both-hit pixels measured.
+
 //! - **Colour**: PSNR of the 8-bit image against the true hit shaded the same way, over all pixels.
 //! - **Health**: pixels with NaN or Inf anywhere (colour, depth of a hit, normal); rays that ran out of steps;
 //!   distance evaluations per pixel.
@@ -29,6 +31,9 @@ use crate::bench::precision::scene_hits;
 use crate::image::{unpack_rgba8, Image};
 use crate::truth::Truth;
 
+/// Largest thin-ray depth difference, in footprints, at which the render and the truth stand on the same surface and
+/// their normals are compared.
+pub const NORMAL_SAME_SURFACE: f64 = 1.0;
 /// Thin-ray depth errors above this many footprints are checked against the pixel's cone.
 pub const CONE_CHECK: f64 = 0.5;
 /// How far from where the render stopped, in footprints, the cone check looks for the scene.
@@ -225,7 +230,7 @@ fn traced_error(truth: &Truth, traces: &[PixelTrace]) -> TracedError {
                 thin
             };
             let normal = match (r.normal, t.normal) {
-                (Some(a), Some(b)) if !t.rough => Some(angle_degrees(a, b)),
+                (Some(a), Some(b)) if !t.rough && thin <= NORMAL_SAME_SURFACE => Some(angle_degrees(a, b)),
                 _ => None,
             };
             (Some((thin, cone, interior(truth, x, y))), normal, overshoot)
