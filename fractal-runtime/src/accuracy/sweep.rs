@@ -22,6 +22,10 @@ use crate::truth::Truth;
 /// Renders per timing; the median is reported.
 pub const TIMING_RUNS: usize = 3;
 
+/// Fewest measured normals whose p99 the budget judges: the p99 of fewer is their maximum. A fractal seen small is
+/// rough at the pixel's scale almost everywhere, so few of its normals can be measured at all.
+pub const MIN_NORMALS: usize = 100;
+
 /// The error a recommended setting may have.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct Budget {
@@ -52,7 +56,7 @@ impl Budget {
             if t.overshoot > self.overshoot {
                 out.push(format!("overshoot {:.2} %", 100.0 * t.overshoot));
             }
-            if t.normal.p99 > self.normal_p99 {
+            if t.normal.count >= MIN_NORMALS && t.normal.p99 > self.normal_p99 {
                 out.push(format!("normal p99 {:.1}°", t.normal.p99));
             }
             if t.depth_cone_interior.p99 > self.depth_p99_interior {

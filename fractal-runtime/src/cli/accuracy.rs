@@ -229,13 +229,17 @@ fn report_text(args: &AccuracyArgs, backend: Backend, budget: &Budget, sections:
          consistent; *interior*: truth hits whose 8 neighbours hit too), overshoot (rays that passed more than a \
          footprint through the true surface), normal error, colour PSNR, NaN/Inf pixels. Definitions: \
          `fractal-runtime/src/accuracy/metrics.rs`.\n\n\
-         Budget: hit mismatch ≤ {:.1} %, overshoot ≤ {:.1} %, normal p99 ≤ {}°, no ray out of steps, no NaN/Inf, \
-         interior depth p99 ≤ {} footprint (cone-consistent).\n\n{sections}",
+         Normals are compared where render and truth stand on the same surface and the true surface has one normal \
+         at the pixel's scale (*normals measured*: their share of the pixels both hit).\n\n\
+         Budget: hit mismatch ≤ {:.1} %, overshoot ≤ {:.1} %, normal p99 ≤ {}° (judged over at least {} measured \
+         normals: the p99 of fewer is their maximum), no ray out of steps, no NaN/Inf, interior depth p99 ≤ {} \
+         footprint (cone-consistent).\n\n{sections}",
         args.truth_step,
         sweep::TIMING_RUNS,
         100.0 * budget.hit_mismatch,
         100.0 * budget.overshoot,
         budget.normal_p99,
+        sweep::MIN_NORMALS,
         budget.depth_p99_interior,
     )
 }
