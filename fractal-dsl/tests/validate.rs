@@ -201,7 +201,11 @@ fn rules_of_every_kind() {
         ),
         (scene(sphere(1.0)).max_steps(10_001), "scene: max_steps must be in 1..=10000, found 10001"),
         (scene(sphere(1.0)).max_distance(-1.0), "scene: max_distance must be in (0, 1000000000], found -1"),
-        (scene(sphere(1.0)).max_distance(1e39), "scene: max_distance must be in (0, 1000000000], found 1e39"),
+        (scene(sphere(1.0)).max_distance(1e12), "scene: max_distance must be in (0, 1000000000], found 1000000000000"),
+        (
+            scene(sphere(1.0)).max_distance(1e39),
+            "scene: max_distance: numbers must lie within ±3.4e38 (the kernels compute in f32), found 1e39",
+        ),
         (scene(sphere(1.0)).pixel_epsilon(0.0), "scene: pixel_epsilon must be > 0, found 0"),
         (scene(sphere(1.0)).soft_shadows(0.0), "scene: soft_shadows k must be > 0, found 0"),
         (scene(sphere(1.0)).ambient_occlusion(0.0), "scene: ambient_occlusion strength must be in (0, 10], found 0"),
