@@ -267,7 +267,8 @@ impl Truth {
         let d = offset;
         let bent = |a: V3<f64>, b: V3<f64>| {
             let cos = fractal_dsl::math::dot(a, b) / (fractal_dsl::math::length(a) * fractal_dsl::math::length(b));
-            !(cos >= ROUGH_DEGREES.to_radians().cos())
+            // A NaN (a zero-length difference) counts as bent.
+            cos.is_nan() || cos < ROUGH_DEGREES.to_radians().cos()
         };
         let across = |minus: Option<V3<f64>>, plus: Option<V3<f64>>| -> Option<(V3<f64>, bool)> {
             let gap = |q: V3<f64>| fractal_dsl::math::length(q - centre);
