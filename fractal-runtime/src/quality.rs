@@ -1,6 +1,7 @@
 //! The quality settings an accuracy sweep varies, and how each is applied to a scene: the march's step budget and hit
-//! epsilon (render settings), the iteration count of escape-time fractals (the scene's fractals), and a factor on
-//! every distance the march steps by (the step factor, applied by wrapping the CPU evaluator).
+//! epsilon (render settings), the iteration count of escape-time fractals (the scene's fractals), a factor on every
+//! distance the march steps by (the step factor, applied by wrapping the CPU evaluator), and whether rays are clipped
+//! to the scene's bound (CPU).
 
 use std::fmt;
 
@@ -17,6 +18,8 @@ pub struct Quality {
     pub iterations: Option<u32>,
     /// Factor on the step factor the scene's fractals declare (1: as declared).
     pub step_scale: Option<f64>,
+    /// `Some(false)`: rays are not clipped to the scene's bound (CPU only; the kernels always clip).
+    pub bounds: Option<bool>,
 }
 
 impl Quality {
@@ -71,6 +74,9 @@ impl fmt::Display for Quality {
             // Three decimals at most: 4/3 reads 1.333.
             let text = format!("{s:.3}");
             parts.push(format!("step x{}", text.trim_end_matches('0').trim_end_matches('.')));
+        }
+        if self.bounds == Some(false) {
+            parts.push("no bounds".to_string());
         }
         if parts.is_empty() {
             write!(f, "scene default")

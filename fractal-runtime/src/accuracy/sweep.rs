@@ -11,13 +11,14 @@ use fractal_dsl::eval::interp::Interpreter;
 use fractal_dsl::{HitEpsilon, Node, Scene};
 
 use crate::accuracy::metrics::{measure, Observed, TrueError};
-use crate::backend::cpu::trace_scene;
+use crate::backend::cpu::trace_scene_within;
 use crate::device::Backend;
 use crate::error::RenderError;
 use crate::frame::Frame;
 use crate::quality::{Quality, StepScaled};
 use crate::renderer::{KernelSources, RenderJob, Renderer};
 use crate::truth::Truth;
+use fractal_dsl::analyse::{bound, fold::fold_node};
 
 /// Renders per timing; the median is reported.
 pub const TIMING_RUNS: usize = 3;
@@ -83,8 +84,8 @@ pub struct SweepPoint {
 }
 
 /// The settings a sweep tries on `scene` (one at a time around its own, then a few combinations), the scene's own
-/// first. The step factor is only varied where `step_scales`.
-pub fn grid(scene: &Scene, step_scales: bool) -> Vec<Quality> {
+/// first. The step factor and the bound are only varied `on_cpu`.
+pub fn grid(scene: &Scene, on_cpu: bool) -> Vec<Quality> {
     let own = &scene.settings;
     let mut out = vec![Quality::default()];
     for n in [32, 64, 96, 192, 256, 512] {
@@ -107,7 +108,10 @@ pub fn grid(scene: &Scene, step_scales: bool) -> Vec<Quality> {
             out.push(Quality { iterations: Some(m), ..Quality::default() });
         }
     }
-    if step_scales {
+    if on_cpu && bound(&fold_node(&scene.root)).is_some() {
+        out.push(Quality { bounds: Some(false), ..Quality::default() });
+    }
+    if on_cpu {
         for s in [0.8, 1.2, 4.0 / 3.0] {
             out.push(Quality { step_scale: Some(s), ..Quality::default() });
         }
@@ -140,11 +144,15 @@ fn run_cpu(scene: &Scene, quality: &Quality, frame: &Frame, truth: &Truth) -> Re
     let applied = quality.apply(scene);
     let interpreter = Interpreter::new(&applied)?;
     let scaled = StepScaled { inner: &interpreter, scale: quality.step_scale() as f32 };
+    let clip = match quality.bounds {
+        Some(false) => None,
+        _ => bound(&fold_node(&applied.root)),
+    };
     let mut times = Vec::new();
     let mut traces = Vec::new();
     for _ in 0..TIMING_RUNS {
         let start = Instant::now();
-        traces = trace_scene::<f32, _>(&scaled, &applied, frame)?;
+        traces = trace_scene_within::<f32, _>(&scaled, &applied, frame, clip)?;
         times.push(start.elapsed().as_secs_f64() * 1e3);
     }
     let error = measure(&applied, truth, Observed::Traced(&traces));
@@ -220,4 +228,39 @@ pub fn pareto(points: &[SweepPoint], error: impl Fn(&SweepPoint) -> f64) -> Vec<
 /// The fastest point within the budget.
 pub fn recommended<'a>(points: &'a [SweepPoint], budget: &Budget) -> Option<&'a SweepPoint> {
     points.iter().filter(|p| budget.violations(&p.error).is_empty()).min_by(|a, b| a.time_ms.total_cmp(&b.time_ms))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::truth::TruthSettings;
+    use crate::{ParamValues, Pose};
+    use fractal_dsl::builder::*;
+
+    /// Clipping to the bound is a lever the CPU sweep turns off where the scene has a bound; off, the march covers
+    /// the whole ray and must find the same surface, only with more evaluations.
+    #[test]
+    fn the_bound_is_a_lever_of_bounded_scenes_on_the_cpu() {
+        let bounded = scene(sphere(1.0)).camera(camera([0.0, 0.5, -3.0], [0.0; 3]));
+        let open = scene(union(sphere(1.0), plane(vec3(0.0, 1.0, 0.0), 1.0)));
+        let off = |s: &Scene, cpu| grid(s, cpu).iter().any(|q| q.bounds == Some(false));
+        assert!(off(&bounded, true) && !off(&bounded, false) && !off(&open, true));
+
+        let pose = Pose::from_camera(&bounded.camera, 0.0, &|p| p.default).unwrap();
+        let frame = Frame::new(&bounded, &pose, 0.0, 24, 16, &ParamValues::defaults(&bounded)).unwrap();
+        let truth = Truth::compute(&bounded, &frame, TruthSettings::default()).unwrap();
+        let clipped = run_cpu(&bounded, &Quality::default(), &frame, &truth).unwrap();
+        let unclipped =
+            run_cpu(&bounded, &Quality { bounds: Some(false), ..Quality::default() }, &frame, &truth).unwrap();
+        assert_eq!(unclipped.quality.to_string(), "no bounds");
+        assert_eq!(clipped.error.hit_mismatch(), 0.0);
+        assert_eq!(unclipped.error.hit_mismatch(), 0.0);
+        let evaluations = |p: &SweepPoint| p.error.traced.as_ref().unwrap().evaluations_per_pixel;
+        assert!(
+            evaluations(&unclipped) > evaluations(&clipped),
+            "{} vs {}",
+            evaluations(&unclipped),
+            evaluations(&clipped)
+        );
+    }
 }

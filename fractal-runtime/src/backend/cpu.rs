@@ -116,7 +116,17 @@ pub fn trace_scene<F: Real, E: Evaluator<F> + ?Sized>(
     scene: &Scene,
     frame: &Frame,
 ) -> Result<Vec<PixelTrace>, RenderError> {
-    let view = View::<F>::new(scene, frame, bound(&fold_node(&scene.root)))?;
+    trace_scene_within(evaluator, scene, frame, bound(&fold_node(&scene.root)))
+}
+
+/// [`trace_scene`] with rays clipped to `bound` instead of the scene's own (`None`: march from 0 to max_distance).
+pub fn trace_scene_within<F: Real, E: Evaluator<F> + ?Sized>(
+    evaluator: &E,
+    scene: &Scene,
+    frame: &Frame,
+    bound: Option<Aabb>,
+) -> Result<Vec<PixelTrace>, RenderError> {
+    let view = View::<F>::new(scene, frame, bound)?;
     let width = frame.width() as usize;
     let mut traces = vec![PixelTrace::default(); width * frame.height() as usize];
     let counted = Counted(evaluator);

@@ -20,8 +20,13 @@ use crate::select::{BackendChoice, RendererOptions};
 use crate::truth::{self, Truth, TruthSettings};
 use crate::Pose;
 
-/// Factor on the iteration count of the converged truth of escape-time fractals (against the scene's count).
+/// Factor on the iteration count of the escape-time sets the estimator study measures against.
 pub const CONVERGED_FACTOR: u32 = 2;
+/// The truth of an escape-time fractal has converged when doubling its iterations moves less than this share of the
+/// hit mask.
+pub const CONVERGED_MASK: f64 = 0.001;
+/// Largest factor on the iterations the truth goes to.
+pub const MAX_TRUTH_FACTOR: u32 = 8;
 
 pub fn accuracy(args: &AccuracyArgs, library: &SceneLibrary) -> Result<(), CliError> {
     let backend = match args.backend {
@@ -75,26 +80,34 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
     let mut md = format!("## {}\n\n", loaded.name);
     let _ = writeln!(out, "accuracy of {} at {w}x{h} on {backend}", loaded.name);
 
-    // The truth at the scene's iteration count, and for escape-time fractals at a converged count, judged against.
-    let factors: Vec<u32> =
-        if sweep::escape_time_iterations(scene).is_some() { vec![1, CONVERGED_FACTOR] } else { vec![1] };
-    let mut truths = Vec::new();
-    for &factor in &factors {
+    // The truth at the scene's iteration count, and for escape-time fractals at doubled counts until the hit mask
+    // settles: the converged truth, judged against.
+    let escape_time = sweep::escape_time_iterations(scene).is_some();
+    let mut truths: Vec<(u32, Truth)> = Vec::new();
+    let mut factor = 1;
+    loop {
         let start = Instant::now();
         let settings = TruthSettings { step_footprints: args.truth_step, iteration_factor: factor };
         let truth = Truth::compute(scene, &frame, settings)?;
         let hits = truth.pixels.iter().filter(|p| p.hit()).count();
+        let moved = truths.last().map(|(_, previous)| mask_moved(previous, &truth));
         let line = format!(
-            "truth at {factor}x the iterations: {:.2} % of pixels hit, step {:.4} footprint, {:.1} s",
+            "truth at {factor}x the iterations: {:.2} % of pixels hit{}, step {:.4} footprint, {:.1} s",
             100.0 * hits as f64 / truth.pixels.len() as f64,
+            moved.map_or(String::new(), |m| format!(" ({:.2} % of the mask moved from {}x)", 100.0 * m, factor / 2)),
             args.truth_step,
             start.elapsed().as_secs_f64()
         );
         let _ = writeln!(out, "  {line}");
         let _ = writeln!(md, "- {line}");
-        truths.push(truth);
+        truths.push((factor, truth));
+        let settled = moved.is_some_and(|m| m < CONVERGED_MASK);
+        if !escape_time || settled || factor >= MAX_TRUTH_FACTOR {
+            break;
+        }
+        factor *= 2;
     }
-    let judged = truths.last().expect("at least one truth");
+    let judged = &truths.last().expect("at least one truth").1;
 
     let mut renderer = match backend {
         Backend::Cpu => None,
@@ -103,7 +116,7 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
     let qualities = sweep::grid(scene, backend == Backend::Cpu);
     // The scene's own setting against every truth, so both judgements are on record.
     if truths.len() > 1 {
-        for (truth, factor) in truths.iter().zip(&factors) {
+        for (factor, truth) in &truths {
             let point =
                 sweep::run(scene, &frame, truth, backend, renderer.as_mut(), &[Quality::default()], &mut |_| {})?;
             let line = format!("scene default against the {factor}x truth: {}", point[0].error.describe());
@@ -148,12 +161,19 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
     Ok(md)
 }
 
+/// Share of the pixels whose hit or miss differs between two truths of one frame.
+fn mask_moved(a: &Truth, b: &Truth) -> f64 {
+    let moved = a.pixels.iter().zip(&b.pixels).filter(|(p, q)| p.hit() != q.hit()).count();
+    moved as f64 / a.pixels.len().max(1) as f64
+}
+
 /// Every studied fractal's estimate against its true distance: printed, and returned as a Markdown section.
 fn estimator_study(samples: usize) -> String {
     let started = Instant::now();
     let out = &mut std::io::stdout().lock();
     let mut md = format!(
-        "## Distance estimators against the true distance\n\n         Written by `fractal accuracy --estimators --estimator-samples {samples}`: per fractal and region, {samples} \
+        "## Distance estimators against the true distance\n\n\
+         Written by `fractal accuracy --estimators --estimator-samples {samples}`: per fractal and region, {samples} \
          points outside the set and near it, escape-time sets at {CONVERGED_FACTOR}x their iterations; ratio = raw \
          estimate (the kernel's estimate divided by the family's step \
          factor) / true distance, the true distance searched from membership alone \
@@ -222,8 +242,9 @@ fn report_text(args: &AccuracyArgs, backend: Backend, budget: &Budget, sections:
          from its own camera at t = 0 with each quality setting and measured against a ground truth that never reads \
          a distance estimate: each fractal decided by its own iteration (escape time or IFS levels), exact primitives \
          by their exact f64 distance, the first crossing along each ray found with steps of {:.4} pixel footprints and \
-         bisected (`fractal-runtime/src/truth.rs`). Escape-time fractals get two truths, at the scene's iteration \
-         count and at {CONVERGED_FACTOR}x it; the sweep is judged against the second.\n\n\
+         bisected (`fractal-runtime/src/truth.rs`). Escape-time fractals get a truth at the scene's iteration count \
+         and at doubled counts until doubling moves less than {:.1} % of the hit mask (at most {MAX_TRUTH_FACTOR}x); \
+         the sweep is judged against the last.\n\n\
          Columns: time of the render (median of {}), distance evaluations per pixel, false hits and misses (% of \
          pixels), rays out of steps, depth error in pixel footprints (median and p99, thin-ray and pixel-cone \
          consistent; *interior*: truth hits whose 8 neighbours hit too), overshoot (rays that passed more than a \
@@ -235,6 +256,7 @@ fn report_text(args: &AccuracyArgs, backend: Backend, budget: &Budget, sections:
          normals: the p99 of fewer is their maximum), no ray out of steps, no NaN/Inf, interior depth p99 ≤ {} \
          footprint (cone-consistent).\n\n{sections}",
         args.truth_step,
+        100.0 * CONVERGED_MASK,
         sweep::TIMING_RUNS,
         100.0 * budget.hit_mismatch,
         100.0 * budget.overshoot,
