@@ -16,6 +16,12 @@ fn require_gpu() -> bool {
 
 /// Renders `scene` from `pose` with the CPU renderer and, when available, wgpu.
 fn render_both(scene: &Scene, pose: &Pose, size: u32) -> Vec<(&'static str, Image)> {
+    render_with(scene, pose, size, false)
+}
+
+/// Renders `scene` from `pose` with the CPU renderer, wgpu and, when `with_opencl` and the build has it, OpenCL
+/// (fast-math, as it renders by default).
+fn render_with(scene: &Scene, pose: &Pose, size: u32, with_opencl: bool) -> Vec<(&'static str, Image)> {
     let frame = Frame::new(scene, pose, 0.0, size, size, &ParamValues::defaults(scene)).unwrap();
     let interp = Interpreter::new(scene).unwrap();
     let kernels = compile(scene).unwrap();
@@ -30,6 +36,18 @@ fn render_both(scene: &Scene, pose: &Pose, size: u32) -> Vec<(&'static str, Imag
         Err(e) if !require_gpu() => eprintln!("wgpu skipped: {e}"),
         Err(e) => panic!("wgpu required but unavailable: {e}"),
     }
+    #[cfg(feature = "opencl")]
+    if with_opencl {
+        match fractal::runtime::OpenClRenderer::new(false) {
+            Ok(mut cl) => {
+                out.push(("opencl", cl.render(&RenderJob::new(KernelSources::compiled(&kernels), &frame)).unwrap()))
+            }
+            Err(e) if !require_gpu() => eprintln!("opencl skipped: {e}"),
+            Err(e) => panic!("opencl required but unavailable: {e}"),
+        }
+    }
+    #[cfg(not(feature = "opencl"))]
+    let _ = with_opencl;
     out
 }
 
@@ -123,7 +141,7 @@ fn shadow_rays_do_not_shadow_their_own_surface() {
 }
 
 /// The numerically hard views of the design notes, each judged against the ground truth (membership along the ray in
-/// f64, never the distance estimate) on the CPU and wgpu: the Mandelbulb seen down its pole axis (where the trig-free
+/// f64, never the distance estimate) on the CPU, wgpu and OpenCL: the Mandelbulb seen down its pole axis (where the trig-free
 /// form divides by the distance to the axis), from 10⁻⁷ and 10⁻³⁰ off it; the Menger sponge of 6 levels from 100
 /// units away (grazing the smallest holes); a box face grazed 10⁻⁴ above. Hit masks may differ only where a ray passes
 /// within a pixel of a surface: at most 2 % of the pixels, and no pixel may be NaN (a NaN shade packs to black here).
@@ -166,7 +184,7 @@ fn hard_views_agree_with_the_ground_truth_on_every_backend() {
         let truth = Truth::compute(&s, &frame, TruthSettings::default()).unwrap();
         let truth_hits = truth.pixels.iter().filter(|p| p.hit()).count();
         assert!(truth_hits > 20 && truth_hits < (size * size) as usize, "{name}: the truth hits {truth_hits} pixels");
-        for (backend, img) in render_both(&s, &pose, size) {
+        for (backend, img) in render_with(&s, &pose, size, true) {
             let error = measure(&s, &truth, Observed::Image(&img));
             eprintln!("{name} on {backend}: {}", error.describe());
             assert!(error.hit_mismatch() <= 0.02, "{name} on {backend}: {}", error.describe());
