@@ -141,10 +141,11 @@ fn shadow_rays_do_not_shadow_their_own_surface() {
 }
 
 /// The numerically hard views of the design notes, each judged against the ground truth (membership along the ray in
-/// f64, never the distance estimate) on the CPU, wgpu and OpenCL: the Mandelbulb seen down its pole axis (where the trig-free
-/// form divides by the distance to the axis), from 10⁻⁷ and 10⁻³⁰ off it; the Menger sponge of 6 levels from 100
-/// units away (grazing the smallest holes); a box face grazed 10⁻⁴ above. Hit masks may differ only where a ray passes
-/// within a pixel of a surface: at most 2 % of the pixels, and no pixel may be NaN (a NaN shade packs to black here).
+/// f64, never the distance estimate) on the CPU, wgpu and OpenCL: the Mandelbulb seen down its pole axis (where the
+/// trig-free form divides by the distance to the axis), from 10⁻⁷ and 10⁻³⁰ off it; the Menger sponge of 6 levels
+/// from 100 units away (grazing the smallest holes); a box face grazed 10⁻⁴ above; a unit sphere 10⁴ units away. Hit
+/// masks may differ only where a ray passes within a pixel of a surface: at most 2 % of the pixels, and no pixel may
+/// be NaN (a NaN shade packs to black here).
 #[test]
 fn hard_views_agree_with_the_ground_truth_on_every_backend() {
     use fractal::runtime::accuracy::{measure, Observed};
@@ -163,6 +164,14 @@ fn hard_views_agree_with_the_ground_truth_on_every_backend() {
         .pixel_epsilon(0.25)
         .max_steps(512);
     let slab = scene(box3(vec3(1.0, 1.0, 100.0)).material(rgb(1.0, 0.0, 0.0))).background(rgb(0.0, 0.0, 1.0));
+    // Unbounded (the plane far below), so the march itself covers the 10⁴ units.
+    let far = scene(union(
+        sphere(1.0).translate(vec3(0.0, 0.0, 1e4)).material(rgb(1.0, 0.0, 0.0)),
+        plane(vec3(0.0, 1.0, 0.0), 1e7),
+    ))
+    .max_distance(2e4)
+    .max_steps(256)
+    .background(rgb(0.0, 0.0, 1.0));
     let cases = [
         bulb(1e-7),
         bulb(1e-30),
@@ -176,6 +185,7 @@ fn hard_views_agree_with_the_ground_truth_on_every_backend() {
             slab,
             Pose::look_at(DVec3::new(0.0, 1.0 + 1e-4, -101.0), DVec3::new(0.0, 1.0 + 1e-4, 0.0), 2.0),
         ),
+        ("a unit sphere 1e4 units away".to_string(), far, Pose::look_at(DVec3::ZERO, DVec3::new(0.3, 0.2, 1e4), 0.02)),
     ];
     for (name, s, pose) in cases {
         let pose = pose.unwrap();
