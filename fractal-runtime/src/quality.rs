@@ -1,7 +1,7 @@
 //! The quality settings an accuracy sweep varies, and how each is applied to a scene: the march's step budget and hit
 //! epsilon (render settings), the iteration count of escape-time fractals (the scene's fractals), a factor on every
-//! distance the march steps by (the step factor, applied by wrapping the CPU evaluator), and whether rays are clipped
-//! to the scene's bound (CPU).
+//! distance the march steps by (the step factor, applied by wrapping the CPU evaluator), whether rays are clipped to
+//! the scene's bound, and over-relaxation of the march (the last two on the CPU only).
 
 use std::fmt;
 
@@ -20,6 +20,8 @@ pub struct Quality {
     pub step_scale: Option<f64>,
     /// `Some(false)`: rays are not clipped to the scene's bound (CPU only; the kernels always clip).
     pub bounds: Option<bool>,
+    /// Over-relaxation factor ω of the march with its fallback (CPU only; the kernels step by d).
+    pub over_relaxation: Option<f64>,
 }
 
 impl Quality {
@@ -77,6 +79,9 @@ impl fmt::Display for Quality {
         }
         if self.bounds == Some(false) {
             parts.push("no bounds".to_string());
+        }
+        if let Some(w) = self.over_relaxation {
+            parts.push(format!("relax {w}"));
         }
         if parts.is_empty() {
             write!(f, "scene default")
