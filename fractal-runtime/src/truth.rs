@@ -231,11 +231,9 @@ impl Truth {
     /// (a crease, a fractal's sign-only membership or a fractal's bound nearby fail one of the two).
     fn exact_normal(&self, p: V3<f64>, rd: V3<f64>, t: f64) -> Option<[f64; 3]> {
         let h = 1e-3 * self.footprint_at(t.max(NEAR));
-        let value = |q: V3<f64>| {
-            let (member_time, member_params) =
-                (Member(self.time), self.params.iter().map(|&p| Member(p)).collect::<Vec<_>>());
-            self.membership.value([q.x, q.y, q.z], &Env { time: member_time, params: &member_params })
-        };
+        let member_params: Vec<Member> = self.params.iter().map(|&p| Member(p)).collect();
+        let env = Env { time: Member(self.time), params: &member_params };
+        let value = |q: V3<f64>| self.membership.value([q.x, q.y, q.z], &env);
         let at = value(p);
         let mut g = [0.0; 3];
         for (axis, slope) in g.iter_mut().enumerate() {
