@@ -173,7 +173,7 @@ fn view_without_a_display_says_how_to_render_instead() {
 fn wgpu_renders_what_the_cpu_renders() {
     let dir = scratch("wgpu");
     let args = |backend: &'static str, name: &'static str| {
-        ["render", "mandelbulb", "--size", "40x32", "--backend", backend, "-o", name]
+        ["render", "mandelbulb_bench", "--size", "40x32", "--backend", backend, "-o", name]
     };
     let gpu = run_in(&dir, &args("wgpu", "gpu.png"));
     if !gpu.status.success() {
@@ -196,7 +196,7 @@ fn bench_against_the_baseline(backend: &str) {
     let dir = scratch(&format!("bench_baseline_{backend}"));
     let args = [
         "bench",
-        "mandelbulb",
+        "mandelbulb_bench",
         "--size",
         "48x27",
         "--frames",
@@ -411,9 +411,28 @@ fn bench_appends_a_csv_row_and_a_json_line() {
 }
 
 #[test]
+fn gallery_renders_every_scene_and_a_labelled_contact_sheet() {
+    let dir = scratch("gallery");
+    let out = run_in(&dir, &["gallery", "--backend", "cpu", "--size", "64x36", "--columns", "5", "-o", "g"]);
+    assert_ok(&out);
+    let count = scenes::ALL.len() as u32;
+    for name in scenes::names() {
+        let image = read_png(&dir.join(format!("g/{name}.png"))).unwrap();
+        assert_eq!((image.width, image.height), (64, 36), "{name}");
+        assert!(!image.is_uniform(), "{name} drew nothing");
+        assert!(stderr(&out).contains(name), "{}", stderr(&out));
+    }
+    let sheet = read_png(&dir.join("g/gallery.png")).unwrap();
+    // Five 64-pixel columns with 6-pixel gaps; a row per five scenes, each 36 pixels and a 24-pixel label band.
+    assert_eq!(sheet.width, 6 + 5 * (64 + 6));
+    assert_eq!(sheet.height, 6 + count.div_ceil(5) * (36 + 24 + 6));
+}
+
+#[test]
 fn accuracy_sweeps_settings_against_the_truth_and_writes_a_report() {
     let dir = scratch("accuracy");
-    let out = run_in(&dir, &["accuracy", "mandelbulb", "--size", "24x14", "--truth-step", "0.05", "--csv", "a.csv"]);
+    let out =
+        run_in(&dir, &["accuracy", "mandelbulb_bench", "--size", "24x14", "--truth-step", "0.05", "--csv", "a.csv"]);
     assert_ok(&out);
     let text = stdout(&out);
     for word in ["truth at 1x the iterations", "truth at 2x the iterations", "scene default against", "steps 512"] {
@@ -426,7 +445,7 @@ fn accuracy_sweeps_settings_against_the_truth_and_writes_a_report() {
     let csv = fs::read_to_string(dir.join("a.csv")).unwrap();
     let rows: Vec<&str> = csv.lines().collect();
     assert!(rows[0].starts_with("scene,backend,size,setting,ms"), "{}", rows[0]);
-    assert!(rows.len() > 15 && rows[1..].iter().all(|r| r.starts_with("mandelbulb,cpu,24x14,")), "{csv}");
+    assert!(rows.len() > 15 && rows[1..].iter().all(|r| r.starts_with("mandelbulb_bench,cpu,24x14,")), "{csv}");
     let report_args =
         ["--report", "--size", "16x9", "--truth-step", "0.05", "--estimator-samples", "4", "--out", "r.md"];
     let out = run_in(&dir, &[&["accuracy"][..], &report_args].concat());
@@ -454,7 +473,7 @@ fn bad_input_is_one_clear_line_and_the_right_exit_status() {
         (vec!["render", "missing.fractal"], 1, "cannot read scene file missing.fractal".into()),
         (vec!["render", &broken], 1, format!("{broken}:4:10: `vec3` takes 3 arguments")),
         (vec!["render", "no_such_scene"], 2, "unknown scene `no_such_scene`".into()),
-        (vec!["render", "no_such_scene"], 2, "hello_world, sphere_box, mandelbulb, sierpinski_collection".into()),
+        (vec!["render", "no_such_scene"], 2, "mandelbulb, mandelbulb_bench, mandelbulb_powers, julia".into()),
         (vec!["render", "hello_world", "--size", "0x0"], 2, "image size 0x0 is invalid".into()),
         (vec!["render", "hello_world", "--size", "100000x100000"], 2, "image size 100000x100000 is invalid".into()),
         (vec!["render", "hello_world", "--size", "big"], 2, "expected WIDTHxHEIGHT".into()),

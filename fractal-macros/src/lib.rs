@@ -20,10 +20,14 @@ pub fn scene(input: TokenStream) -> TokenStream {
     }
 }
 
-/// Compiles a `.fractal` file (path relative to the crate's manifest directory) exactly like `scene!`.
+/// Compiles a `.fractal` file (path relative to the crate's manifest directory) exactly like `scene!`. The path is a
+/// string literal or `concat!` of string literals (so a `macro_rules!` list can build it from a scene's name).
 #[proc_macro]
 pub fn scene_file(input: TokenStream) -> TokenStream {
-    let lit = syn::parse_macro_input!(input as syn::LitStr);
+    let lit = match path_literal(input.into()) {
+        Ok(lit) => lit,
+        Err(e) => return e.to_compile_error().into(),
+    };
     let dir = std::env::var("CARGO_MANIFEST_DIR").unwrap_or_default();
     let path = std::path::Path::new(&dir).join(lit.value());
     let text = match fractal_dsl::parse::read_source(&path) {
@@ -47,6 +51,22 @@ pub fn scene_file(input: TokenStream) -> TokenStream {
             quote!({ const _: &[u8] = include_bytes!(#path_str); #expanded }).into()
         }
         Err(e) => syn::Error::new(lit.span(), format!("{}:{e}", lit.value())).to_compile_error().into(),
+    }
+}
+
+/// The path given to `scene_file!`: a string literal, or `concat!` of string literals joined into one.
+fn path_literal(input: TokenStream2) -> syn::Result<syn::LitStr> {
+    match syn::parse2::<syn::Expr>(input)? {
+        syn::Expr::Lit(syn::ExprLit { lit: syn::Lit::Str(lit), .. }) => Ok(lit),
+        syn::Expr::Macro(m) if m.mac.path.is_ident("concat") => {
+            let parts =
+                m.mac.parse_body_with(syn::punctuated::Punctuated::<syn::LitStr, syn::Token![,]>::parse_terminated)?;
+            let joined: String = parts.iter().map(syn::LitStr::value).collect();
+            Ok(syn::LitStr::new(&joined, m.mac.path.segments[0].ident.span()))
+        }
+        other => {
+            Err(syn::Error::new_spanned(other, "scene_file! takes a path: a string literal or concat!(\"..\", ..)"))
+        }
     }
 }
 

@@ -91,7 +91,8 @@ impl fmt::Display for Quality {
     }
 }
 
-/// The scene with each escape-time fractal's iteration count multiplied by `factor` (IFS levels stay).
+/// The scene with each escape-time fractal's iteration count multiplied by `factor` (IFS levels stay), up to the
+/// most its family allows.
 pub fn with_iterations_scaled(scene: &Scene, factor: u32) -> Scene {
     if factor == 1 {
         return scene.clone();
@@ -99,7 +100,7 @@ pub fn with_iterations_scaled(scene: &Scene, factor: u32) -> Scene {
     with_fractals(scene, &|f| {
         let mut f = f.clone();
         if f.decl().membership.approaches_limit {
-            f.iterations = Some(f.iterations_or_default() * factor);
+            f.iterations = Some(f.iterations_or_default().saturating_mul(factor).min(f.decl().iterations.max));
         }
         f
     })

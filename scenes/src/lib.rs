@@ -1,25 +1,60 @@
-//! The built-in scene library, under the seed's names. Each scene is a `.fractal` file in `scenes/fractal/`, compiled
-//! at build time by `scene_file!` (kernels and native evaluator) and loadable at run time from the same file.
+//! The built-in scene library. Each scene is a `.fractal` file in `scenes/fractal/`, compiled at build time by
+//! `scene_file!` (kernels and native evaluator) and loadable at run time from the same file; the list below names
+//! each once.
 
 use fractal_dsl::CompiledScene;
 use fractal_macros::scene_file;
 
-/// One lit sphere.
-pub static HELLO_WORLD: CompiledScene = scene_file!("fractal/hello_world.fractal");
-/// Union, subtraction and smooth union of a sphere and a box.
-pub static SPHERE_BOX: CompiledScene = scene_file!("fractal/sphere_box.fractal");
-/// The power-8 Mandelbulb, set up like the hand-written baseline.
-pub static MANDELBULB: CompiledScene = scene_file!("fractal/mandelbulb.fractal");
-/// A Menger sponge and a Sierpinski tetrahedron side by side.
-pub static SIERPINSKI_COLLECTION: CompiledScene = scene_file!("fractal/sierpinski_collection.fractal");
+/// Declares every scene once: its static, its name (the file `fractal/<name>.fractal`) and its doc line; writes
+/// [`ALL`] and [`source_file`] from the same list.
+macro_rules! library {
+    ($($(#[doc = $doc:literal])* $static:ident = $name:literal;)*) => {
+        $(
+            $(#[doc = $doc])*
+            pub static $static: CompiledScene = scene_file!(concat!("fractal/", $name, ".fractal"));
+        )*
 
-/// Every built-in scene with its name.
-pub static ALL: &[(&str, &CompiledScene)] = &[
-    ("hello_world", &HELLO_WORLD),
-    ("sphere_box", &SPHERE_BOX),
-    ("mandelbulb", &MANDELBULB),
-    ("sierpinski_collection", &SIERPINSKI_COLLECTION),
-];
+        /// Every built-in scene with its name, in the order the gallery shows them.
+        pub static ALL: &[(&str, &CompiledScene)] = &[$(($name, &$static),)*];
+
+        /// The `.fractal` source file of a built-in scene, as shipped in this crate.
+        pub fn source_file(name: &str) -> Option<&'static str> {
+            match name {
+                $($name => Some(include_str!(concat!("../fractal/", $name, ".fractal"))),)*
+                _ => None,
+            }
+        }
+    };
+}
+
+library! {
+    /// The showcase Mandelbulb: animated power, orbit-trap colour, soft shadows, glow and a camera flight.
+    MANDELBULB = "mandelbulb";
+    /// The power-8 Mandelbulb set up exactly like the hand-written baseline: the benchmark scene.
+    MANDELBULB_BENCH = "mandelbulb_bench";
+    /// Mandelbulbs of power 2, 3 and 8 side by side.
+    MANDELBULB_POWERS = "mandelbulb_powers";
+    /// A quaternion Julia set with an animated constant.
+    JULIA = "julia";
+    /// The Mandelbox of scale 2, from outside.
+    MANDELBOX = "mandelbox";
+    /// A Mandelbox of negative scale (the Amazing Box), from inside its shell.
+    AMAZING_BOX = "amazing_box";
+    /// The Menger sponge on its own.
+    SIERPINSKI_CUBE = "sierpinski_cube";
+    /// The Sierpinski tetrahedron on its own.
+    SIERPINSKI_TETRAHEDRON = "sierpinski_tetrahedron";
+    /// A Menger sponge and a Sierpinski tetrahedron side by side.
+    SIERPINSKI_COLLECTION = "sierpinski_collection";
+    /// One sphere repeated forever, in fog.
+    INFINITE_SPHERES = "infinite_spheres";
+    /// Union, subtraction and smooth union of a sphere and a box.
+    SPHERE_BOX = "sphere_box";
+    /// One lit sphere.
+    HELLO_WORLD = "hello_world";
+    /// One sphere and nothing else.
+    TRIVIAL = "trivial";
+}
 
 /// The built-in scene called `name`.
 pub fn by_name(name: &str) -> Option<&'static CompiledScene> {
@@ -29,15 +64,4 @@ pub fn by_name(name: &str) -> Option<&'static CompiledScene> {
 /// The names of the built-in scenes.
 pub fn names() -> impl Iterator<Item = &'static str> {
     ALL.iter().map(|(n, _)| *n)
-}
-
-/// The `.fractal` source file of a built-in scene, as shipped in this crate.
-pub fn source_file(name: &str) -> Option<&'static str> {
-    match name {
-        "hello_world" => Some(include_str!("../fractal/hello_world.fractal")),
-        "sphere_box" => Some(include_str!("../fractal/sphere_box.fractal")),
-        "mandelbulb" => Some(include_str!("../fractal/mandelbulb.fractal")),
-        "sierpinski_collection" => Some(include_str!("../fractal/sierpinski_collection.fractal")),
-        _ => None,
-    }
 }

@@ -24,7 +24,7 @@ Examples:
   fractal render sphere_box --frames 0..240 --fps 30 -o frames/%05d.png
   fractal render sphere_box --frames 0..240 --shard 3/8 -o frames/%05d.png
   fractal render my_scene.fractal --frames 0..120 -o clip.mp4
-  fractal bench mandelbulb --size 1920x1080 --frames 10 --backend wgpu --baseline --csv bench.csv
+  fractal bench --size 1920x1080 --frames 10 --backend wgpu --baseline --csv bench.csv
   fractal export sierpinski_collection --target glsl -o sierpinski.comp
 
 Exit status: 0 on success, 2 for usage errors, 1 when rendering or writing fails.";
@@ -56,6 +56,8 @@ pub enum Command {
     Export(ExportArgs),
     /// List the built-in scenes
     List,
+    /// Render every built-in scene into a folder, with a labelled contact sheet of them all
+    Gallery(GalleryArgs),
     /// Open a scene in the interactive viewer (needs a display; press H in the window for the controls)
     View(ViewArgs),
 }
@@ -180,8 +182,8 @@ Kernel time is read from the device where it can be (wgpu timestamp queries, Ope
 says when wall time is used instead. The error is measured once, untimed, against the CPU renderer running the f64
 interpreter on the same frame at a reduced size (at most 240 pixels wide).")]
 pub struct BenchArgs {
-    /// Built-in scene name or .fractal file
-    pub scene: String,
+    /// Built-in scene name or .fractal file [default: mandelbulb_bench, the hand-written baseline's scene]
+    pub scene: Option<String>,
     #[command(flatten)]
     pub render: RenderOptions,
     /// Number of timed frames [default: 10]
@@ -267,6 +269,31 @@ pub struct ExportArgs {
     /// Output file
     #[arg(short, long, value_name = "PATH")]
     pub output: Option<PathBuf>,
+}
+
+#[derive(Debug, Args)]
+#[command(after_help = "\
+Each scene is drawn from its own camera (the start of its camera path) with its parameters at their defaults, into
+DIR/<scene>.png; DIR/gallery.png is the contact sheet, scene names under the images.")]
+pub struct GalleryArgs {
+    /// Folder for the images and the contact sheet (created if missing)
+    #[arg(short, long, value_name = "DIR", default_value = "gallery")]
+    pub output: PathBuf,
+    /// Size of each scene's image, WIDTHxHEIGHT
+    #[arg(long, value_name = "WxH", default_value = "320x180", value_parser = parse_size)]
+    pub size: (u32, u32),
+    /// Backend: auto tries wgpu, then OpenCL, then the CPU
+    #[arg(long, value_name = "auto|wgpu|opencl|cpu", default_value = "auto", value_parser = parse_backend)]
+    pub backend: BackendChoice,
+    /// OpenCL: build without -cl-fast-relaxed-math
+    #[arg(long)]
+    pub precise: bool,
+    /// Scene time of every image, in seconds
+    #[arg(long, allow_negative_numbers = true, value_name = "SECONDS", default_value_t = 0.0, value_parser = parse_time)]
+    pub time: f64,
+    /// Images per row of the contact sheet
+    #[arg(long, value_name = "N", default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..=64))]
+    pub columns: u32,
 }
 
 #[derive(Debug, Args)]

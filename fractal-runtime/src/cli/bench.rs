@@ -14,13 +14,14 @@ use crate::cli::SceneLibrary;
 use crate::output::png::prepare_output;
 use crate::select::RendererOptions;
 
-/// The built-in scene set up like the hand-written baseline (camera, light, iterations, steps, epsilon).
-pub const BASELINE_SCENE: &str = "mandelbulb";
+/// The built-in scene set up like the hand-written baseline (camera, light, iterations, steps, epsilon), and the
+/// scene `fractal bench` times when none is named.
+pub const BASELINE_SCENE: &str = "mandelbulb_bench";
 /// Timed frames when neither `--frames` nor `--seconds` is given.
 pub const DEFAULT_FRAMES: u32 = 10;
 
 pub fn bench(args: &BenchArgs, library: &SceneLibrary) -> Result<(), CliError> {
-    let loaded = LoadedScene::load(&args.scene, library)?;
+    let loaded = LoadedScene::load(args.scene.as_deref().unwrap_or(BASELINE_SCENE), library)?;
     let params = loaded.params(&args.render.params)?;
     for path in args.csv.iter().chain(&args.json) {
         prepare_output(path)?;

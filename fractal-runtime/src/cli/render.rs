@@ -103,7 +103,7 @@ fn note(message: &str) {
     eprintln!("fractal: {message}");
 }
 
-fn open_renderer(options: &RenderOptions) -> Result<Box<dyn Renderer>, CliError> {
+pub(super) fn open_renderer(options: &RenderOptions) -> Result<Box<dyn Renderer>, CliError> {
     let mut renderer = select(options.backend, &RendererOptions { precise: options.precise })?;
     for n in renderer.take_notes() {
         note(&n);
@@ -157,7 +157,7 @@ fn write_aovs(args: &RenderArgs, loaded: &LoadedScene, params: &ParamValues, png
 }
 
 /// One frame of the scene at `time`, seen from its own camera.
-fn render_frame(
+pub(super) fn render_frame(
     renderer: &mut dyn Renderer,
     loaded: &LoadedScene,
     params: &ParamValues,

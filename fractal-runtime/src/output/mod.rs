@@ -1,8 +1,10 @@
 //! Offline output of rendered images: PNG files written atomically ([`png`]), numbered frame sequences that resume
-//! after an interruption and split into shards across machines ([`sequence`]), video through ffmpeg ([`video`]), and
-//! per-pixel depth, normals and steps as OpenEXR beside an image ([`aov`]).
+//! after an interruption and split into shards across machines ([`sequence`]), video through ffmpeg ([`video`]),
+//! per-pixel depth, normals and steps as OpenEXR beside an image ([`aov`]), and the gallery's contact sheet
+//! ([`contact_sheet`]).
 
 pub mod aov;
+pub mod contact_sheet;
 pub mod png;
 pub mod sequence;
 pub mod video;
@@ -11,6 +13,7 @@ use std::io;
 use std::path::PathBuf;
 
 pub use aov::{write_aov, Aov};
+pub use contact_sheet::contact_sheet;
 pub use png::{partial_path, read_png, write_atomic, write_png};
 pub use sequence::{plan, FramePattern, FrameRange, SequencePlan, Shard};
 pub use video::{Container, VideoWriter};
