@@ -4,6 +4,7 @@
 //! `sphere(1.0).translate(..)` in Rust build the same [`Node`]. Building never fails; [`crate::validate`] reports
 //! out-of-range values with the parameter's name when the scene is compiled.
 
+use crate::ir::fractal::Setting;
 use crate::ir::*;
 
 // ---- numbers and vectors ----------------------------------------------------------------------------------------
@@ -77,19 +78,25 @@ impl Fractal {
         self.iterations = Some(n);
         self
     }
-    pub fn bailout(mut self, b: impl Into<Expr>) -> Fractal {
-        self.bailout = Some(b.into());
-        self
+    /// Escape-time families: the escape radius.
+    pub fn bailout(self, b: impl Into<Expr>) -> Fractal {
+        self.with(Setting::Bailout, b)
     }
     /// Mandelbox only: the inner radius of the sphere fold.
-    pub fn min_radius(mut self, r: impl Into<Expr>) -> Fractal {
-        self.min_radius = Some(r.into());
-        self
+    pub fn min_radius(self, r: impl Into<Expr>) -> Fractal {
+        self.with(Setting::MinRadius, r)
     }
     /// Mandelbox only: the box fold limit.
-    pub fn fold_limit(mut self, f: impl Into<Expr>) -> Fractal {
-        self.fold_limit = Some(f.into());
-        self
+    pub fn fold_limit(self, f: impl Into<Expr>) -> Fractal {
+        self.with(Setting::FoldLimit, f)
+    }
+    /// Juliabulb only: the power.
+    pub fn power(self, p: impl Into<Expr>) -> Fractal {
+        self.with(Setting::Power, p)
+    }
+    /// KIFS only: the rotation per iteration, radians.
+    pub fn angle(self, a: impl Into<Expr>) -> Fractal {
+        self.with(Setting::Angle, a)
     }
 }
 

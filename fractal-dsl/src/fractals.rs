@@ -8,18 +8,20 @@
 //! surface (estimate below 10% of the bound's half extent) and 1% of the bound's half extent apart: at smaller
 //! separations the escape-time estimators have ever finer detail and the largest ratio keeps growing with the sample
 //! count, and inside the set their values are not distances. Largest ratios over 20 million pairs per variant:
-//! Mandelbulb power 8 at 4–16 iterations and bailout 2 or 256, 1.28 → 0.75; quaternion Julia with connected sets
+//! Mandelbulb power 8 at 4–16 iterations and bailout 2 or 256, 1.28 → 0.75; Juliabulb power 8 (c = (0.45, 0.5,
+//! −0.15), (0.4, 0.5, −0.1), (−0.6, 0.2, 0.3); 6–10 iterations; fewer pairs), 2.29 → 0.4, and below power 8 0.2 (power 3
+//! measures 2.6; where the set is dust the estimate bounds nothing — power 5 at the first c measures 299); quaternion Julia with connected sets
 //! (c = (−0.2, 0.6, 0.2, 0), (−0.4, 0.6, 0, 0)), 1.15 → 0.85; Mandelbox at scales −2, −1.5, 2, 3, 1.30 → 0.75. Menger
 //! and Sierpinski are 1-Lipschitz: 1. The Mandelbulb's ratio depends on the power (measured: power 3 → 2.7, 4 → 1.4,
 //! 5.5 → 1.5, 8 → 1.28, 16 → 0.93), so its factor follows the lowest power the expression can take.
 
 use crate::ir::fractal::FractalArgValue;
-use crate::ir::{Expr, Fractal, Vec4Expr};
+use crate::ir::{Expr, Fractal, Vec3Expr, Vec4Expr};
 use families::*;
 
 /// The declarations, and the table the parser looks names up in.
 pub mod families {
-    use crate::analyse::bounds::{julia_radius, mandelbox_half_extent, mandelbulb_radius};
+    use crate::analyse::bounds::{julia_radius, juliabulb_radius, mandelbox_half_extent, mandelbulb_radius};
     use crate::analyse::interval::range;
     use crate::geom::Aabb;
     use crate::ir::fractal::{
@@ -35,7 +37,16 @@ pub mod families {
     }
 
     /// Every family, in the order documentation lists them.
-    pub static FRACTALS: &[&FractalDecl] = &[&MANDELBULB, &MENGER, &SIERPINSKI_TETRAHEDRON, &JULIA, &MANDELBOX];
+    pub static FRACTALS: &[&FractalDecl] = &[
+        &MANDELBULB,
+        &MENGER,
+        &SIERPINSKI_TETRAHEDRON,
+        &JULIA,
+        &MANDELBOX,
+        &JULIABULB,
+        &OCTAHEDRAL_KIFS,
+        &ICOSAHEDRAL_KIFS,
+    ];
 
     fn count(f: &Fractal) -> CallArg {
         CallArg::Count(f.iterations_or_default())
@@ -71,16 +82,7 @@ pub mod families {
                 _ => (Leaf::DeMandelbulb, vec![num(power), count(f), num(f.bailout_or_default())]),
             }
         },
-        step_factor: |f| {
-            let lowest = f.number().map_or(8.0, |p| range(p).lo);
-            if lowest >= 8.0 {
-                0.75
-            } else if lowest >= 4.0 {
-                0.65
-            } else {
-                0.35
-            }
-        },
+        step_factor: |f| bulb_step_factor(f.number().map_or(8.0, |p| range(p).lo)),
         bound: |f| escape_time_bound(f, mandelbulb_radius(f.number().map_or(8.0, |p| range(p).lo))),
         membership: Membership {
             leaves: &[(Leaf::DeMandelbulb8, Leaf::InMandelbulb8), (Leaf::DeMandelbulb, Leaf::InMandelbulb)],
@@ -179,6 +181,107 @@ pub mod families {
         },
         membership: Membership { leaves: &[(Leaf::DeMandelbox, Leaf::InMandelbox)], approaches_limit: true },
     };
+
+    pub static JULIABULB: FractalDecl = FractalDecl {
+        name: "juliabulb",
+        doc: "the Julia set of the Mandelbulb's map, z ← z^power + c from z = p (`.power(p)`, default 8; may animate)",
+        arg: FractalArg {
+            name: "c",
+            what: "juliabulb constant c",
+            shape: FractalArgShape::Vec3,
+            rule: FractalRule::Finite,
+        },
+        iterations: Iterations { default: 8, min: 1, max: MAX_ITERATIONS },
+        settings: &[(Setting::Bailout, 2.0), (Setting::Power, 8.0)],
+        call: |f| {
+            let mut args: Vec<CallArg> = f.arg_exprs().iter().cloned().map(num).collect();
+            args.extend([num(f.setting_or_default(Setting::Power)), count(f), num(f.bailout_or_default())]);
+            (Leaf::DeJuliabulb, args)
+        },
+        step_factor: |f| juliabulb_step_factor(range(&f.setting_or_default(Setting::Power)).lo),
+        bound: |f| {
+            let norm = f.arg_exprs().iter().map(|e| range(e).max_abs().powi(2)).sum::<f64>().sqrt();
+            escape_time_bound(f, juliabulb_radius(range(&f.setting_or_default(Setting::Power)).lo, norm))
+        },
+        membership: Membership { leaves: &[(Leaf::DeJuliabulb, Leaf::InJuliabulb)], approaches_limit: true },
+    };
+
+    /// The scale of a KIFS: below 1.1 the copies barely shrink (the detail needs ever more iterations), above 4 they
+    /// are dust.
+    const KIFS_SCALE: FractalRule = FractalRule::Between(1.1, 4.0);
+    /// scale^24 at scale 4 is 2^48: past it the detail is below f32 resolution anyway.
+    const KIFS_ITERATIONS: Iterations = Iterations { default: 10, min: 1, max: 24 };
+
+    /// The leaf arguments of a KIFS: scale, angle, iterations.
+    fn kifs_args(f: &Fractal) -> Vec<CallArg> {
+        let scale = f.number().cloned().unwrap_or(Expr::Lit(2.0));
+        vec![num(scale), num(f.setting_or_default(Setting::Angle)), count(f)]
+    }
+
+    /// A kaleidoscopic IFS's set lies in the unit ball and its estimate is a true lower bound (`sdf::kifs_orbit`):
+    /// the step factor is 1, and outside the box the estimate is at least |p| − 1, at least the distance to the box.
+    fn kifs_bound(_: &Fractal) -> Option<PrimBound> {
+        Some(PrimBound { aabb: Aabb::cube(1.0), reach: 0.95 })
+    }
+
+    pub static OCTAHEDRAL_KIFS: FractalDecl = FractalDecl {
+        name: "octahedral_kifs",
+        doc: "a kaleidoscopic IFS with octahedral folds, scaled by `scale` about (1, 0, 0) (at 2: the Sierpinski \
+              octahedron), turned by `.angle(a)` about z each iteration",
+        arg: FractalArg {
+            name: "scale",
+            what: "octahedral_kifs scale",
+            shape: FractalArgShape::Number,
+            rule: KIFS_SCALE,
+        },
+        iterations: KIFS_ITERATIONS,
+        settings: &[(Setting::Angle, 0.0)],
+        call: |f| (Leaf::DeOctahedralKifs, kifs_args(f)),
+        step_factor: |_| 1.0,
+        bound: kifs_bound,
+        membership: Membership { leaves: &[(Leaf::DeOctahedralKifs, Leaf::InOctahedralKifs)], approaches_limit: false },
+    };
+
+    pub static ICOSAHEDRAL_KIFS: FractalDecl = FractalDecl {
+        name: "icosahedral_kifs",
+        doc: "a kaleidoscopic IFS with icosahedral folds, scaled by `scale` about a vertex (at φ² ≈ 2.618: the \
+              icosahedron flake), turned by `.angle(a)` about z each iteration",
+        arg: FractalArg {
+            name: "scale",
+            what: "icosahedral_kifs scale",
+            shape: FractalArgShape::Number,
+            rule: KIFS_SCALE,
+        },
+        iterations: KIFS_ITERATIONS,
+        settings: &[(Setting::Angle, 0.0)],
+        call: |f| (Leaf::DeIcosahedralKifs, kifs_args(f)),
+        step_factor: |_| 1.0,
+        bound: kifs_bound,
+        membership: Membership {
+            leaves: &[(Leaf::DeIcosahedralKifs, Leaf::InIcosahedralKifs)],
+            approaches_limit: false,
+        },
+    };
+
+    /// The Juliabulb's step factor for its lowest power (measured, see the module comment).
+    fn juliabulb_step_factor(lowest: f64) -> f64 {
+        if lowest >= 8.0 {
+            0.4
+        } else {
+            0.2
+        }
+    }
+
+    /// The Mandelbulb map's step factor for its lowest power (measured, see the module comment).
+    fn bulb_step_factor(lowest: f64) -> f64 {
+        if lowest >= 8.0 {
+            0.75
+        } else if lowest >= 4.0 {
+            0.65
+        } else {
+            0.35
+        }
+    }
 }
 
 /// Mandelbulb of the given power (may animate; an integer 8 compiles to the trig-free polynomial form).
@@ -197,4 +300,16 @@ pub fn julia(c: impl Into<Vec4Expr>) -> Fractal {
 }
 pub fn mandelbox(scale: impl Into<Expr>) -> Fractal {
     Fractal::new(&MANDELBOX, FractalArgValue::Num(scale.into()))
+}
+/// The Julia set of the Mandelbulb's map for the constant `c` (power 8 unless `.power(p)`).
+pub fn juliabulb(c: impl Into<Vec3Expr>) -> Fractal {
+    Fractal::new(&JULIABULB, FractalArgValue::Vec3(c.into()))
+}
+/// Kaleidoscopic IFS with octahedral folds.
+pub fn octahedral_kifs(scale: impl Into<Expr>) -> Fractal {
+    Fractal::new(&OCTAHEDRAL_KIFS, FractalArgValue::Num(scale.into()))
+}
+/// Kaleidoscopic IFS with icosahedral folds.
+pub fn icosahedral_kifs(scale: impl Into<Expr>) -> Fractal {
+    Fractal::new(&ICOSAHEDRAL_KIFS, FractalArgValue::Num(scale.into()))
 }

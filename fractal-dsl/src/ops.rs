@@ -48,6 +48,11 @@ pub mod decl {
         &ROUND,
         &ONION,
         &ELONGATE,
+        &PLANE_FOLD,
+        &ABS_FOLD,
+        &BOX_FOLD,
+        &SPHERE_FOLD,
+        &POLAR_REPEAT,
     ];
 
     /// A combination of shapes with no arguments of its own.
@@ -338,6 +343,124 @@ pub mod decl {
             s[0].map(|b| Some(b.grow3(h.map(|i| i.max_abs()))))
         },
     };
+
+    /// The bound of a fold that maps points onto the child's box by a reflection: the child's box together with its
+    /// `reflected` images. Outside that box a folded point is no nearer the child's box than the point is to it, so
+    /// the reach carries over; guards over folds are not claimed exact.
+    fn folded(inner: Bound, reflected: impl Fn(&Aabb) -> Vec<Aabb>) -> Bound {
+        let out = inner.map(|b| Some(reflected(&b).iter().fold(b, |acc, r| acc.union(r))));
+        Bound { exact_guard: false, ..out }
+    }
+
+    pub static PLANE_FOLD: OpDecl = OpDecl {
+        name: "plane_fold",
+        doc: "the half of the shape on the side `normal` points to, mirrored onto the other side of the plane through \
+              the origin",
+        operands: Operands::Receiver,
+        args: &[ArgDecl { name: "normal", what: "plane_fold normal", shape: ArgShape::ConstVec3, rule: Direction }],
+        meaning: Meaning::PlaneFold,
+        identity: Identity::Never,
+        flattens: false,
+        lipschitz: true,
+        bound: |s, a| match a[0].point3() {
+            Some(n) => folded(s[0], |b| {
+                let mirror = |p: [f64; 3]| {
+                    let d = 2.0 * (p[0] * n[0] + p[1] * n[1] + p[2] * n[2]);
+                    [p[0] - d * n[0], p[1] - d * n[1], p[2] - d * n[2]]
+                };
+                Aabb::of_points(b.corners().map(mirror)).into_iter().collect()
+            }),
+            None => Bound::UNBOUNDED,
+        },
+    };
+
+    pub static ABS_FOLD: OpDecl = OpDecl {
+        name: "abs_fold",
+        doc: "the shape made symmetric in the planes x = 0, y = 0, z = 0 whose `axes` component is 1: p ← |p| there",
+        operands: Operands::Receiver,
+        args: &[ArgDecl { name: "axes", what: "abs_fold axes", shape: ArgShape::Counts, rule: AtMost(1) }],
+        meaning: Meaning::AbsFold,
+        identity: Identity::When(0, 0.0),
+        flattens: false,
+        lipschitz: true,
+        bound: |s, a| {
+            let axes = a[0].vec3().map(|i| i.hi >= 1.0);
+            folded(s[0], |b| {
+                let (mut min, mut max) = (b.min, b.max);
+                for i in (0..3).filter(|&i| axes[i]) {
+                    (min[i], max[i]) = (-b.max[i], -b.min[i]);
+                }
+                vec![Aabb { min, max }]
+            })
+        },
+    };
+
+    pub static BOX_FOLD: OpDecl = OpDecl {
+        name: "box_fold",
+        doc: "each coordinate beyond ±`limit` reflected back inside: clamp(p, −limit, limit)·2 − p (the Mandelbox's \
+              first fold)",
+        operands: Operands::Receiver,
+        args: &[num("limit", "box_fold limit", Positive)],
+        meaning: Meaning::BoxFold,
+        identity: Identity::Never,
+        flattens: false,
+        lipschitz: true,
+        bound: |s, a| {
+            let l = a[0].num();
+            if !l.is_finite() {
+                return Bound::UNBOUNDED;
+            }
+            // A coordinate q of the child comes from p = q (inside ±l), 2l − q (beyond +l) or −2l − q (beyond −l);
+            // each is linear in l, so the ends of l's range bound it.
+            folded(s[0], |b| {
+                [l.lo, l.hi]
+                    .into_iter()
+                    .flat_map(|l| {
+                        [2.0 * l, -2.0 * l].map(|k| Aabb {
+                            min: [0, 1, 2].map(|i| k - b.max[i]),
+                            max: [0, 1, 2].map(|i| k - b.min[i]),
+                        })
+                    })
+                    .collect()
+            })
+        },
+    };
+
+    pub static SPHERE_FOLD: OpDecl = OpDecl {
+        name: "sphere_fold",
+        doc: "inversion in the sphere of `fixed_radius`, a plain scale inside `min_radius` (the Mandelbox's second \
+              fold); the distance is divided by the scale",
+        operands: Operands::Receiver,
+        args: &[
+            num("min_radius", "sphere_fold min_radius", Positive),
+            num("fixed_radius", "sphere_fold fixed_radius", Positive),
+        ],
+        meaning: Meaning::SphereFold,
+        identity: Identity::Never,
+        flattens: false,
+        lipschitz: false,
+        // Beyond the fixed radius nothing moves; within it, any point may land on the child.
+        bound: |s, a| {
+            let fixed = a[1].num();
+            if !fixed.is_finite() {
+                return Bound::UNBOUNDED;
+            }
+            Bound { exact_guard: false, ..s[0].map(|b| Some(b.union(&Aabb::cube(fixed.hi)))) }
+        },
+    };
+
+    pub static POLAR_REPEAT: OpDecl = OpDecl {
+        name: "polar_repeat",
+        doc: "`count` copies of the shape around the y axis, the first centred on +x (each cut at its sector's walls)",
+        operands: Operands::Receiver,
+        args: &[num("count", "polar_repeat count", CountUpTo(super::MAX_REPEAT_COUNT))],
+        meaning: Meaning::PolarRepeat,
+        identity: Identity::When(0, 1.0),
+        flattens: false,
+        lipschitz: false,
+        // Points keep their radius from the y axis and their height: the cylinder of the child's farthest corner.
+        bound: |s, _| Bound { exact_guard: false, ..swept(s[0], [0, 2, 1], Interval::point(0.0)) },
+    };
 }
 
 // ---- builder functions ------------------------------------------------------------------------------------------
@@ -424,6 +547,25 @@ pub trait ShapeExt: Into<Node> + Sized {
     }
     fn elongate(self, h: impl Into<Vec3Expr>) -> Node {
         ELONGATE.node(vec![self.into()], vec![h.into().into()])
+    }
+    /// Mirrors the half on the side `normal` points to onto the other side of the plane through the origin.
+    fn plane_fold(self, normal: impl Into<glam::DVec3>) -> Node {
+        let normal = Vec3Expr::from(normal.into().to_array());
+        PLANE_FOLD.node(vec![self.into()], vec![normal.into()])
+    }
+    /// Makes the shape symmetric in the coordinate planes whose `axes` entry is 1 (p ← |p| on those axes).
+    fn abs_fold(self, axes: [u32; 3]) -> Node {
+        ABS_FOLD.node(vec![self.into()], vec![Vec3Expr::from(axes.map(f64::from)).into()])
+    }
+    fn box_fold(self, limit: impl Into<Expr>) -> Node {
+        BOX_FOLD.node(vec![self.into()], vec![limit.into().into()])
+    }
+    fn sphere_fold(self, min_radius: impl Into<Expr>, fixed_radius: impl Into<Expr>) -> Node {
+        SPHERE_FOLD.node(vec![self.into()], vec![min_radius.into().into(), fixed_radius.into().into()])
+    }
+    /// `count` copies around the y axis.
+    fn polar_repeat(self, count: u32) -> Node {
+        POLAR_REPEAT.node(vec![self.into()], vec![Expr::Lit(f64::from(count)).into()])
     }
     fn material(self, m: impl Into<Material>) -> Node {
         Node::Material(Box::new(self.into()), Box::new(m.into()))

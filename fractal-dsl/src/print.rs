@@ -192,6 +192,7 @@ fn args<'a>(declared: impl Iterator<Item = (&'static ArgDecl, &'a ArgValue)>) ->
 fn fractal(f: &Fractal) -> String {
     let arg = match &f.arg {
         FractalArgValue::Num(e) => expr(e),
+        FractalArgValue::Vec3(c) => format!("vec3({}, {}, {})", expr(&c.0[0]), expr(&c.0[1]), expr(&c.0[2])),
         FractalArgValue::Vec4(c) => {
             format!("vec4({}, {}, {}, {})", expr(&c.0[0]), expr(&c.0[1]), expr(&c.0[2]), expr(&c.0[3]))
         }

@@ -29,12 +29,18 @@ leaves! {
     DeSierpinski => de_sierpinski(p: V3, levels: Count) -> Pair;
     DeJulia => de_julia(p: V3, cx: F, cy: F, cz: F, cw: F, iterations: Count, bailout: F) -> Pair;
     DeMandelbox => de_mandelbox(p: V3, scale: F, iterations: Count, min_radius: F, fold_limit: F) -> Pair;
+    DeJuliabulb => de_juliabulb(p: V3, cx: F, cy: F, cz: F, power: F, iterations: Count, bailout: F) -> Pair;
+    DeOctahedralKifs => de_octahedral_kifs(p: V3, scale: F, angle: F, iterations: Count) -> Pair;
+    DeIcosahedralKifs => de_icosahedral_kifs(p: V3, scale: F, angle: F, iterations: Count) -> Pair;
     InMandelbulb => in_mandelbulb(p: V3, power: F, iterations: Count, bailout: F) -> F;
     InMandelbulb8 => in_mandelbulb8(p: V3, iterations: Count, bailout: F) -> F;
     InMenger => in_menger(p: V3, levels: Count) -> F;
     InSierpinski => in_sierpinski(p: V3, levels: Count) -> F;
     InJulia => in_julia(p: V3, cx: F, cy: F, cz: F, cw: F, iterations: Count, bailout: F) -> F;
     InMandelbox => in_mandelbox(p: V3, scale: F, iterations: Count, min_radius: F, fold_limit: F) -> F;
+    InJuliabulb => in_juliabulb(p: V3, cx: F, cy: F, cz: F, power: F, iterations: Count, bailout: F) -> F;
+    InOctahedralKifs => in_octahedral_kifs(p: V3, scale: F, angle: F, iterations: Count) -> F;
+    InIcosahedralKifs => in_icosahedral_kifs(p: V3, scale: F, angle: F, iterations: Count) -> F;
 }
 
 /// How a number type calls a leaf function: directly (the default), or — when tracing — as a call of the named
@@ -213,11 +219,17 @@ fn escape_estimate<F: Num>(r: F, dr: F) -> F {
     c::<F>(0.5) * ln(max(r, c(TINY))) * r / dr
 }
 
-/// The orbit of an escape-time map from z = p: z ← map(z, |z|, dr) + p with dr ← its derivative, while |z| stays
-/// within `escape` and dr below [`DR_MAX`]; returns the distance estimate and the orbit trap (closest approach to the
-/// origin, at most 1).
+/// The orbit of an escape-time map from z = p: z ← map(z, |z|, dr) + offset with dr ← its derivative, while |z|
+/// stays within `escape` and dr below [`DR_MAX`]; returns the distance estimate and the orbit trap (closest approach
+/// to the origin, at most 1). The offset is p for Mandelbrot-type sets, a constant for Julia-type ones.
 #[inline(always)]
-fn escape_time<F: Num>(p: V3<F>, iterations: F::Count, escape: F, map: impl Fn(V3<F>, F, F) -> (V3<F>, F)) -> [F; 2] {
+fn escape_time<F: Num>(
+    p: V3<F>,
+    offset: V3<F>,
+    iterations: F::Count,
+    escape: F,
+    map: impl Fn(V3<F>, F, F) -> (V3<F>, F),
+) -> [F; 2] {
     let r0 = length(p);
     let (_, dr, r, trap) = F::iterate(
         iterations,
@@ -225,7 +237,7 @@ fn escape_time<F: Num>(p: V3<F>, iterations: F::Count, escape: F, map: impl Fn(V
         |&(_, dr, r, _)| orbit_bounded(r, escape, dr),
         |(z, dr, r, trap)| {
             let (z, dr) = map(z, r, dr);
-            let z = z + p;
+            let z = z + offset;
             let r = length(z);
             (z, dr, r, min(trap, r))
         },
@@ -236,16 +248,23 @@ fn escape_time<F: Num>(p: V3<F>, iterations: F::Count, escape: F, map: impl Fn(V
 /// Mandelbulb of any power by the trigonometric form; the derivative uses the same `power` as the iteration.
 #[inline(always)]
 pub fn de_mandelbulb<F: Num>(p: V3<F>, power: F, iterations: F::Count, bailout: F) -> [F; 2] {
-    escape_time(p, iterations, mandelbulb_escape(power, bailout), |z, r, dr| mandelbulb_step(z, r, dr, power))
+    escape_time(p, p, iterations, mandelbulb_escape(power, bailout), |z, r, dr| {
+        let (z, dr) = bulb_power(z, r, dr, power);
+        (z, dr + c(1.0))
+    })
 }
 
-/// One step of the Mandelbulb map of any power, z ↦ z^power in spherical coordinates (r = |z|), with the derivative
-/// dr ↦ power·r^(power−1)·dr + 1.
+/// z ↦ z^power in spherical coordinates (r = |z|), the map of the Mandelbulb and the Juliabulb, with the chain rule's
+/// dr ↦ power·r^(power−1)·dr.
 #[inline(always)]
-fn mandelbulb_step<F: Num>(z: V3<F>, r: F, dr: F, power: F) -> (V3<F>, F) {
-    let theta = acos(clamp(z.z / max(r, c(TINY)), c(-1.0), c(1.0))) * power;
-    let phi = atan2(z.y, z.x) * power;
-    let dr = power * pow(r, power - c(1.0)) * dr + c(1.0);
+fn bulb_power<F: Num>(z: V3<F>, r: F, dr: F, power: F) -> (V3<F>, F) {
+    // θ from atan2(ρ, z), not acos(z/r): acos is ill-conditioned at ±1, where GPU drivers' approximations lose most
+    // (lavapipe's by ~1e-4 rad at the poles, which an orbit then magnifies). On the polar axis the azimuth is
+    // undefined and atan2(0, 0) differs between drivers: it is taken as 0 there on every backend.
+    let rho = sqrt(z.x * z.x + z.y * z.y);
+    let theta = atan2(rho, z.z) * power;
+    let phi = select(gt(rho, c(0.0)), atan2(z.y, z.x), c(0.0)) * power;
+    let dr = power * pow(r, power - c(1.0)) * dr;
     let zr = pow(r, power);
     let (st, ct) = (sin(theta), cos(theta));
     let (sp, cp) = (sin(phi), cos(phi));
@@ -256,7 +275,7 @@ fn mandelbulb_step<F: Num>(z: V3<F>, r: F, dr: F, power: F) -> (V3<F>, F) {
 /// (z + iρ)^8 and ((x + iy)/ρ)^8 expanded as polynomials.
 #[inline(always)]
 pub fn de_mandelbulb8<F: Num>(p: V3<F>, iterations: F::Count, bailout: F) -> [F; 2] {
-    escape_time(p, iterations, mandelbulb_escape(c(8.0), bailout), mandelbulb8_step)
+    escape_time(p, p, iterations, mandelbulb_escape(c(8.0), bailout), mandelbulb8_step)
 }
 
 /// One step of the power-8 Mandelbulb map without trigonometry, z ↦ z^8 (r = |z|), with the derivative
@@ -386,6 +405,112 @@ fn mandelbox_step<F: Num>(z: V3<F>, p: V3<F>, scale: F, min_r2: F, fold_limit: F
     (z * f * scale + p, f, r2)
 }
 
+/// Juliabulb: the Mandelbulb's map of `power` with the constant c = (cx, cy, cz) in place of the point, z ← z^power + c
+/// from z = p. The derivative has no + 1: c does not move with p.
+#[inline(always)]
+pub fn de_juliabulb<F: Num>(p: V3<F>, cx: F, cy: F, cz: F, power: F, iterations: F::Count, bailout: F) -> [F; 2] {
+    // An orbit through 0 (p = 0 itself) has dr = 0 from then on; the floor keeps the estimate finite.
+    escape_time(p, v3(cx, cy, cz), iterations, mandelbulb_escape(power, bailout), |z, r, dr| {
+        let (z, dr) = bulb_power(z, r, dr, power);
+        (z, max(dr, c(TINY)))
+    })
+}
+
+/// The golden ratio φ, rounded to f32 like every constant below that is not already an f32: the icosahedral fold
+/// repeats its mirror at every step of an orbit that magnifies differences by the scale each step, so the f64
+/// reference and the f32 kernels must fold with the same mirror, not with roundings of it.
+const PHI: f64 = 1.618_033_988_749_895_f64 as f32 as f64;
+
+/// Folds z into the octahedral chamber x ≥ y ≥ z ≥ 0: mirrors in the coordinate planes, then in x = y, x = z, y = z.
+#[inline(always)]
+fn octahedral_fold<F: Num>(z: V3<F>) -> V3<F> {
+    let a = abs3(z);
+    let a = select3(lt(a.x, a.y), v3(a.y, a.x, a.z), a);
+    let a = select3(lt(a.x, a.z), v3(a.z, a.y, a.x), a);
+    select3(lt(a.y, a.z), v3(a.x, a.z, a.y), a)
+}
+
+/// Folds z towards a chamber of the icosahedron with vertices (0, ±1, ±φ) and their cyclic permutations: three
+/// rounds of the mirrors in the coordinate planes and the mirror with normal (−φ, −1, φ − 1)/2.
+#[inline(always)]
+fn icosahedral_fold<F: Num>(z: V3<F>) -> V3<F> {
+    let n = v3(c::<F>(-0.5 * PHI), c(-0.5), c(0.5 * (PHI - 1.0)));
+    repeat(F::count(3), z, |z| {
+        let a = abs3(z);
+        a - n * (c::<F>(2.0) * min(dot(a, n), c(0.0)))
+    })
+}
+
+/// The unit vertex the octahedral KIFS scales about.
+#[inline(always)]
+fn octahedral_vertex<F: Num>() -> V3<F> {
+    v3(c(1.0), c(0.0), c(0.0))
+}
+
+/// The unit vertex the icosahedral KIFS scales about: (0, 1, φ) normalised, on the fold's chamber.
+#[inline(always)]
+fn icosahedral_vertex<F: Num>() -> V3<F> {
+    let inv = 1.0 / (1.0 + PHI * PHI).sqrt();
+    v3(c(0.0), c(inv as f32 as f64), c((PHI * inv) as f32 as f64))
+}
+
+/// The orbit of a kaleidoscopic IFS from z = p: fold, turn by `angle` about z, then z ← scale·z − (scale − 1)·vertex,
+/// for `iterations` steps or until `going_on(z)` fails; returns the final z and the orbit trap. Every step is
+/// `scale`-Lipschitz (folds and turns are isometries) and the set stays within the unit ball (past it |z| − 1 grows by
+/// the scale each step), so after all n steps (|z| − 1)/scaleⁿ is a 1-Lipschitz lower bound of the distance to the set:
+/// a step factor of 1. (Stopping early where |z| is large would be faster but makes the estimate jump between counts.)
+#[inline(always)]
+fn kifs_orbit<F: Num>(
+    p: V3<F>,
+    scale: F,
+    angle: F,
+    iterations: F::Count,
+    vertex: V3<F>,
+    fold: impl Fn(V3<F>) -> V3<F>,
+    going_on: impl Fn(V3<F>) -> F::Mask,
+) -> (V3<F>, F) {
+    let (co, si) = (cos(angle), sin(angle));
+    let shift = vertex * (scale - c(1.0));
+    F::iterate(
+        iterations,
+        (p, c::<F>(1.0)),
+        |&(z, _)| going_on(z),
+        |(z, trap)| {
+            let z = fold(z);
+            let z = v3(co * z.x - si * z.y, si * z.x + co * z.y, z.z);
+            let z = z * scale - shift;
+            (z, min(trap, dot(z, z)))
+        },
+    )
+}
+
+/// A KIFS estimate from the orbit's full `iterations` steps: (|z| − 1)/scale^iterations, with the orbit trap.
+#[inline(always)]
+fn kifs_estimate<F: Num>(
+    p: V3<F>,
+    scale: F,
+    angle: F,
+    iterations: F::Count,
+    vertex: V3<F>,
+    fold: impl Fn(V3<F>) -> V3<F>,
+) -> [F; 2] {
+    let (z, trap) = kifs_orbit(p, scale, angle, iterations, vertex, fold, |_| F::Mask::splat(true));
+    let shrink = repeat(iterations, c::<F>(1.0), |k| k * scale);
+    [(length(z) - c(1.0)) / shrink, min(trap, c(1.0))]
+}
+
+/// The octahedral KIFS (at scale 2, the Sierpinski octahedron with vertices (±1, 0, 0), (0, ±1, 0), (0, 0, ±1)).
+#[inline(always)]
+pub fn de_octahedral_kifs<F: Num>(p: V3<F>, scale: F, angle: F, iterations: F::Count) -> [F; 2] {
+    kifs_estimate(p, scale, angle, iterations, octahedral_vertex(), octahedral_fold)
+}
+
+/// The icosahedral KIFS (at scale φ² ≈ 2.618, the icosahedron flake).
+#[inline(always)]
+pub fn de_icosahedral_kifs<F: Num>(p: V3<F>, scale: F, angle: F, iterations: F::Count) -> [F; 2] {
+    kifs_estimate(p, scale, angle, iterations, icosahedral_vertex(), icosahedral_fold)
+}
+
 // ---- membership: each fractal's own definition, with no estimate (the ground truth that checks the estimators) ----
 
 /// A membership value: −1 inside the set; outside, `apart` — a lower bound on the distance to the set that follows
@@ -407,11 +532,12 @@ fn first_step_radius<F: Num>(power: F, bailout: F) -> F {
     repeat(F::count(6), r, |r| pow(bailout + r, c::<F>(1.0) / power))
 }
 
-/// Whether the orbit z ← map(z, |z|) + p from z = p stays within `escape` for `iterations` steps; `radius` holds the
-/// set.
+/// Whether the orbit z ← map(z, |z|) + offset from z = p stays within `escape` for `iterations` steps; `radius` holds
+/// the set.
 #[inline(always)]
 fn escape_time_membership<F: Num>(
     p: V3<F>,
+    offset: V3<F>,
     iterations: F::Count,
     escape: F,
     radius: F,
@@ -422,7 +548,7 @@ fn escape_time_membership<F: Num>(
         (p, length(p)),
         |&(_, r)| le(r, escape),
         |(z, r)| {
-            let z = map(z, r) + p;
+            let z = map(z, r) + offset;
             (z, length(z))
         },
     );
@@ -433,14 +559,14 @@ fn escape_time_membership<F: Num>(
 #[inline(always)]
 pub fn in_mandelbulb<F: Num>(p: V3<F>, power: F, iterations: F::Count, bailout: F) -> F {
     let radius = first_step_radius(power, bailout);
-    escape_time_membership(p, iterations, bailout, radius, |z, r| mandelbulb_step(z, r, c(1.0), power).0)
+    escape_time_membership(p, p, iterations, bailout, radius, |z, r| bulb_power(z, r, c(1.0), power).0)
 }
 
 /// The power-8 Mandelbulb: the orbit stays within `bailout` for `iterations` (at least 1) steps.
 #[inline(always)]
 pub fn in_mandelbulb8<F: Num>(p: V3<F>, iterations: F::Count, bailout: F) -> F {
     let radius = first_step_radius(c(8.0), bailout);
-    escape_time_membership(p, iterations, bailout, radius, |z, r| mandelbulb8_step(z, r, c(1.0)).0)
+    escape_time_membership(p, p, iterations, bailout, radius, |z, r| mandelbulb8_step(z, r, c(1.0)).0)
 }
 
 /// The Menger sponge of `levels` levels in [-1, 1]³: inside the cube, and at no level in the middle third of its cell
@@ -532,4 +658,40 @@ pub fn in_mandelbox<F: Num>(p: V3<F>, scale: F, iterations: F::Count, min_radius
     );
     // No ball is known to hold every Mandelbox from its definition alone: fixed steps everywhere.
     membership(le(r, escape), c(0.0))
+}
+
+/// The Juliabulb: the orbit z ← z^power + c from z = p stays within `bailout` for `iterations` (at least 1) steps. Past
+/// (bailout + |c|)^(1/power), |z₁| ≥ |p|^power − |c| > bailout; past bailout the orbit has escaped at once.
+#[inline(always)]
+pub fn in_juliabulb<F: Num>(p: V3<F>, cx: F, cy: F, cz: F, power: F, iterations: F::Count, bailout: F) -> F {
+    let offset = v3(cx, cy, cz);
+    let radius = min(bailout, pow(bailout + length(offset), c::<F>(1.0) / power));
+    escape_time_membership(p, offset, iterations, bailout, radius, |z, r| bulb_power(z, r, c(1.0), power).0)
+}
+
+/// Whether a KIFS orbit stays within the unit ball for `iterations` steps (the set's own test, see [`kifs_orbit`]).
+#[inline(always)]
+fn kifs_membership<F: Num>(
+    p: V3<F>,
+    scale: F,
+    angle: F,
+    iterations: F::Count,
+    vertex: V3<F>,
+    fold: impl Fn(V3<F>) -> V3<F>,
+) -> F {
+    let inside = |z: V3<F>| le(dot(z, z), c(1.0));
+    let (z, _) = kifs_orbit(p, scale, angle, iterations, vertex, fold, inside);
+    membership(inside(z), length(p) - c(1.0))
+}
+
+/// The octahedral KIFS at `iterations` steps.
+#[inline(always)]
+pub fn in_octahedral_kifs<F: Num>(p: V3<F>, scale: F, angle: F, iterations: F::Count) -> F {
+    kifs_membership(p, scale, angle, iterations, octahedral_vertex(), octahedral_fold)
+}
+
+/// The icosahedral KIFS at `iterations` steps.
+#[inline(always)]
+pub fn in_icosahedral_kifs<F: Num>(p: V3<F>, scale: F, angle: F, iterations: F::Count) -> F {
+    kifs_membership(p, scale, angle, iterations, icosahedral_vertex(), icosahedral_fold)
 }

@@ -210,7 +210,7 @@ pub fn own_exprs(node: &Node) -> Vec<&Expr> {
         Node::Prim(p) => out.extend(p.exprs()),
         Node::Fractal(f) => {
             out.extend(f.arg_exprs());
-            out.extend([&f.bailout, &f.min_radius, &f.fold_limit].into_iter().flatten());
+            out.extend(f.settings.iter().flatten());
         }
         Node::Op(op) => out.extend(op.exprs()),
         Node::Material(_, m) => crate::visit::material_exprs(m, &mut |e| out.push(e)),
@@ -564,6 +564,12 @@ fn check_args(decls: &[ArgDecl], values: &[ArgValue]) -> Vec<Problem> {
                 }
             }
             (Rule::Period, ArgValue::Num(e)) => number(o, name, what, e, ge(0.0)),
+            (Rule::CountUpTo(most), _) => {
+                let whole = value.exprs()[0].as_lit().filter(|v| v.fract() == 0.0 && *v >= 1.0 && *v <= most as f64);
+                if whole.is_none() {
+                    o.push(Problem::new(name, format!("{what} must be a whole number from 1 to {most}")));
+                }
+            }
             (Rule::AtMost(most), _) => {
                 for (e, axis) in value.exprs().iter().zip(AXES) {
                     let whole = e.as_lit().filter(|v| v.fract() == 0.0 && *v >= 0.0);
@@ -609,11 +615,14 @@ pub fn check_fractal(f: &Fractal) -> Vec<Problem> {
         let Some(value) = f.setting(setting) else { continue };
         let method = setting.name();
         if f.applies(setting) {
-            let lim = match setting {
-                Setting::MinRadius => within(0.0, false, 1.0, false),
-                Setting::Bailout | Setting::FoldLimit => gt(0.0),
-            };
-            number(o, method, &format!("{name} {method}"), value, lim);
+            let what = format!("{name} {method}");
+            match setting {
+                Setting::MinRadius => number(o, method, &what, value, within(0.0, false, 1.0, false)),
+                Setting::Bailout | Setting::FoldLimit => number(o, method, &what, value, gt(0.0)),
+                // The Mandelbulb's range: below 2 the map folds the sphere onto itself, above 64 f32 overflows.
+                Setting::Power => number(o, method, &what, value, ge_le(2.0, 64.0)),
+                Setting::Angle => finite(o, method, &what, &[value]),
+            }
         } else {
             let having: Vec<&str> =
                 FRACTALS.iter().filter(|d| d.settings.iter().any(|(s, _)| *s == setting)).map(|d| d.name).collect();

@@ -9,9 +9,7 @@ pub fn visit_node_exprs<'a>(node: &'a Node, f: &mut dyn FnMut(&'a Expr)) {
         Node::Prim(p) => p.exprs().for_each(&mut *f),
         Node::Fractal(fr) => {
             fr.arg_exprs().iter().for_each(&mut *f);
-            for e in [&fr.bailout, &fr.min_radius, &fr.fold_limit].into_iter().flatten() {
-                f(e)
-            }
+            fr.settings.iter().flatten().for_each(&mut *f);
         }
         Node::Op(op) => op.exprs().for_each(&mut *f),
         Node::Material(_, m) => material_exprs(m, f),

@@ -141,6 +141,13 @@ fn cases() -> Vec<(&'static str, Scene)> {
         ("sphere(1.0).twist(0.5).bend(0.3)", s(ball().twist(0.5).bend(0.3))),
         ("sphere(1.0).round(0.1).onion(0.05)", s(ball().round(0.1).onion(0.05))),
         ("sphere(1.0).elongate(vec3(0.5, 0.0, 0.0))", s(ball().elongate(vec3(0.5, 0.0, 0.0)))),
+        ("sphere(1.0).plane_fold(vec3(0.0, 2.0, 0.0))", s(ball().plane_fold(DVec3::new(0.0, 1.0, 0.0)))),
+        ("sphere(1.0).abs_fold(vec3(1, 0, 1))", s(ball().abs_fold([1, 0, 1]))),
+        ("sphere(1.0).box_fold(0.5 + t)", s(ball().box_fold(Expr::Lit(0.5) + Expr::Time))),
+        ("sphere(1.0).sphere_fold(0.25, 1.0)", s(ball().sphere_fold(0.25, 1.0))),
+        ("sphere(1.0).polar_repeat(6)", s(ball().polar_repeat(6))),
+        ("juliabulb(vec3(0.1, 0.2, 0.3)).power(5.0).bailout(3.0)", scene(juliabulb(vec3(0.1, 0.2, 0.3)).power(5.0).bailout(3.0))),
+        ("octahedral_kifs(2.0).angle(0.25).iterations(9)", scene(octahedral_kifs(2.0).angle(0.25).iterations(9))),
         // materials
         ("sphere(1.0).material(rgb(0.9, 0.2, 0.1))", s(ball().material(rgb(0.9, 0.2, 0.1)))),
         (
@@ -235,7 +242,8 @@ fn example(arg: &ArgDecl, index: usize) -> ArgValue {
     let n = 0.5 + 0.125 * index as f64;
     let value = match arg.rule {
         Rule::Direction => return ArgValue::Vec3(vec3(0.0, 1.0, 0.0)),
-        Rule::AtMost(_) => return ArgValue::Vec3(vec3(1.0, 0.0, 2.0)),
+        Rule::AtMost(most) => return ArgValue::Vec3(vec3(1.0, 0.0, f64::from(most.min(2)))),
+        Rule::CountUpTo(most) => f64::from(most.min(5)),
         Rule::RoundingOf(_) => 0.125,
         _ => n,
     };
@@ -286,6 +294,7 @@ fn every_declared_fractal_family_reads_back_from_its_printed_source() {
         };
         let fractal = match decl.arg.shape {
             FractalArgShape::Number => Fractal::new(decl, FractalArgValue::Num(Expr::Lit(value))),
+            FractalArgShape::Vec3 => Fractal::new(decl, FractalArgValue::Vec3(vec3(value, -value, 0.5 * value))),
             FractalArgShape::Vec4 => Fractal::new(decl, FractalArgValue::Vec4(vec4(value, -value, 0.5 * value, 0.0))),
             FractalArgShape::Levels => {
                 Fractal { iterations: Some(decl.iterations.min + 1), ..Fractal::new(decl, FractalArgValue::Levels) }
@@ -489,10 +498,15 @@ fn validation_errors_point_at_the_argument() {
         ("menger(3).iterations(0)", "1:22: menger levels must be in 1..=8, found 0"),
         ("sierpinski_tetrahedron(25)", "1:24: sierpinski_tetrahedron levels must be in 1..=24, found 25"),
         ("menger(3).min_radius(0.5)", "1:11: `min_radius` applies only to mandelbox, not menger"),
-        ("menger(3).bailout(4.0)", "1:11: `bailout` applies only to mandelbulb and julia, not menger"),
+        ("menger(3).bailout(4.0)", "1:11: `bailout` applies only to mandelbulb, julia and juliabulb, not menger"),
         ("mandelbox(1.0)", "1:11: mandelbox |scale| must be in [1.05, 8], found 1"),
         ("mandelbox(2.0).min_radius(1.5)", "1:27: mandelbox min_radius must be in (0, 1), found 1.5"),
         ("mandelbox(2.0).fold_limit(0.0)", "1:27: mandelbox fold_limit must be > 0, found 0"),
+        ("juliabulb(vec3(0.1, 0.2, 0.3)).power(1.5)", "1:38: juliabulb power must be >= 2, found 1.5"),
+        ("octahedral_kifs(2.0).power(3.0)", "1:22: `power` applies only to juliabulb, not octahedral_kifs"),
+        ("octahedral_kifs(0.9)", "1:17: octahedral_kifs scale must be >= 1.1, found 0.9"),
+        ("sphere(1.0).polar_repeat(2.5)", "1:26: polar_repeat count must be a whole number from 1 to 1000"),
+        ("sphere(1.0).abs_fold(vec3(1, 2, 0))", "1:22: abs_fold axes y must be <= 1, found 2"),
         ("julia(vec4(0, 0, 0, 0)).bailout(-1.0)", "1:33: julia bailout must be > 0, found -1"),
         ("torus(1.0, 0.0)", "1:12: torus minor radius must be > 0, found 0"),
         ("torus(-1.0, 0.5)", "1:7: torus major radius must be >= 0, found -1"),

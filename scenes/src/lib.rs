@@ -36,6 +36,10 @@ library! {
     MANDELBULB_POWERS = "mandelbulb_powers";
     /// A quaternion Julia set with an animated constant.
     JULIA = "julia";
+    /// The Julia set of the Mandelbulb's map, with a drifting constant.
+    JULIABULB = "juliabulb";
+    /// Kaleidoscopic IFS with octahedral and icosahedral folds, turning each iteration.
+    KIFS = "kifs";
     /// The Mandelbox of scale 2, from outside.
     MANDELBOX = "mandelbox";
     /// A Mandelbox of negative scale (the Amazing Box), from inside its shell.

@@ -25,6 +25,8 @@ pub enum Family {
     Sierpinski,
     Julia,
     Mandelbox,
+    Juliabulb,
+    Kifs,
 }
 
 /// One scene of the table and where to look at it.
@@ -325,7 +327,12 @@ pub fn compare(row: &Row, reference: &Reference, points: &[V3<f32>], got: &[Answ
             fail(&mut o, format!("{} is {} {at} (reference {:e})", CHANNELS[i], answer[i], want[i]));
             continue;
         }
-        let diff = (answer[0] - want[0]).abs();
+        // Inside a Juliabulb the orbit falls into an attracting cycle: dr shrinks towards 0 and the estimate
+        // 0.5·ln r·r/dr grows without bound, amplifying every rounding on the way (measured up to 0.9 on the CPU
+        // where the value is −14). There the value is not a distance and a renderer reads only its sign: inside the
+        // set only the sign is compared.
+        let sign_only = row.family == Family::Juliabulb && want[0] < 0.0 && answer[0] < 0.0;
+        let diff = if sign_only { 0.0 } else { (answer[0] - want[0]).abs() };
         let scale = scale_of(p, want[0]);
         let allowed = dtol.of(scale);
         if diff > o.max_distance {

@@ -52,6 +52,15 @@ pub fn vocabulary() -> Vec<Row> {
             mandelbox(-1.5).iterations(10).min_radius(0.4).fold_limit(1.1)
         })
         .within(4.0),
+        row!("juliabulb", Juliabulb, { juliabulb(vec3(0.4, 0.5, -0.1)) }).within(1.5),
+        row!("juliabulb power, iterations, bailout, animated", Juliabulb, {
+            juliabulb(vec3(-0.6, 0.2, 0.3 * sin(t))).power(5.0 + sin(t)).iterations(6).bailout(3.0)
+        })
+        .within(1.5)
+        .at_time(0.5),
+        row!("octahedral_kifs", Kifs, { octahedral_kifs(2.0) }).within(1.2),
+        row!("icosahedral_kifs angle, iterations", Kifs, { icosahedral_kifs(2.618).angle(0.3).iterations(8) })
+            .within(1.2),
         // ---- CSG (each child its own material, so the material rules are compared too)
         row!("union", Exact, {
             union(
@@ -122,6 +131,13 @@ pub fn vocabulary() -> Vec<Row> {
         row!("round", Exact, { box3(vec3(0.6, 0.4, 0.5)).round(0.2) }),
         row!("onion", Exact, { sphere(1.0).onion(0.1) }),
         row!("elongate", Exact, { sphere(0.5).elongate(vec3(0.5, 0.0, 0.25)) }),
+        row!("plane_fold", Exact, {
+            box3(vec3(0.3, 0.4, 0.2)).translate(vec3(0.5, 0.2, 0.0)).plane_fold(vec3(1.0, 1.0, 0.0))
+        }),
+        row!("abs_fold", Exact, { sphere(0.4).translate(vec3(0.5, 0.3, -0.2)).abs_fold(vec3(1, 0, 1)) }),
+        row!("box_fold", Exact, { torus(0.5, 0.15).translate(vec3(0.4, 0.0, 0.3)).box_fold(0.6) }).within(3.0),
+        row!("sphere_fold", Exact, { box3(vec3(0.4, 0.3, 0.5)).translate(vec3(0.6, 0.0, 0.0)).sphere_fold(0.3, 0.9) }),
+        row!("polar_repeat", Trig, { capsule(vec3(0.6, -0.3, 0.0), vec3(0.9, 0.4, 0.0), 0.15).polar_repeat(7) }),
         // ---- materials
         row!("material: default surface", Exact, { sphere(1.0) }),
         row!("material: rgb", Exact, { sphere(1.0).material(rgb(0.2, 0.4, 0.8)) }),

@@ -74,6 +74,21 @@ pub fn julia_radius(c_norm: f64) -> Option<f64> {
     Some(0.5 * (1.0 + (1.0 + 4.0 * c_norm.max(0.0)).sqrt()) + 0.05)
 }
 
+/// Radius of a sphere that bounds the Juliabulb (z ← z^n + c) of any power ≥ `min_power` and constant with
+/// |c| ≤ `c_norm`: past the root R of R^n = R + |c|, |z^n + c| ≥ |z|^n − |c| > |z| keeps growing. R is approached
+/// from above (from 1 + |c|, above the root since (1 + |c|)^n ≥ 1 + n|c|); the margin is the Mandelbulb's.
+pub fn juliabulb_radius(min_power: f64, c_norm: f64) -> Option<f64> {
+    if !c_norm.is_finite() || min_power.is_nan() || min_power <= 1.0 || min_power.is_infinite() {
+        return None;
+    }
+    let c = c_norm.max(0.0);
+    let mut r = 1.0 + c;
+    for _ in 0..64 {
+        r = (r + c).powf(1.0 / min_power);
+    }
+    Some(r + 0.05)
+}
+
 /// Half extent of the cube that bounds the Mandelbox for every scale in `scale` and fold limits up to `fold_limit`.
 /// For scale s > 1 the box fold's fixed point bounds the orbit: 2f(s + 1)/(s − 1) (the known 6 at s = 2, f = 1); for
 /// s < −1 the measured extent is 2f. Scales within [−1, 1] never escape: unbounded.

@@ -8,7 +8,7 @@ use crate::eval::{Env, Sample};
 use crate::ir::op::Meaning;
 use crate::leaf::{LeafArg, LeafOut};
 use crate::math::*;
-use crate::sdf::{CallLeaf, Leaf};
+use crate::sdf::{CallLeaf, Leaf, TINY};
 
 /// Most arguments a leaf function takes, the point included.
 const MAX_LEAF_ARGS: usize = 8;
@@ -334,6 +334,38 @@ fn domain<F: Num>(op: &OpStep, p: V3<F>, env: &Env<F>) -> (V3<F>, Post<F>) {
         Meaning::Round => (p, Post::Sub(op.num(0, env))),
         Meaning::Onion => (p, Post::AbsSub(op.num(0, env))),
         Meaning::Elongate => (per_axis(p, op.per_axis(0), env, |_, x, h| x - clamp(x, -h, h)), Post::Keep),
+        Meaning::PlaneFold => {
+            let n = op.constant3(0);
+            let n = v3(c::<F>(n[0]), c(n[1]), c(n[2]));
+            (p - n * (c::<F>(2.0) * min(dot(p, n), c(0.0))), Post::Keep)
+        }
+        Meaning::AbsFold => {
+            let axes = op.constant3(0);
+            let fold = |i: usize, x: F| if axes[i] != 0.0 { abs(x) } else { x };
+            (v3(fold(0, p.x), fold(1, p.y), fold(2, p.z)), Post::Keep)
+        }
+        Meaning::BoxFold => {
+            let l = op.num(0, env);
+            (p.map(|x| clamp(x, -l, l) * c(2.0) - x), Post::Keep)
+        }
+        Meaning::SphereFold => {
+            // Inside min_radius a plain scale by fixed²/min², between the radii inversion by fixed²/r², outside
+            // nothing; the distance found there is divided by the same factor, as a scale's is.
+            let (min_r, fixed) = (op.num(0, env), op.num(1, env));
+            let (min2, fixed2) = (min_r * min_r, fixed * fixed);
+            let r2 = dot(p, p);
+            let f = select(lt(r2, min2), fixed2 / min2, select(lt(r2, fixed2), fixed2 / max(r2, c(TINY)), c(1.0)));
+            (p * f, Post::Div(f))
+        }
+        Meaning::PolarRepeat => {
+            // The point turned back about y by its sector's angle k·2π/n, so the sector around +x holds it. The
+            // angle only picks k; turning by k·2π/n rather than taking the remainder of the angle keeps atan2's
+            // error (several ulps on some GPU drivers) out of the point.
+            let sector = c::<F>(std::f64::consts::TAU) / op.num(0, env);
+            let turn = sector * floor(atan2(p.z, p.x) / sector + c(0.5));
+            let (co, si) = (cos(turn), sin(turn));
+            (v3(co * p.x + si * p.z, p.y, co * p.z - si * p.x), Post::Keep)
+        }
         Meaning::Union
         | Meaning::Intersect
         | Meaning::Subtract

@@ -34,6 +34,8 @@ pub enum Rule {
     Period,
     /// Whole numbers no greater than this.
     AtMost(u32),
+    /// A whole-number literal from 1 to this (a count of copies).
+    CountUpTo(u32),
 }
 
 /// One declared argument.

@@ -3,13 +3,14 @@
 //! (`crate::fractals`); every reader works from the declaration.
 
 use super::prim::PrimBound;
-use super::{Expr, Vec4Expr};
+use super::{Expr, Vec3Expr, Vec4Expr};
 use crate::sdf::Leaf;
 
-/// The constructor argument of a family: `mandelbulb(power)`, `julia(c)`, `menger(levels)`.
+/// The constructor argument of a family: `mandelbulb(power)`, `juliabulb(c)`, `julia(c)`, `menger(levels)`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum FractalArgShape {
     Number,
+    Vec3,
     Vec4,
     /// The iteration count itself (stored in [`Fractal::iterations`]).
     Levels,
@@ -42,17 +43,37 @@ pub enum Setting {
     Bailout,
     MinRadius,
     FoldLimit,
+    Power,
+    Angle,
 }
 
 impl Setting {
-    pub const ALL: [Setting; 3] = [Setting::Bailout, Setting::MinRadius, Setting::FoldLimit];
+    pub const ALL: [Setting; Setting::COUNT] =
+        [Setting::Bailout, Setting::MinRadius, Setting::FoldLimit, Setting::Power, Setting::Angle];
+    pub const COUNT: usize = 5;
     /// The method's name.
-    pub fn name(self) -> &'static str {
+    pub const fn name(self) -> &'static str {
         match self {
             Setting::Bailout => "bailout",
             Setting::MinRadius => "min_radius",
             Setting::FoldLimit => "fold_limit",
+            Setting::Power => "power",
+            Setting::Angle => "angle",
         }
+    }
+    /// What the setting is, for documentation.
+    pub const fn doc(self) -> &'static str {
+        match self {
+            Setting::Bailout => "the escape radius of an escape-time orbit",
+            Setting::MinRadius => "the inner radius of the Mandelbox's sphere fold",
+            Setting::FoldLimit => "the Mandelbox's box fold limit",
+            Setting::Power => "the Juliabulb's power",
+            Setting::Angle => "the KIFS rotation per iteration, radians",
+        }
+    }
+    /// The position of the setting in [`Setting::ALL`] and in [`Fractal::settings`].
+    pub const fn index(self) -> usize {
+        self as usize
     }
 }
 
@@ -118,6 +139,7 @@ super::named_by_declaration!(FractalKind);
 #[derive(Clone, Debug, PartialEq)]
 pub enum FractalArgValue {
     Num(Expr),
+    Vec3(Vec3Expr),
     Vec4(Vec4Expr),
     /// The count is [`Fractal::iterations`].
     Levels,
@@ -129,9 +151,8 @@ pub struct Fractal {
     pub kind: FractalKind,
     pub arg: FractalArgValue,
     pub iterations: Option<u32>,
-    pub bailout: Option<Expr>,
-    pub min_radius: Option<Expr>,
-    pub fold_limit: Option<Expr>,
+    /// The chained settings by [`Setting::index`]; `None` for the family's default (or a setting it lacks).
+    pub settings: [Option<Expr>; Setting::COUNT],
 }
 
 /// The cap on fractal iterations (validation refuses more).
@@ -139,7 +160,7 @@ pub const MAX_ITERATIONS: u32 = 64;
 
 impl Fractal {
     pub fn new(decl: &'static FractalDecl, arg: FractalArgValue) -> Fractal {
-        Fractal { kind: FractalKind(decl), arg, iterations: None, bailout: None, min_radius: None, fold_limit: None }
+        Fractal { kind: FractalKind(decl), arg, iterations: None, settings: Default::default() }
     }
     pub fn decl(&self) -> &'static FractalDecl {
         self.kind.0
@@ -151,6 +172,7 @@ impl Fractal {
     pub fn arg_exprs(&self) -> &[Expr] {
         match &self.arg {
             FractalArgValue::Num(e) => std::slice::from_ref(e),
+            FractalArgValue::Vec3(v) => &v.0,
             FractalArgValue::Vec4(v) => &v.0,
             FractalArgValue::Levels => &[],
         }
@@ -158,6 +180,7 @@ impl Fractal {
     pub fn arg_exprs_mut(&mut self) -> &mut [Expr] {
         match &mut self.arg {
             FractalArgValue::Num(e) => std::slice::from_mut(e),
+            FractalArgValue::Vec3(v) => &mut v.0,
             FractalArgValue::Vec4(v) => &mut v.0,
             FractalArgValue::Levels => &mut [],
         }
@@ -174,18 +197,15 @@ impl Fractal {
     }
     /// The setting's value as written.
     pub fn setting(&self, s: Setting) -> Option<&Expr> {
-        match s {
-            Setting::Bailout => self.bailout.as_ref(),
-            Setting::MinRadius => self.min_radius.as_ref(),
-            Setting::FoldLimit => self.fold_limit.as_ref(),
-        }
+        self.settings[s.index()].as_ref()
     }
     pub fn setting_mut(&mut self, s: Setting) -> &mut Option<Expr> {
-        match s {
-            Setting::Bailout => &mut self.bailout,
-            Setting::MinRadius => &mut self.min_radius,
-            Setting::FoldLimit => &mut self.fold_limit,
-        }
+        &mut self.settings[s.index()]
+    }
+    /// The fractal with the setting chained on.
+    pub fn with(mut self, s: Setting, value: impl Into<Expr>) -> Fractal {
+        self.settings[s.index()] = Some(value.into());
+        self
     }
     /// Whether the family has the setting.
     pub fn applies(&self, s: Setting) -> bool {

@@ -53,6 +53,16 @@ pub enum Meaning {
     Onion,
     /// Straight sections of length 2h inserted along each axis.
     Elongate,
+    /// The half-space on the normal's side mirrored onto the other: p − 2·min(p·n, 0)·n.
+    PlaneFold,
+    /// |p| on the axes whose mask component is 1.
+    AbsFold,
+    /// Each coordinate beyond ±limit reflected back: clamp(p, −limit, limit)·2 − p.
+    BoxFold,
+    /// Inversion in the sphere of `fixed_radius`, linear inside `min_radius`; the distance is divided by the scale.
+    SphereFold,
+    /// `count` copies around the y axis: the angle about y taken modulo 2π/count.
+    PolarRepeat,
 }
 
 /// When an operator changes nothing (folding removes it).

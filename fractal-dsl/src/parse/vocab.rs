@@ -9,7 +9,7 @@ use std::sync::OnceLock;
 use crate::builder::{self as b, Color, ShapeExt};
 use crate::fractals::families::FRACTALS;
 use crate::ir::arg::{ArgDecl, ArgShape};
-use crate::ir::fractal::{FractalArgShape, FractalArgValue};
+use crate::ir::fractal::{FractalArgShape, FractalArgValue, Setting};
 use crate::ir::op::Operands;
 use crate::ir::*;
 use crate::ops::decl::OPS;
@@ -157,11 +157,12 @@ const fn many(name: &'static str, ty: Ty) -> Param {
 pub(crate) type BuildFn = fn(&mut Args) -> Result<Value, String>;
 
 /// What gives a call its meaning: a builder call, a declared primitive ([`crate::prims`]), fractal family
-/// ([`crate::fractals`]) or operator ([`crate::ops`]).
+/// ([`crate::fractals`]), fractal setting ([`Setting`]) or operator ([`crate::ops`]).
 pub(crate) enum Build {
     Fn(BuildFn),
     Prim(&'static PrimDecl),
     Fractal(&'static FractalDecl),
+    Setting(Setting),
     Op(&'static OpDecl),
 }
 
@@ -214,6 +215,7 @@ fn op_entry(decl: &'static OpDecl) -> Entry {
 fn fractal_entry(decl: &'static FractalDecl) -> Entry {
     let ty = match decl.arg.shape {
         FractalArgShape::Number => Ty::Number,
+        FractalArgShape::Vec3 => Ty::Vec3,
         FractalArgShape::Vec4 => Ty::Vec4,
         FractalArgShape::Levels => Ty::Int,
     };
@@ -241,9 +243,11 @@ impl Entry {
                 };
                 Ok(Value::Shape(decl.node(shapes, args.declared(decl.args)?)))
             }
+            Build::Setting(setting) => Ok(Value::Fractal(args.fractal()?.with(setting, args.num()?))),
             Build::Fractal(decl) => {
                 let fractal = match args.0.pop_front() {
                     Some(Value::Number(e)) => Fractal::new(decl, FractalArgValue::Num(e)),
+                    Some(Value::Vec3(v)) => Fractal::new(decl, FractalArgValue::Vec3(v)),
                     Some(Value::Vec4(v)) => Fractal::new(decl, FractalArgValue::Vec4(v)),
                     Some(Value::Int(n)) => {
                         Fractal { iterations: Some(n), ..Fractal::new(decl, FractalArgValue::Levels) }
@@ -457,13 +461,7 @@ pub(crate) static METHODS: &[Entry] = &[
     meth(T::Fractal, "iterations", &[p("iterations", T::Int)], T::Fractal, |a| {
         fractal(a.fractal()?.iterations(a.int()?))
     }),
-    meth(T::Fractal, "bailout", &[p("bailout", T::Number)], T::Fractal, |a| fractal(a.fractal()?.bailout(a.num()?))),
-    meth(T::Fractal, "min_radius", &[p("min_radius", T::Number)], T::Fractal, |a| {
-        fractal(a.fractal()?.min_radius(a.num()?))
-    }),
-    meth(T::Fractal, "fold_limit", &[p("fold_limit", T::Number)], T::Fractal, |a| {
-        fractal(a.fractal()?.fold_limit(a.num()?))
-    }),
+    // (the settings that take a number, `.bailout(b)` and the rest, are made from [`Setting::ALL`])
     // ---- materials (the operators are declared in `crate::ops`)
     meth(T::Shape, "material", &[p("material", T::Material)], T::Shape, |a| shape(a.shape()?.material(a.material()?))),
     // ---- material terms (a color becomes a material with default terms first)
@@ -522,14 +520,26 @@ pub(crate) static METHODS: &[Entry] = &[
 /// Names that stand alone (not called).
 pub(crate) const NAMES: &[&str] = &["t", "PI"];
 
-/// The entries made from declarations: primitives, fractal families and operators.
+/// The entries made from declarations: primitives, fractal families, fractal settings and operators.
 fn declared() -> &'static [Entry] {
     static DECLARED: OnceLock<Vec<Entry>> = OnceLock::new();
     DECLARED.get_or_init(|| {
         let prims = PRIMS.iter().copied().map(prim_entry);
         let fractals = FRACTALS.iter().copied().map(fractal_entry);
-        prims.chain(fractals).chain(OPS.iter().copied().map(op_entry)).collect()
+        let settings = Setting::ALL.into_iter().map(setting_entry);
+        prims.chain(fractals).chain(settings).chain(OPS.iter().copied().map(op_entry)).collect()
     })
+}
+
+/// `fractal.setting(value)`: a number chained onto a fractal.
+fn setting_entry(setting: Setting) -> Entry {
+    Entry {
+        name: setting.name(),
+        receiver: Some(Ty::Fractal),
+        params: Cow::Owned(vec![Param { name: setting.name(), ty: Ty::Number, many: false }]),
+        result: Ty::Fractal,
+        build: Build::Setting(setting),
+    }
 }
 
 /// Every free function: the table above, then the declared primitives, fractal families and combining operators.

@@ -75,7 +75,11 @@ pub fn declared_args(decls: &'static [ArgDecl]) -> BoxedStrategy<Vec<ArgValue>> 
             // A fraction of the smallest extent it rounds, scaled below.
             Rule::RoundingOf(_) => vec3_in(0.0, 1.0).boxed(),
             Rule::Period => vec3_in(0.5, 3.0).boxed(),
-            Rule::AtMost(_) => [0..4u32, 0..4u32, 0..4u32].prop_map(|n| n.map(f64::from)).boxed(),
+            Rule::AtMost(most) => {
+                let most = most.min(3);
+                [0..=most, 0..=most, 0..=most].prop_map(|n| n.map(f64::from)).boxed()
+            }
+            Rule::CountUpTo(most) => (1..=most.min(8)).prop_map(|n| [f64::from(n); 3]).boxed(),
         })
         .collect();
     draws

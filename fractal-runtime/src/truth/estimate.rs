@@ -88,6 +88,9 @@ pub fn studied() -> Vec<(String, Fractal)> {
         named("julia(-0.2, 0.6, 0.2, 0)", julia(vec4(-0.2, 0.6, 0.2, 0.0))),
         named("mandelbox(2)", mandelbox(2.0)),
         named("mandelbox(-1.5)", mandelbox(-1.5)),
+        named("juliabulb(0.45, 0.5, -0.15)", juliabulb(vec3(0.45, 0.5, -0.15))),
+        named("octahedral_kifs(2)", octahedral_kifs(2.0)),
+        named("icosahedral_kifs(2.618), angle 0.2", icosahedral_kifs(2.618).angle(0.2)),
     ]
 }
 

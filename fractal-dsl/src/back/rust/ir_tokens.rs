@@ -247,12 +247,16 @@ impl Writer<'_> {
     /// A fractal names its family by its place in the table (the same table the macro read).
     fn fractal(&self, f: &Fractal) -> TokenStream {
         let k = self.k;
-        let Fractal { kind, arg, iterations, bailout, min_radius, fold_limit } = f;
+        let Fractal { kind, arg, iterations, settings } = f;
         let index = FRACTALS.iter().position(|d| d.name == kind.0.name).unwrap_or_default();
         let arg = match arg {
             FractalArgValue::Num(e) => {
                 let e = self.expr(e);
                 quote!(#k::ir::fractal::FractalArgValue::Num(#e))
+            }
+            FractalArgValue::Vec3(v) => {
+                let v = self.vec3(v);
+                quote!(#k::ir::fractal::FractalArgValue::Vec3(#v))
             }
             FractalArgValue::Vec4(v) => {
                 let v = self.vec4(v);
@@ -264,17 +268,13 @@ impl Writer<'_> {
             let n = u32_lit(n);
             quote!(#n)
         });
-        let bailout = self.option(bailout, |e| self.expr(e));
-        let min_radius = self.option(min_radius, |e| self.expr(e));
-        let fold_limit = self.option(fold_limit, |e| self.expr(e));
+        let settings = settings.iter().map(|s| self.option(s, |e| self.expr(e)));
         quote! {
             #k::Fractal {
                 kind: #k::FractalKind(#k::fractals::families::FRACTALS[#index]),
                 arg: #arg,
                 iterations: #iterations,
-                bailout: #bailout,
-                min_radius: #min_radius,
-                fold_limit: #fold_limit,
+                settings: [#(#settings),*],
             }
         }
     }
