@@ -14,6 +14,34 @@ pub fn time() -> Expr {
     Expr::Time
 }
 
+/// The point's coordinates (`x`, `y`, `z` in scene source): only a displacement's amount may read them.
+pub fn x() -> Expr {
+    Expr::Point(0)
+}
+pub fn y() -> Expr {
+    Expr::Point(1)
+}
+pub fn z() -> Expr {
+    Expr::Point(2)
+}
+
+/// 2D gradient noise in [−1, 1] (`noise2(x, y)`; [`crate::noise`]).
+pub fn noise2(x: impl Into<Expr>, y: impl Into<Expr>) -> Expr {
+    Expr::Call(Func::Noise2, vec![x.into(), y.into()])
+}
+/// 3D gradient noise in [−1, 1].
+pub fn noise3(x: impl Into<Expr>, y: impl Into<Expr>, z: impl Into<Expr>) -> Expr {
+    Expr::Call(Func::Noise3, vec![x.into(), y.into(), z.into()])
+}
+/// `octaves` octaves of 2D noise, in [−2, 2].
+pub fn fbm2(x: impl Into<Expr>, y: impl Into<Expr>, octaves: u32) -> Expr {
+    Expr::Call(Func::Fbm2, vec![x.into(), y.into(), Expr::Lit(f64::from(octaves))])
+}
+/// `octaves` octaves of 3D noise, in [−2, 2].
+pub fn fbm3(x: impl Into<Expr>, y: impl Into<Expr>, z: impl Into<Expr>, octaves: u32) -> Expr {
+    Expr::Call(Func::Fbm3, vec![x.into(), y.into(), z.into(), Expr::Lit(f64::from(octaves))])
+}
+
 /// A named uniform: changeable at run time without recompiling, `default` within `range`.
 pub fn param(name: &str, default: f64, range: core::ops::Range<f64>) -> Expr {
     Expr::Param(Box::new(ParamDecl { name: name.to_string(), default, min: range.start, max: range.end }))

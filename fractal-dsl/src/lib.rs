@@ -38,6 +38,7 @@ pub mod ir;
 pub mod leaf;
 pub mod lower;
 pub mod math;
+pub mod noise;
 pub mod num;
 pub mod ops;
 pub mod parse;

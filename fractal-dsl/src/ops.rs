@@ -53,6 +53,7 @@ pub mod decl {
         &BOX_FOLD,
         &SPHERE_FOLD,
         &POLAR_REPEAT,
+        &DISPLACE,
     ];
 
     /// A combination of shapes with no arguments of its own.
@@ -461,6 +462,21 @@ pub mod decl {
         // Points keep their radius from the y axis and their height: the cylinder of the child's farthest corner.
         bound: |s, _| Bound { exact_guard: false, ..swept(s[0], [0, 2, 1], Interval::point(0.0)) },
     };
+
+    pub static DISPLACE: OpDecl = OpDecl {
+        name: "displace",
+        doc:
+            "the surface moved out by `amount`, an expression that may read the point `x`, `y`, `z` (noise, sin, ..); \
+              the distance is divided by 1 + the amount's largest slope, so it stays a distance bound",
+        operands: Operands::Receiver,
+        args: &[num("amount", "displace amount", Displacement)],
+        meaning: Meaning::Displace,
+        identity: Identity::When(0, 0.0),
+        flattens: false,
+        lipschitz: true,
+        // {d − a ≤ 0} needs d ≤ max a. The reach shrinks by the slope's divisor, which the bound does not see.
+        bound: |s, a| Bound { reach: 0.0, exact_guard: false, ..grown_by(s[0], &a[0]) },
+    };
 }
 
 // ---- builder functions ------------------------------------------------------------------------------------------
@@ -562,6 +578,10 @@ pub trait ShapeExt: Into<Node> + Sized {
     }
     fn sphere_fold(self, min_radius: impl Into<Expr>, fixed_radius: impl Into<Expr>) -> Node {
         SPHERE_FOLD.node(vec![self.into()], vec![min_radius.into().into(), fixed_radius.into().into()])
+    }
+    /// The surface moved out by `amount`, an expression that may read the point ([`crate::builder::x`], ..).
+    fn displace(self, amount: impl Into<Expr>) -> Node {
+        DISPLACE.node(vec![self.into()], vec![amount.into().into()])
     }
     /// `count` copies around the y axis.
     fn polar_repeat(self, count: u32) -> Node {

@@ -63,11 +63,23 @@ fn precedence(e: &Expr) -> u8 {
     }
 }
 
+/// The names of the point's coordinates in scene source.
+pub const POINT_NAMES: [&str; 3] = ["x", "y", "z"];
+
+/// The last argument of a call.
+fn e_last(e: &Expr) -> Option<&Expr> {
+    match e {
+        Expr::Call(_, args) => args.last(),
+        _ => None,
+    }
+}
+
 /// Writes a scalar expression.
 pub fn expr(e: &Expr) -> String {
     match e {
         Expr::Lit(v) => lit(*v),
         Expr::Time => "t".to_string(),
+        Expr::Point(axis) => POINT_NAMES[*axis as usize % 3].to_string(),
         Expr::Param(p) => format!("param({:?}, {}, {}..{})", p.name, lit(p.default), lit(p.min), lit(p.max)),
         // A literal, a negation or an operator under `-` is parenthesised: `-1.0` would read back as one literal,
         // and `--x` would make a run of signs.
@@ -82,7 +94,13 @@ pub fn expr(e: &Expr) -> String {
             format!("{left} {} {right}", op.symbol())
         }
         Expr::Call(f, args) => {
-            let args: Vec<String> = args.iter().map(expr).collect();
+            let mut args: Vec<String> = args.iter().map(expr).collect();
+            // An octave count is an integer in source (`fbm2(x, z, 4)`), not `4.0`.
+            if let (true, Some(Expr::Lit(n))) = (f.takes_octaves(), e_last(e)) {
+                if let Some(last) = args.last_mut().filter(|_| n.fract() == 0.0 && *n >= 0.0) {
+                    *last = format!("{}", *n as u64);
+                }
+            }
             format!("{}({})", f.name(), args.join(", "))
         }
     }

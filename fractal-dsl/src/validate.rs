@@ -16,7 +16,7 @@ use crate::analyse::interval::{range, Interval};
 use crate::fractals::families::FRACTALS;
 use crate::ir::arg::{ArgDecl, ArgShape, Rule};
 use crate::ir::fractal::{FractalArg, FractalArgShape, FractalArgValue, FractalRule, Setting};
-use crate::ir::op::Operands;
+use crate::ir::op::{Meaning, Operands};
 use crate::ir::*;
 
 /// Most nodes a distance tree may have.
@@ -180,7 +180,7 @@ pub fn expr_depth(e: &Expr) -> usize {
     while let Some((e, d)) = stack.pop() {
         deepest = deepest.max(d);
         match e {
-            Expr::Lit(_) | Expr::Time | Expr::Param(_) => {}
+            Expr::Lit(_) | Expr::Time | Expr::Point(_) | Expr::Param(_) => {}
             Expr::Neg(a) => stack.push((a, d + 1)),
             Expr::Bin(_, a, b) => {
                 stack.push((a, d + 1));
@@ -347,13 +347,13 @@ pub fn num(v: f64) -> String {
     }
 }
 
-/// Whether an expression depends on nothing (no `t`, no `param`).
+/// Whether an expression depends on nothing (no `t`, no `param`, no point).
 pub fn is_constant(e: &Expr) -> bool {
     let mut stack = vec![e];
     while let Some(e) = stack.pop() {
         match e {
             Expr::Lit(_) => {}
-            Expr::Time | Expr::Param(_) => return false,
+            Expr::Time | Expr::Param(_) | Expr::Point(_) => return false,
             Expr::Neg(a) => stack.push(a),
             Expr::Bin(_, a, b) => stack.extend([&**a, &**b]),
             Expr::Call(_, args) => stack.extend(args),
@@ -388,7 +388,7 @@ pub fn literal_problem(e: &Expr) -> Option<String> {
     while let Some(e) = stack.pop() {
         match e {
             Expr::Lit(v) if value_problem(*v).is_some() => return value_problem(*v),
-            Expr::Lit(_) | Expr::Time | Expr::Param(_) => {}
+            Expr::Lit(_) | Expr::Time | Expr::Point(_) | Expr::Param(_) => {}
             Expr::Neg(a) => stack.push(a),
             Expr::Bin(_, a, b) => stack.extend([&**a, &**b]),
             Expr::Call(_, args) => stack.extend(args),
@@ -564,6 +564,26 @@ fn check_args(decls: &[ArgDecl], values: &[ArgValue]) -> Vec<Problem> {
                 }
             }
             (Rule::Period, ArgValue::Num(e)) => number(o, name, what, e, ge(0.0)),
+            (Rule::Displacement, ArgValue::Num(e)) => {
+                let r = crate::analyse::interval::range(e);
+                if let Some(m) = literal_problem(e) {
+                    o.push(Problem::new(name, format!("{what}: {m}")));
+                } else if !r.is_finite() {
+                    o.push(Problem::new(
+                        name,
+                        format!("{what} must stay within a bounded range (wrap the point in noise, sin, clamp, ..)"),
+                    ));
+                } else if !crate::analyse::slope::slope(e).is_finite() {
+                    o.push(Problem::new(
+                        name,
+                        format!(
+                            "{what} must change with the point at a bounded rate (no division by a value that can be 0, \
+                             no sqrt reaching 0, no pow with a varying exponent)"
+                        ),
+                    ));
+                }
+            }
+            (Rule::Displacement, ArgValue::Vec3(_)) => {}
             (Rule::CountUpTo(most), _) => {
                 let whole = value.exprs()[0].as_lit().filter(|v| v.fract() == 0.0 && *v >= 1.0 && *v <= most as f64);
                 if whole.is_none() {
@@ -662,12 +682,51 @@ fn abs_between(o: &mut Vec<Problem>, family: &str, arg: FractalArg, e: &Expr, lo
 /// Rules of one node's own values (not its children's): the primitive, fractal or operator's arguments, or the
 /// material.
 pub fn check_node(node: &Node) -> Vec<Problem> {
+    // A displacement's amount is the one place the point may be read; an expression breaking that (or an fbm's
+    // octave rule) is reported alone, before the ranges it makes meaningless.
+    let displaced = node.op().filter(|op| op.decl().meaning == Meaning::Displace).and_then(|op| op.args.first());
+    let amount = displaced.map(|a| a.exprs().as_ptr());
+    let broken: Vec<Problem> = own_exprs(node)
+        .into_iter()
+        .filter_map(|e| expr_rule_problem(e, amount == Some(e as *const Expr)))
+        .map(|m| Problem::new("", m))
+        .collect();
+    if !broken.is_empty() {
+        return broken;
+    }
     match node {
         Node::Prim(p) => check_prim(p),
         Node::Fractal(f) => check_fractal(f),
         Node::Op(op) => check_op(op),
         Node::Material(_, m) => check_material(m),
     }
+}
+
+/// The rules every expression keeps wherever it stands: `x`, `y`, `z` only where `allow_point` (a displacement's
+/// amount), and an fbm's octave count a whole-number literal in 1..=[`crate::noise::MAX_OCTAVES`].
+pub fn expr_rule_problem(e: &Expr, allow_point: bool) -> Option<String> {
+    let mut stack = vec![e];
+    while let Some(e) = stack.pop() {
+        match e {
+            Expr::Point(axis) if !allow_point => {
+                let name = crate::print::POINT_NAMES[*axis as usize % 3];
+                return Some(format!("`{name}` (the point) can be read only in a displacement: shape.displace(..)"));
+            }
+            Expr::Call(f, args) if f.takes_octaves() => {
+                let most = crate::noise::MAX_OCTAVES;
+                let whole = args.last().and_then(Expr::as_lit).filter(|n| n.fract() == 0.0);
+                if !whole.is_some_and(|n| (1.0..=most as f64).contains(&n)) {
+                    return Some(format!("{} octaves must be a whole number from 1 to {most}", f.name()));
+                }
+                stack.extend(args);
+            }
+            Expr::Neg(a) => stack.push(a),
+            Expr::Bin(_, a, b) => stack.extend([&**a, &**b]),
+            Expr::Call(_, args) => stack.extend(args),
+            Expr::Lit(_) | Expr::Time | Expr::Point(_) | Expr::Param(_) => {}
+        }
+    }
+    None
 }
 
 /// Rules of a material's terms.
@@ -690,6 +749,9 @@ pub fn check_material(m: &Material) -> Vec<Problem> {
 
 /// Rules of a light.
 pub fn check_light(l: &Light) -> Vec<Problem> {
+    if let Some(m) = light_exprs(l).into_iter().find_map(|e| expr_rule_problem(e, false)) {
+        return vec![Problem::new("", m)];
+    }
     let mut out = Vec::new();
     let o = &mut out;
     match &l.kind {
@@ -710,6 +772,9 @@ pub fn check_light(l: &Light) -> Vec<Problem> {
 
 /// Rules of a camera: field of view, look-at placement, path keys.
 pub fn check_camera(c: &Camera) -> Vec<Problem> {
+    if let Some(m) = camera_exprs(c).into_iter().find_map(|e| expr_rule_problem(e, false)) {
+        return vec![Problem::new("", m)];
+    }
     let mut out = Vec::new();
     let o = &mut out;
     constant(o, "degrees", "camera fov", c.fov_degrees, within(0.0, false, 180.0, false));

@@ -477,7 +477,10 @@ fn expr() -> impl Strategy<Value = Expr> {
             (inner.clone(), 0.0..2.5f64).prop_map(|(a, e)| pow(abs(a), e)),
             (inner.clone(), inner.clone()).prop_map(|(a, b)| pow(abs(a) + 0.5, min(b, 3.0))),
             (inner.clone(), inner.clone(), inner.clone()).prop_map(|(a, b, c)| clamp(a, b, c)),
-            (inner.clone(), inner.clone(), inner).prop_map(|(a, b, c)| mix(a, b, c)),
+            (inner.clone(), inner.clone(), inner.clone()).prop_map(|(a, b, c)| mix(a, b, c)),
+            (inner.clone(), inner.clone()).prop_map(|(a, b)| noise2(a, b)),
+            (inner.clone(), inner.clone(), 1u32..6).prop_map(|(a, b, n)| fbm3(a, b, 0.5, n)),
+            (inner.clone(), inner).prop_map(|(a, b)| noise3(a, b.clone(), 0.25) + fbm2(b, 0.75, 3)),
         ]
     })
 }
@@ -486,7 +489,7 @@ fn expr() -> impl Strategy<Value = Expr> {
 fn nan_inside(e: &Expr, t: f64, lookup: &dyn Fn(&ParamDecl) -> f64) -> bool {
     e.eval(t, lookup).is_nan()
         || match e {
-            Expr::Lit(_) | Expr::Time | Expr::Param(_) => false,
+            Expr::Lit(_) | Expr::Time | Expr::Point(_) | Expr::Param(_) => false,
             Expr::Neg(a) => nan_inside(a, t, lookup),
             Expr::Bin(_, a, b) => nan_inside(a, t, lookup) || nan_inside(b, t, lookup),
             Expr::Call(_, args) => args.iter().any(|a| nan_inside(a, t, lookup)),
@@ -497,7 +500,7 @@ fn nan_inside(e: &Expr, t: f64, lookup: &dyn Fn(&ParamDecl) -> f64) -> bool {
 fn any_unlimited(e: &Expr) -> bool {
     range(e) == Interval::ENTIRE
         || match e {
-            Expr::Lit(_) | Expr::Time | Expr::Param(_) => false,
+            Expr::Lit(_) | Expr::Time | Expr::Point(_) | Expr::Param(_) => false,
             Expr::Neg(a) => any_unlimited(a),
             Expr::Bin(_, a, b) => any_unlimited(a) || any_unlimited(b),
             Expr::Call(_, args) => args.iter().any(any_unlimited),

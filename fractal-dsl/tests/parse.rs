@@ -146,6 +146,16 @@ fn cases() -> Vec<(&'static str, Scene)> {
         ("sphere(1.0).box_fold(0.5 + t)", s(ball().box_fold(Expr::Lit(0.5) + Expr::Time))),
         ("sphere(1.0).sphere_fold(0.25, 1.0)", s(ball().sphere_fold(0.25, 1.0))),
         ("sphere(1.0).polar_repeat(6)", s(ball().polar_repeat(6))),
+        (
+            "sphere(1.0).displace(0.1 * noise3(x * 4.0, y * 4.0, z * 4.0) + 0.05 * noise2(x, t))",
+            s(ball().displace(
+                Expr::from(0.1) * noise3(x() * 4.0, y() * 4.0, z() * 4.0) + Expr::from(0.05) * noise2(x(), time()),
+            )),
+        ),
+        (
+            "plane(vec3(0.0, 1.0, 0.0), 0.0).displace(fbm2(x, z, 5) + 0.1 * fbm3(x, y, z, 2))",
+            s(plane(vec3(0.0, 1.0, 0.0), 0.0).displace(fbm2(x(), z(), 5) + Expr::from(0.1) * fbm3(x(), y(), z(), 2))),
+        ),
         ("juliabulb(vec3(0.1, 0.2, 0.3)).power(5.0).bailout(3.0)", scene(juliabulb(vec3(0.1, 0.2, 0.3)).power(5.0).bailout(3.0))),
         ("octahedral_kifs(2.0).angle(0.25).iterations(9)", scene(octahedral_kifs(2.0).angle(0.25).iterations(9))),
         // materials
@@ -505,6 +515,10 @@ fn validation_errors_point_at_the_argument() {
         ("juliabulb(vec3(0.1, 0.2, 0.3)).power(1.5)", "1:38: juliabulb power must be >= 2, found 1.5"),
         ("octahedral_kifs(2.0).power(3.0)", "1:22: `power` applies only to juliabulb, not octahedral_kifs"),
         ("octahedral_kifs(0.9)", "1:17: octahedral_kifs scale must be >= 1.1, found 0.9"),
+        ("sphere(1.0 + x)", "1:1: `x` (the point) can be read only in a displacement: shape.displace(..)"),
+        ("sphere(1.0).displace(x)", "1:22: displace amount must stay within a bounded range (wrap the point in noise, sin, clamp, ..)"),
+        ("sphere(1.0).displace(0.1 * sqrt(noise2(x, y) + 1.0))", "1:22: displace amount must change with the point at a bounded rate (no division by a value that can be 0, no sqrt reaching 0, no pow with a varying exponent)"),
+        ("sphere(1.0).displace(fbm2(x, y, 40))", "1:13: fbm2 octaves must be a whole number from 1 to 12"),
         ("sphere(1.0).polar_repeat(2.5)", "1:26: polar_repeat count must be a whole number from 1 to 1000"),
         ("sphere(1.0).abs_fold(vec3(1, 2, 0))", "1:22: abs_fold axes y must be <= 1, found 2"),
         ("julia(vec4(0, 0, 0, 0)).bailout(-1.0)", "1:33: julia bailout must be > 0, found -1"),

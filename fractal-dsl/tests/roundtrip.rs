@@ -145,8 +145,16 @@ fn free() -> impl Strategy<Value = Expr> {
                 2 => a * b,
                 _ => a / b,
             }),
-            (prop::sample::select(Func::ALL.to_vec()), prop::collection::vec(inner, 3))
-                .prop_map(|(f, args)| Expr::Call(f, args[..f.arity()].to_vec())),
+            (prop::sample::select(Func::ALL.to_vec()), prop::collection::vec(inner, Func::MAX_ARITY)).prop_map(
+                |(f, mut args)| {
+                    args.truncate(f.arity());
+                    if f.takes_octaves() {
+                        // An octave count is a whole-number literal in source.
+                        *args.last_mut().expect("fbm takes arguments") = Expr::Lit(3.0);
+                    }
+                    Expr::Call(f, args)
+                }
+            ),
         ]
     })
 }

@@ -50,6 +50,10 @@ library! {
     SIERPINSKI_TETRAHEDRON = "sierpinski_tetrahedron";
     /// A Menger sponge and a Sierpinski tetrahedron side by side.
     SIERPINSKI_COLLECTION = "sierpinski_collection";
+    /// A noise heightfield with haze.
+    TERRAIN = "terrain";
+    /// A noise-displaced sphere with an ocean and an atmosphere.
+    PLANET = "planet";
     /// One sphere repeated forever, in fog.
     INFINITE_SPHERES = "infinite_spheres";
     /// Union, subtraction and smooth union of a sphere and a box.

@@ -137,6 +137,15 @@ pub fn vocabulary() -> Vec<Row> {
         row!("abs_fold", Exact, { sphere(0.4).translate(vec3(0.5, 0.3, -0.2)).abs_fold(vec3(1, 0, 1)) }),
         row!("box_fold", Exact, { torus(0.5, 0.15).translate(vec3(0.4, 0.0, 0.3)).box_fold(0.6) }).within(3.0),
         row!("sphere_fold", Exact, { box3(vec3(0.4, 0.3, 0.5)).translate(vec3(0.6, 0.0, 0.0)).sphere_fold(0.3, 0.9) }),
+        row!("displace: noise3", Exact, { sphere(1.0).displace(0.15 * noise3(x * 3.0, y * 3.0, z * 3.0)) }),
+        row!("displace: noise2 and fbm2 heightfield", Exact, {
+            plane(vec3(0.0, 1.0, 0.0), 0.0).displace(0.4 * fbm2(x * 0.7, z * 0.7, 5) + 0.1 * noise2(x * 3.0, z * 3.0))
+        })
+        .within(3.0),
+        row!("displace: fbm3 with t and a param", Exact, {
+            sphere(1.0).displace(param("amp", 0.1, 0.0..0.3) * fbm3(x * 2.0 + t, y * 2.0, z * 2.0, 4))
+        })
+        .at_time(0.5),
         row!("polar_repeat", Trig, { capsule(vec3(0.6, -0.3, 0.0), vec3(0.9, 0.4, 0.0), 0.15).polar_repeat(7) }),
         // ---- materials
         row!("material: default surface", Exact, { sphere(1.0) }),

@@ -7,7 +7,7 @@ use crate::ir::*;
 /// Folds an expression bottom-up.
 pub fn fold_expr(e: &Expr) -> Expr {
     match e {
-        Expr::Lit(_) | Expr::Time | Expr::Param(_) => e.clone(),
+        Expr::Lit(_) | Expr::Time | Expr::Point(_) | Expr::Param(_) => e.clone(),
         Expr::Neg(a) => match fold_expr(a) {
             Expr::Lit(v) => Expr::Lit(-v),
             a => Expr::Neg(Box::new(a)),
@@ -19,7 +19,7 @@ pub fn fold_expr(e: &Expr) -> Expr {
         Expr::Call(f, args) => {
             let args: Vec<Expr> = args.iter().map(fold_expr).collect();
             match args.iter().map(Expr::as_lit).collect::<Option<Vec<f64>>>() {
-                Some(v) => Expr::Lit(f.apply(&v)),
+                Some(v) => Expr::Lit(f.apply(&v, f.octaves(v.last().copied()))),
                 None => Expr::Call(*f, args),
             }
         }

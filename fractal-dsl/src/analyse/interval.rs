@@ -15,6 +15,8 @@ pub fn range(e: &Expr) -> Interval {
     match e {
         Expr::Lit(v) => Interval::point(*v),
         Expr::Time => Interval::TIME,
+        // The point can be anywhere.
+        Expr::Point(_) => Interval::ENTIRE,
         // The default is included so a declaration whose default lies outside its range stays covered.
         Expr::Param(p) => Interval::new(p.min, p.max).hull(Interval::point(p.default)),
         Expr::Neg(a) => -range(a),
@@ -39,6 +41,8 @@ pub fn range(e: &Expr) -> Interval {
                 Func::Pow => arg(0).pow(arg(1)),
                 Func::Clamp => arg(0).clamp(arg(1), arg(2)),
                 Func::Mix => arg(0).mix(arg(1), arg(2)),
+                Func::Noise2 | Func::Noise3 => Interval::new(-1.0, 1.0),
+                Func::Fbm2 | Func::Fbm3 => Interval::new(-crate::noise::FBM_RANGE, crate::noise::FBM_RANGE),
             }
         }
     }

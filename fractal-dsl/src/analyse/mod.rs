@@ -3,6 +3,7 @@
 pub mod bounds;
 pub mod fold;
 pub mod interval;
+pub mod slope;
 
 pub use bounds::{bound, Aabb};
 

@@ -10,14 +10,15 @@ use crate::ir::op::Meaning;
 use crate::ir::*;
 use crate::leaf::LeafArg;
 use crate::math::{v3, V3};
-use crate::num::Num;
-use crate::sdf::Leaf;
+use crate::sdf::{CallLeaf, Leaf};
 
 /// A compiled scalar expression.
 #[derive(Clone, Debug)]
 pub enum Term {
     Lit(f64),
     Time,
+    /// A coordinate of the point (displacements only; see [`Term::eval_at`]).
+    Point(u8),
     /// Slot in [`Env::params`], and the declared default for a slot the caller did not fill.
     Param(usize, f64),
     Neg(Box<Term>),
@@ -30,6 +31,7 @@ impl Term {
         match e {
             Expr::Lit(v) => Term::Lit(*v),
             Expr::Time => Term::Time,
+            Expr::Point(axis) => Term::Point(*axis),
             Expr::Param(p) => match params.iter().position(|q| q.name == p.name) {
                 Some(i) => Term::Param(i, p.default),
                 // Every parameter of a scene is listed by `Scene::params`; a stray one reads its default.
@@ -43,20 +45,32 @@ impl Term {
         }
     }
 
+    /// The value, where the point is not known (validation keeps `x`, `y`, `z` inside displacements).
     #[inline]
-    pub fn eval<F: Num>(&self, env: &Env<F>) -> F {
+    pub fn eval<F: CallLeaf>(&self, env: &Env<F>) -> F {
+        self.eval_at(env, None)
+    }
+
+    /// The value at the point `p` (a displacement's amount); without one, a coordinate reads NaN.
+    #[inline]
+    pub fn eval_at<F: CallLeaf>(&self, env: &Env<F>, p: Option<V3<F>>) -> F {
         match self {
             Term::Lit(v) => F::lit(*v),
             Term::Time => env.time,
+            Term::Point(axis) => p.map_or(F::lit(f64::NAN), |p| [p.x, p.y, p.z][*axis as usize % 3]),
             Term::Param(i, default) => env.params.get(*i).copied().unwrap_or_else(|| F::lit(*default)),
-            Term::Neg(a) => -a.eval(env),
-            Term::Bin(op, a, b) => op.apply(a.eval(env), b.eval(env)),
+            Term::Neg(a) => -a.eval_at(env, p),
+            Term::Bin(op, a, b) => op.apply(a.eval_at(env, p), b.eval_at(env, p)),
             Term::Call(f, args) => {
-                let mut v = [F::lit(0.0); 3];
+                let mut v = [F::lit(0.0); Func::MAX_ARITY];
                 for (slot, a) in v.iter_mut().zip(args.iter()) {
-                    *slot = a.eval(env);
+                    *slot = a.eval_at(env, p);
                 }
-                f.apply(&v)
+                let octaves = match args.last() {
+                    Some(Term::Lit(n)) => f.octaves(Some(*n)),
+                    _ => 0,
+                };
+                f.apply(&v, octaves)
             }
         }
     }
@@ -78,7 +92,7 @@ impl Term3 {
         }
     }
     #[inline]
-    pub fn eval<F: Num>(&self, env: &Env<F>) -> V3<F> {
+    pub fn eval<F: CallLeaf>(&self, env: &Env<F>) -> V3<F> {
         v3(self.0[0].eval(env), self.0[1].eval(env), self.0[2].eval(env))
     }
 }
@@ -99,7 +113,7 @@ impl ArgTerm {
         }
     }
     #[inline]
-    pub fn eval<F: Num>(&self, env: &Env<F>) -> LeafArg<F> {
+    pub fn eval<F: CallLeaf>(&self, env: &Env<F>) -> LeafArg<F> {
         match self {
             ArgTerm::Num(t) => LeafArg::F(t.eval(env)),
             ArgTerm::Vec(t) => LeafArg::V3(t.eval(env)),
@@ -182,16 +196,24 @@ pub struct OpStep {
 impl OpStep {
     /// The argument at `i` as a number.
     #[inline]
-    pub fn num<F: Num>(&self, i: usize, env: &Env<F>) -> F {
+    pub fn num<F: CallLeaf>(&self, i: usize, env: &Env<F>) -> F {
         match &self.args[i] {
             ArgTerm::Num(t) => t.eval(env),
             ArgTerm::Vec(v) => v.0[0].eval(env),
             ArgTerm::Count(n) => F::lit(*n as f64),
         }
     }
+    /// The argument at `i` as a number that may read the point `p`.
+    #[inline]
+    pub fn num_at<F: CallLeaf>(&self, i: usize, env: &Env<F>, p: V3<F>) -> F {
+        match &self.args[i] {
+            ArgTerm::Num(t) => t.eval_at(env, Some(p)),
+            _ => self.num(i, env),
+        }
+    }
     /// The argument at `i` as a vector.
     #[inline]
-    pub fn vec<F: Num>(&self, i: usize, env: &Env<F>) -> V3<F> {
+    pub fn vec<F: CallLeaf>(&self, i: usize, env: &Env<F>) -> V3<F> {
         match &self.args[i] {
             ArgTerm::Vec(v) => v.eval(env),
             _ => V3::splat(self.num(i, env)),
@@ -279,7 +301,11 @@ impl Compiler<'_> {
                 } else {
                     op.shapes.iter().map(|s| (self.node(s), None)).collect()
                 };
-                let args = op.args.iter().map(|a| ArgTerm::compile(a, self.params)).collect();
+                let mut args: Vec<ArgTerm> = op.args.iter().map(|a| ArgTerm::compile(a, self.params)).collect();
+                if let (Meaning::Displace, Some(ArgValue::Num(amount))) = (meaning, op.args.first()) {
+                    // The divisor that keeps the displaced distance a lower bound, fixed when the plan is made.
+                    args.push(ArgTerm::Num(Term::Lit(1.0 + crate::analyse::slope::slope(amount))));
+                }
                 Step::Op(OpStep { meaning, shapes, args })
             }
             Node::Material(c, m) => Step::Material(Box::new(self.node(c)), Box::new(Mat::compile(m, self.params))),

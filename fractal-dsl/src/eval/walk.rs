@@ -67,6 +67,7 @@ enum Post<F> {
     Div(F),
     Sub(F),
     AbsSub(F),
+    SubDiv(F, F),
 }
 
 impl<F: CallLeaf> Post<F> {
@@ -78,6 +79,7 @@ impl<F: CallLeaf> Post<F> {
             Post::Div(s) => d / s,
             Post::Sub(r) => d - r,
             Post::AbsSub(t) => abs(d) - t,
+            Post::SubDiv(a, k) => (d - a) / k,
         }
     }
 }
@@ -256,7 +258,7 @@ fn leaf_fields<F: CallLeaf>(m: &Mat, env: &Env<F>, trap: Option<F>) -> Fields<F>
 
 /// Each axis of `p` moved by `f(axis, coordinate, term)`, or left alone where the term folded to 0.
 #[inline]
-fn per_axis<F: Num>(p: V3<F>, terms: [Option<&Term>; 3], env: &Env<F>, f: impl Fn(usize, F, F) -> F) -> V3<F> {
+fn per_axis<F: CallLeaf>(p: V3<F>, terms: [Option<&Term>; 3], env: &Env<F>, f: impl Fn(usize, F, F) -> F) -> V3<F> {
     let pc = [p.x, p.y, p.z];
     let q = [0, 1, 2].map(|i| match terms[i] {
         None => pc[i],
@@ -266,7 +268,7 @@ fn per_axis<F: Num>(p: V3<F>, terms: [Option<&Term>; 3], env: &Env<F>, f: impl F
 }
 
 /// The single-shape operations: where they move the point, and what they then do to the shape's distance.
-fn domain<F: Num>(op: &OpStep, p: V3<F>, env: &Env<F>) -> (V3<F>, Post<F>) {
+fn domain<F: CallLeaf>(op: &OpStep, p: V3<F>, env: &Env<F>) -> (V3<F>, Post<F>) {
     match op.meaning {
         Meaning::Translate => (p - op.vec(0, env), Post::Keep),
         Meaning::Rotate(axis) => {
@@ -357,6 +359,7 @@ fn domain<F: Num>(op: &OpStep, p: V3<F>, env: &Env<F>) -> (V3<F>, Post<F>) {
             let f = select(lt(r2, min2), fixed2 / min2, select(lt(r2, fixed2), fixed2 / max(r2, c(TINY)), c(1.0)));
             (p * f, Post::Div(f))
         }
+        Meaning::Displace => (p, Post::SubDiv(op.num_at(0, env, p), op.num(1, env))),
         Meaning::PolarRepeat => {
             // The point turned back about y by its sector's angle k·2π/n, so the sector around +x holds it. The
             // angle only picks k; turning by k·2π/n rather than taking the remainder of the angle keeps atan2's

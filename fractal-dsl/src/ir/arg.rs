@@ -36,6 +36,8 @@ pub enum Rule {
     AtMost(u32),
     /// A whole-number literal from 1 to this (a count of copies).
     CountUpTo(u32),
+    /// A displacement: an expression of the point whose range and slope ([`crate::analyse::slope`]) are bounded.
+    Displacement,
 }
 
 /// One declared argument.

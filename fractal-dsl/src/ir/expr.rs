@@ -32,11 +32,32 @@ pub enum Func {
     Pow,
     Clamp,
     Mix,
+    /// 2D gradient noise ([`crate::noise`]).
+    Noise2,
+    Noise3,
+    /// Octaves of 2D noise; the last argument is the octave count, a whole-number literal.
+    Fbm2,
+    Fbm3,
 }
 
 impl Func {
-    pub const ALL: [Func; 9] =
-        [Func::Sin, Func::Cos, Func::Abs, Func::Sqrt, Func::Min, Func::Max, Func::Pow, Func::Clamp, Func::Mix];
+    pub const ALL: [Func; 13] = [
+        Func::Sin,
+        Func::Cos,
+        Func::Abs,
+        Func::Sqrt,
+        Func::Min,
+        Func::Max,
+        Func::Pow,
+        Func::Clamp,
+        Func::Mix,
+        Func::Noise2,
+        Func::Noise3,
+        Func::Fbm2,
+        Func::Fbm3,
+    ];
+    /// Most arguments a function takes.
+    pub const MAX_ARITY: usize = 4;
     /// The name used in scene source, and by every shading language.
     pub fn name(self) -> &'static str {
         match self {
@@ -49,17 +70,34 @@ impl Func {
             Func::Pow => "pow",
             Func::Clamp => "clamp",
             Func::Mix => "mix",
+            Func::Noise2 => "noise2",
+            Func::Noise3 => "noise3",
+            Func::Fbm2 => "fbm2",
+            Func::Fbm3 => "fbm3",
         }
     }
     pub fn arity(self) -> usize {
         match self {
             Func::Sin | Func::Cos | Func::Abs | Func::Sqrt => 1,
-            Func::Min | Func::Max | Func::Pow => 2,
-            Func::Clamp | Func::Mix => 3,
+            Func::Min | Func::Max | Func::Pow | Func::Noise2 => 2,
+            Func::Clamp | Func::Mix | Func::Noise3 | Func::Fbm2 => 3,
+            Func::Fbm3 => 4,
         }
     }
     pub fn from_name(name: &str) -> Option<Func> {
         Func::ALL.into_iter().find(|f| f.name() == name)
+    }
+    /// Whether the last argument is an octave count (a whole-number literal), not a value.
+    pub fn takes_octaves(self) -> bool {
+        matches!(self, Func::Fbm2 | Func::Fbm3)
+    }
+    /// The octave count of an fbm call from its last argument's literal (validation keeps it a whole number in
+    /// 1..=[`crate::noise::MAX_OCTAVES`]); 0 for other functions.
+    pub fn octaves(self, last: Option<f64>) -> u32 {
+        match last {
+            Some(n) if self.takes_octaves() && n.is_finite() => n.clamp(0.0, crate::noise::MAX_OCTAVES as f64) as u32,
+            _ => 0,
+        }
     }
 }
 
@@ -69,6 +107,9 @@ pub enum Expr {
     Lit(f64),
     /// Scene time in seconds, `t` in source.
     Time,
+    /// A coordinate of the point a distance is asked at, `x`, `y` or `z` in source (0, 1, 2): only a displacement
+    /// (`.displace(..)`) may read it.
+    Point(u8),
     Param(Box<ParamDecl>),
     Neg(Box<Expr>),
     Bin(BinOp, Box<Expr>, Box<Expr>),
@@ -86,7 +127,7 @@ impl Expr {
     /// Number of nodes, for the size cap.
     pub fn size(&self) -> usize {
         match self {
-            Expr::Lit(_) | Expr::Time | Expr::Param(_) => 1,
+            Expr::Lit(_) | Expr::Time | Expr::Point(_) | Expr::Param(_) => 1,
             Expr::Neg(e) => 1 + e.size(),
             Expr::Bin(_, a, b) => 1 + a.size() + b.size(),
             Expr::Call(_, args) => 1 + args.iter().map(Expr::size).sum::<usize>(),
@@ -95,7 +136,7 @@ impl Expr {
     /// Calls `f` on every parameter declaration in this expression.
     pub fn visit_params<'a>(&'a self, f: &mut dyn FnMut(&'a ParamDecl)) {
         match self {
-            Expr::Lit(_) | Expr::Time => {}
+            Expr::Lit(_) | Expr::Time | Expr::Point(_) => {}
             Expr::Param(p) => f(p),
             Expr::Neg(e) => e.visit_params(f),
             Expr::Bin(_, a, b) => {
@@ -109,23 +150,35 @@ impl Expr {
     pub fn uses_time(&self) -> bool {
         match self {
             Expr::Time => true,
-            Expr::Lit(_) | Expr::Param(_) => false,
+            Expr::Lit(_) | Expr::Point(_) | Expr::Param(_) => false,
             Expr::Neg(e) => e.uses_time(),
             Expr::Bin(_, a, b) => a.uses_time() || b.uses_time(),
             Expr::Call(_, args) => args.iter().any(Expr::uses_time),
         }
     }
-    /// Evaluates with the given time and parameter lookup (host-side: lights, camera, folding checks).
+    /// Whether the expression reads the point (`x`, `y`, `z`).
+    pub fn uses_point(&self) -> bool {
+        match self {
+            Expr::Point(_) => true,
+            Expr::Lit(_) | Expr::Time | Expr::Param(_) => false,
+            Expr::Neg(e) => e.uses_point(),
+            Expr::Bin(_, a, b) => a.uses_point() || b.uses_point(),
+            Expr::Call(_, args) => args.iter().any(Expr::uses_point),
+        }
+    }
+    /// Evaluates with the given time and parameter lookup (host-side: lights, camera, folding checks). The point is
+    /// not known here: `x`, `y` and `z` are NaN (validation keeps them inside displacements).
     pub fn eval(&self, time: f64, param: &dyn Fn(&ParamDecl) -> f64) -> f64 {
         match self {
             Expr::Lit(v) => *v,
             Expr::Time => time,
+            Expr::Point(_) => f64::NAN,
             Expr::Param(p) => param(p),
             Expr::Neg(e) => -e.eval(time, param),
             Expr::Bin(op, a, b) => op.apply(a.eval(time, param), b.eval(time, param)),
             Expr::Call(f, args) => {
                 let v: Vec<f64> = args.iter().map(|a| a.eval(time, param)).collect();
-                f.apply(&v)
+                f.apply(&v, f.octaves(args.last().and_then(Expr::as_lit)))
             }
         }
     }
@@ -157,9 +210,13 @@ impl BinOp {
 
 impl Func {
     /// Applies the function: the semantics every backend must reproduce, in f64 for folding and host-side values and
-    /// in f32 or f64 for the interpreter.
-    pub fn apply<F: crate::num::Num>(self, v: &[F]) -> F {
+    /// in f32 or f64 for the interpreter. Noise runs through the leaf table (one function per kernel); `octaves` is
+    /// the literal octave count of an fbm (see [`Func::octaves`]), unused otherwise.
+    pub fn apply<F: crate::sdf::CallLeaf>(self, v: &[F], octaves: u32) -> F {
+        use crate::leaf::LeafArg;
         use crate::num::*;
+        use crate::sdf::Leaf;
+        let octaves = |_: usize| LeafArg::Count(F::count(octaves));
         match self {
             Func::Sin => sin(v[0]),
             Func::Cos => cos(v[0]),
@@ -170,6 +227,10 @@ impl Func {
             Func::Pow => pow(v[0], v[1]),
             Func::Clamp => clamp(v[0], v[1], v[2]),
             Func::Mix => mix(v[0], v[1], v[2]),
+            Func::Noise2 => F::leaf(Leaf::Noise2, &[LeafArg::F(v[0]), LeafArg::F(v[1])]).distance(),
+            Func::Noise3 => F::leaf(Leaf::Noise3, &[LeafArg::V3(crate::math::v3(v[0], v[1], v[2]))]).distance(),
+            Func::Fbm2 => F::leaf(Leaf::Fbm2, &[LeafArg::F(v[0]), LeafArg::F(v[1]), octaves(2)]).distance(),
+            Func::Fbm3 => F::leaf(Leaf::Fbm3, &[LeafArg::V3(crate::math::v3(v[0], v[1], v[2])), octaves(3)]).distance(),
         }
     }
 }
@@ -291,7 +352,7 @@ impl Expr {
                 detach(b);
             }
             Expr::Call(_, args) => into.append(args),
-            Expr::Lit(_) | Expr::Time | Expr::Param(_) => {}
+            Expr::Lit(_) | Expr::Time | Expr::Point(_) | Expr::Param(_) => {}
         }
     }
 }

@@ -63,6 +63,9 @@ pub enum Meaning {
     SphereFold,
     /// `count` copies around the y axis: the angle about y taken modulo 2π/count.
     PolarRepeat,
+    /// (d − amount(p)) / (1 + the amount's slope bound): moved out by an expression of the point, and still a lower
+    /// bound of the distance.
+    Displace,
 }
 
 /// When an operator changes nothing (folding removes it).

@@ -228,6 +228,10 @@ impl Lower {
         match name.as_str() {
             "t" => return self.number(p, Expr::Time),
             "PI" => return self.number(p, Expr::Lit(std::f64::consts::PI)),
+            "x" | "y" | "z" => {
+                let axis = crate::print::POINT_NAMES.iter().position(|n| *n == name).unwrap_or(0) as u8;
+                return self.number(p, Expr::Point(axis));
+            }
             _ => {}
         }
         let message = if vocab::function(&name).is_some() {

@@ -409,6 +409,16 @@ pub(crate) static FUNCTIONS: &[Entry] = &[
     fun("clamp", &[p("x", T::Number), p("lo", T::Number), p("hi", T::Number)], T::Number, |a| {
         number(b::clamp(a.num()?, a.num()?, a.num()?))
     }),
+    fun("noise2", &[p("x", T::Number), p("y", T::Number)], T::Number, |a| number(b::noise2(a.num()?, a.num()?))),
+    fun("noise3", &[p("x", T::Number), p("y", T::Number), p("z", T::Number)], T::Number, |a| {
+        number(b::noise3(a.num()?, a.num()?, a.num()?))
+    }),
+    fun("fbm2", &[p("x", T::Number), p("y", T::Number), p("octaves", T::Int)], T::Number, |a| {
+        number(b::fbm2(a.num()?, a.num()?, a.int()?))
+    }),
+    fun("fbm3", &[p("x", T::Number), p("y", T::Number), p("z", T::Number), p("octaves", T::Int)], T::Number, |a| {
+        number(b::fbm3(a.num()?, a.num()?, a.num()?, a.int()?))
+    }),
     fun("mix", &[p("a", T::Number), p("b", T::Number), p("s", T::Number)], T::Number, |a| {
         number(b::mix(a.num()?, a.num()?, a.num()?))
     }),
@@ -518,7 +528,7 @@ pub(crate) static METHODS: &[Entry] = &[
 ];
 
 /// Names that stand alone (not called).
-pub(crate) const NAMES: &[&str] = &["t", "PI"];
+pub(crate) const NAMES: &[&str] = &["t", "PI", "x", "y", "z"];
 
 /// The entries made from declarations: primitives, fractal families, fractal settings and operators.
 fn declared() -> &'static [Entry] {

@@ -80,6 +80,8 @@ pub fn declared_args(decls: &'static [ArgDecl]) -> BoxedStrategy<Vec<ArgValue>> 
                 [0..=most, 0..=most, 0..=most].prop_map(|n| n.map(f64::from)).boxed()
             }
             Rule::CountUpTo(most) => (1..=most.min(8)).prop_map(|n| [f64::from(n); 3]).boxed(),
+            // A constant displacement (the point-dependent ones have rows of their own).
+            Rule::Displacement => vec3_in(0.0, 0.3).boxed(),
         })
         .collect();
     draws

@@ -108,6 +108,6 @@ mod tests {
         let sheet = contact_sheet(&[("a very long scene name", &small)], 4);
         assert_eq!(sheet.width, GAP + 20 + GAP);
         let empty = contact_sheet(&[], 4);
-        assert_eq!((empty.width, empty.height), (GAP + 4 * GAP, GAP));
+        assert_eq!((empty.width, empty.height), (2 * GAP, GAP));
     }
 }

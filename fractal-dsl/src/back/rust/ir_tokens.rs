@@ -121,6 +121,7 @@ impl Writer<'_> {
                 quote!(#k::Expr::Lit(#v))
             }
             Expr::Time => quote!(#k::Expr::Time),
+            Expr::Point(axis) => quote!(#k::Expr::Point(#axis)),
             Expr::Param(p) => {
                 let p = self.boxed(self.param(p));
                 quote!(#k::Expr::Param(#p))
@@ -173,6 +174,10 @@ impl Writer<'_> {
             Func::Pow => quote!(#k::Func::Pow),
             Func::Clamp => quote!(#k::Func::Clamp),
             Func::Mix => quote!(#k::Func::Mix),
+            Func::Noise2 => quote!(#k::Func::Noise2),
+            Func::Noise3 => quote!(#k::Func::Noise3),
+            Func::Fbm2 => quote!(#k::Func::Fbm2),
+            Func::Fbm3 => quote!(#k::Func::Fbm3),
         }
     }
 
