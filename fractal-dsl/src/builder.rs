@@ -42,6 +42,12 @@ pub fn fbm3(x: impl Into<Expr>, y: impl Into<Expr>, z: impl Into<Expr>, octaves:
     Expr::Call(Func::Fbm3, vec![x.into(), y.into(), z.into(), Expr::Lit(f64::from(octaves))])
 }
 
+/// The 2D Mandelbrot set's smooth escape count at c = (x, y) over `iterations`, in (0, 1]; 0 inside the set
+/// (`mandelbrot(x, y, iterations)`; a material pattern).
+pub fn mandelbrot(x: impl Into<Expr>, y: impl Into<Expr>, iterations: u32) -> Expr {
+    Expr::Call(Func::Mandelbrot, vec![x.into(), y.into(), Expr::Lit(f64::from(iterations))])
+}
+
 /// A named uniform: changeable at run time without recompiling, `default` within `range`.
 pub fn param(name: &str, default: f64, range: core::ops::Range<f64>) -> Expr {
     Expr::Param(Box::new(ParamDecl { name: name.to_string(), default, min: range.start, max: range.end }))

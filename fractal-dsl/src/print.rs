@@ -95,8 +95,8 @@ pub fn expr(e: &Expr) -> String {
         }
         Expr::Call(f, args) => {
             let mut args: Vec<String> = args.iter().map(expr).collect();
-            // An octave count is an integer in source (`fbm2(x, z, 4)`), not `4.0`.
-            if let (true, Some(Expr::Lit(n))) = (f.takes_octaves(), e_last(e)) {
+            // A count is an integer in source (`fbm2(x, z, 4)`), not `4.0`.
+            if let (true, Some(Expr::Lit(n))) = (f.takes_count(), e_last(e)) {
                 if let Some(last) = args.last_mut().filter(|_| n.fract() == 0.0 && *n >= 0.0) {
                     *last = format!("{}", *n as u64);
                 }

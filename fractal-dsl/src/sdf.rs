@@ -6,7 +6,7 @@
 
 use crate::leaf::{leaves, LeafArg, LeafOut};
 use crate::math::*;
-pub use crate::noise::{fbm2, fbm3, noise2, noise3};
+pub use crate::noise::{fbm2, fbm3, mandelbrot, noise2, noise3};
 
 // The leaf table: every function below with its parameters' kinds and its result ([`crate::leaf`]).
 leaves! {
@@ -28,6 +28,7 @@ leaves! {
     Noise3 => noise3(p: V3) -> F;
     Fbm2 => fbm2(x: F, y: F, octaves: Count) -> F;
     Fbm3 => fbm3(p: V3, octaves: Count) -> F;
+    Mandelbrot => mandelbrot(cx: F, cy: F, iterations: Count, inverse: F) -> F;
     DeMandelbulb => de_mandelbulb(p: V3, power: F, iterations: Count, bailout: F) -> Pair;
     DeMandelbulb8 => de_mandelbulb8(p: V3, iterations: Count, bailout: F) -> Pair;
     DeMenger => de_menger(p: V3, levels: Count) -> Pair;

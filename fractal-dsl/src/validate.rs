@@ -682,13 +682,13 @@ fn abs_between(o: &mut Vec<Problem>, family: &str, arg: FractalArg, e: &Expr, lo
 /// Rules of one node's own values (not its children's): the primitive, fractal or operator's arguments, or the
 /// material.
 pub fn check_node(node: &Node) -> Vec<Problem> {
-    // A displacement's amount is the one place the point may be read; an expression breaking that (or an fbm's
-    // octave rule) is reported alone, before the ranges it makes meaningless.
+    // A displacement's amount and a material are the places the point may be read; an expression breaking that (or
+    // a count rule) is reported alone, before the ranges it makes meaningless.
     let displaced = node.op().filter(|op| op.decl().meaning == Meaning::Displace).and_then(|op| op.args.first());
     let amount = displaced.map(|a| a.exprs().as_ptr());
     let broken: Vec<Problem> = own_exprs(node)
         .into_iter()
-        .filter_map(|e| expr_rule_problem(e, amount == Some(e as *const Expr)))
+        .filter_map(|e| expr_rule_problem(e, matches!(node, Node::Material(..)) || amount == Some(e as *const Expr)))
         .map(|m| Problem::new("", m))
         .collect();
     if !broken.is_empty() {
@@ -703,33 +703,35 @@ pub fn check_node(node: &Node) -> Vec<Problem> {
 }
 
 /// The rules every expression keeps wherever it stands: `x`, `y`, `z` only where `allow_point` (a displacement's
-/// amount), and an fbm's octave count a whole-number literal in 1..=[`crate::noise::MAX_OCTAVES`].
+/// amount, a material), and a count argument (fbm octaves, Mandelbrot iterations) a whole-number literal in range.
 pub fn expr_rule_problem(e: &Expr, allow_point: bool) -> Option<String> {
     let mut stack = vec![e];
     while let Some(e) = stack.pop() {
         match e {
             Expr::Point(axis) if !allow_point => {
                 let name = crate::print::POINT_NAMES[*axis as usize % 3];
-                return Some(format!("`{name}` (the point) can be read only in a displacement: shape.displace(..)"));
+                return Some(format!(
+                    "`{name}` (the point) can be read only in a displacement or a material: shape.displace(..), \
+                     shape.material(..)"
+                ));
             }
-            Expr::Call(f, args) if f.takes_octaves() => {
-                let most = crate::noise::MAX_OCTAVES;
-                let whole = args.last().and_then(Expr::as_lit).filter(|n| n.fract() == 0.0);
-                if !whole.is_some_and(|n| (1.0..=most as f64).contains(&n)) {
-                    return Some(format!("{} octaves must be a whole number from 1 to {most}", f.name()));
+            Expr::Call(f, args) => {
+                if let Some((what, most)) = f.count_arg() {
+                    let whole = args.last().and_then(Expr::as_lit).filter(|n| n.fract() == 0.0);
+                    if !whole.is_some_and(|n| (1.0..=most as f64).contains(&n)) {
+                        return Some(format!("{} {what} must be a whole number from 1 to {most}", f.name()));
+                    }
                 }
                 stack.extend(args);
             }
             Expr::Neg(a) => stack.push(a),
             Expr::Bin(_, a, b) => stack.extend([&**a, &**b]),
-            Expr::Call(_, args) => stack.extend(args),
             Expr::Lit(_) | Expr::Time | Expr::Point(_) | Expr::Param(_) => {}
         }
     }
     None
 }
 
-/// Rules of a material's terms.
 pub fn check_material(m: &Material) -> Vec<Problem> {
     let mut out = Vec::new();
     let o = &mut out;

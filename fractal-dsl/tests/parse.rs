@@ -147,6 +147,10 @@ fn cases() -> Vec<(&'static str, Scene)> {
         ("sphere(1.0).sphere_fold(0.25, 1.0)", s(ball().sphere_fold(0.25, 1.0))),
         ("sphere(1.0).polar_repeat(6)", s(ball().polar_repeat(6))),
         (
+            "sphere(1.0).material(rgb(mandelbrot(x, z, 64), y, 0.5))",
+            s(ball().material(rgb(mandelbrot(x(), z(), 64), y(), 0.5))),
+        ),
+        (
             "sphere(1.0).displace(0.1 * noise3(x * 4.0, y * 4.0, z * 4.0) + 0.05 * noise2(x, t))",
             s(ball().displace(
                 Expr::from(0.1) * noise3(x() * 4.0, y() * 4.0, z() * 4.0) + Expr::from(0.05) * noise2(x(), time()),
@@ -515,7 +519,8 @@ fn validation_errors_point_at_the_argument() {
         ("juliabulb(vec3(0.1, 0.2, 0.3)).power(1.5)", "1:38: juliabulb power must be >= 2, found 1.5"),
         ("octahedral_kifs(2.0).power(3.0)", "1:22: `power` applies only to juliabulb, not octahedral_kifs"),
         ("octahedral_kifs(0.9)", "1:17: octahedral_kifs scale must be >= 1.1, found 0.9"),
-        ("sphere(1.0 + x)", "1:1: `x` (the point) can be read only in a displacement: shape.displace(..)"),
+        ("sphere(1.0 + x)", "1:1: `x` (the point) can be read only in a displacement or a material: shape.displace(..), shape.material(..)"),
+        ("sphere(1.0).material(rgb(mandelbrot(x, z, 0), 0.5, 0.5))", "1:13: mandelbrot iterations must be a whole number from 1 to 10000"),
         ("sphere(1.0).displace(x)", "1:22: displace amount must stay within a bounded range (wrap the point in noise, sin, clamp, ..)"),
         ("sphere(1.0).displace(0.1 * sqrt(noise2(x, y) + 1.0))", "1:22: displace amount must change with the point at a bounded rate (no division by a value that can be 0, no sqrt reaching 0, no pow with a varying exponent)"),
         ("sphere(1.0).displace(fbm2(x, y, 40))", "1:13: fbm2 octaves must be a whole number from 1 to 12"),

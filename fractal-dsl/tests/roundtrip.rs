@@ -148,7 +148,7 @@ fn free() -> impl Strategy<Value = Expr> {
             (prop::sample::select(Func::ALL.to_vec()), prop::collection::vec(inner, Func::MAX_ARITY)).prop_map(
                 |(f, mut args)| {
                     args.truncate(f.arity());
-                    if f.takes_octaves() {
+                    if f.takes_count() {
                         // An octave count is a whole-number literal in source.
                         *args.last_mut().expect("fbm takes arguments") = Expr::Lit(3.0);
                     }

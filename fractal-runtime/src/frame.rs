@@ -121,10 +121,11 @@ pub fn check_time(time: f64) -> Result<(), FrameError> {
 /// Checks that every number of the distance tree that moves (reads `t` or a `param`) is finite in f32 at this time
 /// and with these parameter values. Validation cannot see `sqrt(t - 5)` go bad at t < 5 or a `param` divide by 0;
 /// the kernels would draw NaN geometry (nothing, or something else on each backend), so the frame is refused instead.
+/// An expression that reads the point (a displacement, a pattern) has no one value per frame and is not checked here.
 fn check_shape_values(scene: &Scene, time: f64, lookup: &dyn Fn(&ParamDecl) -> f64) -> Result<(), FrameError> {
     let mut bad = None;
     fractal_dsl::visit::visit_node_exprs(&scene.root, &mut |e| {
-        if bad.is_none() && !fractal_dsl::validate::is_constant(e) {
+        if bad.is_none() && !fractal_dsl::validate::is_constant(e) && !e.uses_point() {
             let v = e.eval(time, lookup);
             if !(v.is_finite() && v.abs() <= f64::from(f32::MAX)) {
                 bad = Some(FrameError::NonFiniteValue { expr: fractal_dsl::print::expr(e), value: v, time });

@@ -50,6 +50,10 @@ library! {
     SIERPINSKI_TETRAHEDRON = "sierpinski_tetrahedron";
     /// A Menger sponge and a Sierpinski tetrahedron side by side.
     SIERPINSKI_COLLECTION = "sierpinski_collection";
+    /// The 2D Mandelbrot set as the material of a plane.
+    MANDELBROT = "mandelbrot";
+    /// A camera path zooming into the Mandelbrot set to the f32 limit.
+    MANDELBROT_ZOOM = "mandelbrot_zoom";
     /// A noise heightfield with haze.
     TERRAIN = "terrain";
     /// A noise-displaced sphere with an ocean and an atmosphere.

@@ -27,6 +27,8 @@ pub enum Family {
     Mandelbox,
     Juliabulb,
     Kifs,
+    /// Shapes whose material reads the point (noise, the Mandelbrot pattern): exact distances.
+    Pattern,
 }
 
 /// One scene of the table and where to look at it.

@@ -146,6 +146,10 @@ pub fn vocabulary() -> Vec<Row> {
             sphere(1.0).displace(param("amp", 0.1, 0.0..0.3) * fbm3(x * 2.0 + t, y * 2.0, z * 2.0, 4))
         })
         .at_time(0.5),
+        row!("material: mandelbrot pattern read at the point", Pattern, {
+            plane(vec3(0.0, 1.0, 0.0), 0.0).material(rgb(mandelbrot(x, z, 128), 0.5 + 0.5 * noise2(x, z), y))
+        })
+        .within(2.0),
         row!("polar_repeat", Trig, { capsule(vec3(0.6, -0.3, 0.0), vec3(0.9, 0.4, 0.0), 0.15).polar_repeat(7) }),
         // ---- materials
         row!("material: default surface", Exact, { sphere(1.0) }),

@@ -19,7 +19,7 @@ pub fn fold_expr(e: &Expr) -> Expr {
         Expr::Call(f, args) => {
             let args: Vec<Expr> = args.iter().map(fold_expr).collect();
             match args.iter().map(Expr::as_lit).collect::<Option<Vec<f64>>>() {
-                Some(v) => Expr::Lit(f.apply(&v, f.octaves(v.last().copied()))),
+                Some(v) => Expr::Lit(f.apply(&v, f.count(v.last().copied()))),
                 None => Expr::Call(*f, args),
             }
         }

@@ -43,6 +43,7 @@ pub fn range(e: &Expr) -> Interval {
                 Func::Mix => arg(0).mix(arg(1), arg(2)),
                 Func::Noise2 | Func::Noise3 => Interval::new(-1.0, 1.0),
                 Func::Fbm2 | Func::Fbm3 => Interval::new(-crate::noise::FBM_RANGE, crate::noise::FBM_RANGE),
+                Func::Mandelbrot => Interval::new(0.0, 1.0),
             }
         }
     }

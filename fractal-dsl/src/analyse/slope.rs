@@ -80,6 +80,8 @@ pub fn slope(e: &Expr) -> f64 {
                 // Octave i contributes ½ⁱ·noise(2ⁱ·q): each octave has the first one's slope.
                 Func::Fbm2 => octaves(args) * NOISE2_SLOPE * (s(0) + s(1)),
                 Func::Fbm3 => octaves(args) * NOISE3_SLOPE * (s(0) + s(1) + s(2)),
+                // The escape count jumps at every level set of the fractal boundary: no bound.
+                Func::Mandelbrot => f64::INFINITY,
             }
         }
     }

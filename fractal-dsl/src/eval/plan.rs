@@ -67,7 +67,7 @@ impl Term {
                     *slot = a.eval_at(env, p);
                 }
                 let octaves = match args.last() {
-                    Some(Term::Lit(n)) => f.octaves(Some(*n)),
+                    Some(Term::Lit(n)) => f.count(Some(*n)),
                     _ => 0,
                 };
                 f.apply(&v, octaves)
@@ -93,7 +93,12 @@ impl Term3 {
     }
     #[inline]
     pub fn eval<F: CallLeaf>(&self, env: &Env<F>) -> V3<F> {
-        v3(self.0[0].eval(env), self.0[1].eval(env), self.0[2].eval(env))
+        self.eval_at(env, None)
+    }
+    /// The value at the point `p` (a material's pattern).
+    #[inline]
+    pub fn eval_at<F: CallLeaf>(&self, env: &Env<F>, p: Option<V3<F>>) -> V3<F> {
+        v3(self.0[0].eval_at(env, p), self.0[1].eval_at(env, p), self.0[2].eval_at(env, p))
     }
 }
 

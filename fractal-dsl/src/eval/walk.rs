@@ -102,7 +102,7 @@ impl Walk<'_> {
     /// Distance and material at `p`.
     #[inline]
     pub fn sample<F: CallLeaf>(&self, p: V3<F>, env: &Env<F>) -> Sample<F> {
-        let (distance, f) = self.surf(&self.plan.root, p, env, &self.plan.default_material);
+        let (distance, f) = self.surf(&self.plan.root, p, env, &self.plan.default_material, p);
         Sample {
             distance,
             albedo: f.albedo,
@@ -161,24 +161,26 @@ impl Walk<'_> {
         }
     }
 
-    fn surf<F: CallLeaf>(&self, step: &Step, p: V3<F>, env: &Env<F>, m: &Mat) -> (F, Fields<F>) {
+    /// Distance and material at `p` under the material `m`, whose expressions read the point `mp` (where `m` was
+    /// applied, in that node's coordinates: a pattern moves with its shape).
+    fn surf<F: CallLeaf>(&self, step: &Step, p: V3<F>, env: &Env<F>, m: &Mat, mp: V3<F>) -> (F, Fields<F>) {
         let op = match step {
-            Step::Leaf(call) => return (leaf(call, p, env).distance(), leaf_fields(m, env, None)),
+            Step::Leaf(call) => return (leaf(call, p, env).distance(), leaf_fields(m, env, None, mp)),
             Step::Fractal { call, step } => {
                 let out = leaf(call, p, env);
-                return (out.distance() * c(*step), leaf_fields(m, env, out.trap()));
+                return (out.distance() * c(*step), leaf_fields(m, env, out.trap(), mp));
             }
-            Step::Empty => return (c(f64::INFINITY), leaf_fields(m, env, None)),
-            Step::Material(child, inner) => return self.surf(child, p, env, inner),
+            Step::Empty => return (c(f64::INFINITY), leaf_fields(m, env, None, mp)),
+            Step::Material(child, inner) => return self.surf(child, p, env, inner, p),
             Step::Op(op) => op,
         };
         let rest = || op.shapes[1..].iter();
         match op.meaning {
             Meaning::Union => {
-                let mut acc = self.surf(op.shape(0), p, env, m);
+                let mut acc = self.surf(op.shape(0), p, env, m, mp);
                 for (child, guard) in rest() {
                     let nearest = |(d, f): (F, Fields<F>)| {
-                        let (ds, fs) = self.surf(child, p, env, m);
+                        let (ds, fs) = self.surf(child, p, env, m, mp);
                         (min(d, ds), Fields::select(lt(ds, d), fs, f))
                     };
                     acc = match self.guard(guard, p, acc.0) {
@@ -188,19 +190,19 @@ impl Walk<'_> {
                 }
                 acc
             }
-            Meaning::Intersect => rest().fold(self.surf(op.shape(0), p, env, m), |acc, (s, _)| {
-                let (ds, fs) = self.surf(s, p, env, m);
+            Meaning::Intersect => rest().fold(self.surf(op.shape(0), p, env, m, mp), |acc, (s, _)| {
+                let (ds, fs) = self.surf(s, p, env, m, mp);
                 (max(acc.0, ds), Fields::select(lt(acc.0, ds), fs, acc.1))
             }),
             Meaning::Subtract => {
-                let (d, f) = self.surf(op.shape(0), p, env, m);
+                let (d, f) = self.surf(op.shape(0), p, env, m, mp);
                 (max(d, -self.dist(op.shape(1), p, env)), f)
             }
             Meaning::SmoothUnion | Meaning::SmoothIntersect => {
                 let union = op.meaning == Meaning::SmoothUnion;
                 let k = op.num(0, env);
-                rest().fold(self.surf(op.shape(0), p, env, m), |acc, (s, _)| {
-                    let (ds, fs) = self.surf(s, p, env, m);
+                rest().fold(self.surf(op.shape(0), p, env, m, mp), |acc, (s, _)| {
+                    let (ds, fs) = self.surf(s, p, env, m, mp);
                     let (d, w) = if union {
                         (leaf3(Leaf::SmoothMin, acc.0, ds, k), leaf3(Leaf::BlendWeight, acc.0, ds, k))
                     } else {
@@ -211,12 +213,12 @@ impl Walk<'_> {
             }
             Meaning::SmoothSubtract => {
                 let k = op.num(0, env);
-                let (d, f) = self.surf(op.shape(0), p, env, m);
+                let (d, f) = self.surf(op.shape(0), p, env, m, mp);
                 (leaf3(Leaf::SmoothMax, d, -self.dist(op.shape(1), p, env), k), f)
             }
             _ => {
                 let (q, post) = domain(op, p, env);
-                let (d, f) = self.surf(op.shape(0), q, env, m);
+                let (d, f) = self.surf(op.shape(0), q, env, m, mp);
                 (post.apply(d), f)
             }
         }
@@ -239,20 +241,22 @@ fn leaf3<F: CallLeaf>(leaf: Leaf, a: F, b: F, k: F) -> F {
     F::leaf(leaf, &[LeafArg::F(a), LeafArg::F(b), LeafArg::F(k)]).distance()
 }
 
-/// The material of a leaf under `m`; `trap` is the fractal's orbit trap, for fractal leaves.
+/// The material of a leaf under `m`, its expressions reading the point `mp`; `trap` is the fractal's orbit trap, for
+/// fractal leaves.
 #[inline]
-fn leaf_fields<F: CallLeaf>(m: &Mat, env: &Env<F>, trap: Option<F>) -> Fields<F> {
+fn leaf_fields<F: CallLeaf>(m: &Mat, env: &Env<F>, trap: Option<F>, mp: V3<F>) -> Fields<F> {
+    let at = Some(mp);
     let albedo = match (&m.albedo, trap) {
-        (Paint::Rgb(c), _) => c.eval(env),
-        (Paint::OrbitTrap(a, _), None) => a.eval(env),
-        (Paint::OrbitTrap(a, b), Some(t)) => mix3(a.eval(env), b.eval(env), t),
+        (Paint::Rgb(c), _) => c.eval_at(env, at),
+        (Paint::OrbitTrap(a, _), None) => a.eval_at(env, at),
+        (Paint::OrbitTrap(a, b), Some(t)) => mix3(a.eval_at(env, at), b.eval_at(env, at), t),
     };
     Fields {
         albedo,
-        ambient: m.ambient.eval(env),
-        diffuse: m.diffuse.eval(env),
-        specular: m.specular.eval(env),
-        shininess: m.shininess.eval(env),
+        ambient: m.ambient.eval_at(env, at),
+        diffuse: m.diffuse.eval_at(env, at),
+        specular: m.specular.eval_at(env, at),
+        shininess: m.shininess.eval_at(env, at),
     }
 }
 

@@ -38,10 +38,13 @@ pub enum Func {
     /// Octaves of 2D noise; the last argument is the octave count, a whole-number literal.
     Fbm2,
     Fbm3,
+    /// The 2D Mandelbrot set's smooth escape count over the iteration count (the last argument, a whole-number
+    /// literal), in (0, 1]; 0 inside the set.
+    Mandelbrot,
 }
 
 impl Func {
-    pub const ALL: [Func; 13] = [
+    pub const ALL: [Func; 14] = [
         Func::Sin,
         Func::Cos,
         Func::Abs,
@@ -55,6 +58,7 @@ impl Func {
         Func::Noise3,
         Func::Fbm2,
         Func::Fbm3,
+        Func::Mandelbrot,
     ];
     /// Most arguments a function takes.
     pub const MAX_ARITY: usize = 4;
@@ -74,28 +78,38 @@ impl Func {
             Func::Noise3 => "noise3",
             Func::Fbm2 => "fbm2",
             Func::Fbm3 => "fbm3",
+            Func::Mandelbrot => "mandelbrot",
         }
     }
     pub fn arity(self) -> usize {
         match self {
             Func::Sin | Func::Cos | Func::Abs | Func::Sqrt => 1,
             Func::Min | Func::Max | Func::Pow | Func::Noise2 => 2,
-            Func::Clamp | Func::Mix | Func::Noise3 | Func::Fbm2 => 3,
+            Func::Clamp | Func::Mix | Func::Noise3 | Func::Fbm2 | Func::Mandelbrot => 3,
             Func::Fbm3 => 4,
         }
     }
     pub fn from_name(name: &str) -> Option<Func> {
         Func::ALL.into_iter().find(|f| f.name() == name)
     }
-    /// Whether the last argument is an octave count (a whole-number literal), not a value.
-    pub fn takes_octaves(self) -> bool {
-        matches!(self, Func::Fbm2 | Func::Fbm3)
+    /// For a function whose last argument is a count (a whole-number literal, not a value): its name and the
+    /// largest count allowed.
+    pub fn count_arg(self) -> Option<(&'static str, u32)> {
+        match self {
+            Func::Fbm2 | Func::Fbm3 => Some(("octaves", crate::noise::MAX_OCTAVES)),
+            Func::Mandelbrot => Some(("iterations", crate::noise::MAX_MANDELBROT_ITERATIONS)),
+            _ => None,
+        }
     }
-    /// The octave count of an fbm call from its last argument's literal (validation keeps it a whole number in
-    /// 1..=[`crate::noise::MAX_OCTAVES`]); 0 for other functions.
-    pub fn octaves(self, last: Option<f64>) -> u32 {
-        match last {
-            Some(n) if self.takes_octaves() && n.is_finite() => n.clamp(0.0, crate::noise::MAX_OCTAVES as f64) as u32,
+    /// Whether the last argument is a count ([`Func::count_arg`]).
+    pub fn takes_count(self) -> bool {
+        self.count_arg().is_some()
+    }
+    /// The count of a call from its last argument's literal (validation keeps it a whole number within
+    /// [`Func::count_arg`]); 0 for other functions.
+    pub fn count(self, last: Option<f64>) -> u32 {
+        match (self.count_arg(), last) {
+            (Some((_, most)), Some(n)) if n.is_finite() => n.clamp(0.0, most as f64) as u32,
             _ => 0,
         }
     }
@@ -108,7 +122,7 @@ pub enum Expr {
     /// Scene time in seconds, `t` in source.
     Time,
     /// A coordinate of the point a distance is asked at, `x`, `y` or `z` in source (0, 1, 2): only a displacement
-    /// (`.displace(..)`) may read it.
+    /// (`.displace(..)`) and a material may read it.
     Point(u8),
     Param(Box<ParamDecl>),
     Neg(Box<Expr>),
@@ -178,7 +192,7 @@ impl Expr {
             Expr::Bin(op, a, b) => op.apply(a.eval(time, param), b.eval(time, param)),
             Expr::Call(f, args) => {
                 let v: Vec<f64> = args.iter().map(|a| a.eval(time, param)).collect();
-                f.apply(&v, f.octaves(args.last().and_then(Expr::as_lit)))
+                f.apply(&v, f.count(args.last().and_then(Expr::as_lit)))
             }
         }
     }
@@ -210,13 +224,13 @@ impl BinOp {
 
 impl Func {
     /// Applies the function: the semantics every backend must reproduce, in f64 for folding and host-side values and
-    /// in f32 or f64 for the interpreter. Noise runs through the leaf table (one function per kernel); `octaves` is
-    /// the literal octave count of an fbm (see [`Func::octaves`]), unused otherwise.
-    pub fn apply<F: crate::sdf::CallLeaf>(self, v: &[F], octaves: u32) -> F {
+    /// in f32 or f64 for the interpreter. Noise and the Mandelbrot pattern run through the leaf table (one function
+    /// per kernel); `count` is the literal count of those that take one (see [`Func::count`]), unused otherwise.
+    pub fn apply<F: crate::sdf::CallLeaf>(self, v: &[F], count: u32) -> F {
         use crate::leaf::LeafArg;
         use crate::num::*;
         use crate::sdf::Leaf;
-        let octaves = |_: usize| LeafArg::Count(F::count(octaves));
+        let octaves = |_: usize| LeafArg::Count(F::count(count));
         match self {
             Func::Sin => sin(v[0]),
             Func::Cos => cos(v[0]),
@@ -231,6 +245,10 @@ impl Func {
             Func::Noise3 => F::leaf(Leaf::Noise3, &[LeafArg::V3(crate::math::v3(v[0], v[1], v[2]))]).distance(),
             Func::Fbm2 => F::leaf(Leaf::Fbm2, &[LeafArg::F(v[0]), LeafArg::F(v[1]), octaves(2)]).distance(),
             Func::Fbm3 => F::leaf(Leaf::Fbm3, &[LeafArg::V3(crate::math::v3(v[0], v[1], v[2])), octaves(3)]).distance(),
+            Func::Mandelbrot => {
+                let inverse = LeafArg::F(F::lit(1.0 / f64::from(count.max(1))));
+                F::leaf(Leaf::Mandelbrot, &[LeafArg::F(v[0]), LeafArg::F(v[1]), octaves(2), inverse]).distance()
+            }
         }
     }
 }

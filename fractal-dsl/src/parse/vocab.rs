@@ -419,6 +419,9 @@ pub(crate) static FUNCTIONS: &[Entry] = &[
     fun("fbm3", &[p("x", T::Number), p("y", T::Number), p("z", T::Number), p("octaves", T::Int)], T::Number, |a| {
         number(b::fbm3(a.num()?, a.num()?, a.num()?, a.int()?))
     }),
+    fun("mandelbrot", &[p("x", T::Number), p("y", T::Number), p("iterations", T::Int)], T::Number, |a| {
+        number(b::mandelbrot(a.num()?, a.num()?, a.int()?))
+    }),
     fun("mix", &[p("a", T::Number), p("b", T::Number), p("s", T::Number)], T::Number, |a| {
         number(b::mix(a.num()?, a.num()?, a.num()?))
     }),

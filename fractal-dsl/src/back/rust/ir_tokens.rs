@@ -178,6 +178,7 @@ impl Writer<'_> {
             Func::Noise3 => quote!(#k::Func::Noise3),
             Func::Fbm2 => quote!(#k::Func::Fbm2),
             Func::Fbm3 => quote!(#k::Func::Fbm3),
+            Func::Mandelbrot => quote!(#k::Func::Mandelbrot),
         }
     }
 
