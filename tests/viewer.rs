@@ -259,6 +259,9 @@ fn viewer_child_process() {
         ScriptedStep::Release(forward),
         ScriptedStep::Look { dx: TURN_PIXELS, dy: 0.0 },
         ScriptedStep::Screenshot(dir.join("moved.png")),
+        ScriptedStep::Trigger(Action::TogglePanel),
+        ScriptedStep::Screenshot(dir.join("panel.png")),
+        ScriptedStep::Trigger(Action::TogglePanel),
         ScriptedStep::Trigger(Action::CycleShadows),
         ScriptedStep::Trigger(Action::TogglePause),
         ScriptedStep::Frames(2),
@@ -282,8 +285,8 @@ fn viewer_child_process() {
     };
     let summary = fractal_runtime::viewer::run(ViewerScene::compiled("sphere_box", &scenes::SPHERE_BOX), options)
         .expect("the viewer runs");
-    let [start, moved, no_shadows] = summary.screenshots.as_slice() else {
-        panic!("expected three screenshots, got {}", summary.screenshots.len());
+    let [start, moved, panel, no_shadows] = summary.screenshots.as_slice() else {
+        panic!("expected four screenshots, got {}", summary.screenshots.len());
     };
     println!("device: {}, presenter: {}", start.device, start.presenter);
     if mode == "cpu-softbuffer" {
@@ -319,6 +322,19 @@ fn viewer_child_process() {
         images.push(presented);
     }
     let changed = |a: &Image, b: &Image| a.pixels.iter().zip(&b.pixels).filter(|(x, y)| x != y).count();
+    // The panel (O) is drawn over the same frame in the window's top-left corner, and nowhere else.
+    let with_panel = read_png(&panel.path).expect("read the panel screenshot");
+    assert_eq!(panel.pose.position, moved.pose.position);
+    let mut inside = 0;
+    for y in 0..WINDOW.1 {
+        for x in 0..WINDOW.0 {
+            if with_panel.rgba(x, y) != images[1].rgba(x, y) {
+                assert!(y < WINDOW.1 * 3 / 4, "the panel reaches ({x}, {y})");
+                inside += 1;
+            }
+        }
+    }
+    assert!(inside > 2000, "the panel changed only {inside} pixels");
     assert!(changed(&images[0], &images[1]) > images[0].pixels.len() / 20, "the camera move changed the picture");
     assert!(changed(&images[1], &images[2]) > 100, "turning the shadows off changed the picture");
 }

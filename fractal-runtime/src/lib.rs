@@ -60,6 +60,7 @@ pub mod output;
 pub mod quality;
 pub mod renderer;
 pub mod select;
+pub mod text;
 pub mod truth;
 pub mod viewer;
 

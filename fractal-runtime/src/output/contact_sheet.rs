@@ -1,9 +1,8 @@
 //! The gallery's contact sheet: rendered scenes laid out in a grid, each tile labelled with its scene's name in an
 //! 8×8 bitmap font (so no font file is needed).
 
-use font8x8::legacy::BASIC_LEGACY;
-
 use crate::image::{pack_rgba8, Image};
+use crate::text::draw_text;
 
 /// Pixels between tiles and around the sheet.
 const GAP: u32 = 6;
@@ -39,35 +38,9 @@ pub fn contact_sheet(tiles: &[(&str, &Image)], columns: u32) -> Image {
         let text_w = text.chars().count() as u32 * 8 * scale;
         let tx = x0 + (tile.width - text_w) / 2;
         let ty = y0 + tile.height + (LABEL_HEIGHT - 8 * scale) / 2;
-        draw_text(&mut sheet, &text, tx, ty, scale);
+        draw_text(&mut sheet, &text, tx, ty, scale, LABEL_COLOUR);
     }
     sheet
-}
-
-/// Writes `text` at (x, y), top-left, in [`LABEL_COLOUR`], each font pixel a `scale`-sided square; characters
-/// outside ASCII print as `?`.
-fn draw_text(image: &mut Image, text: &str, x: u32, y: u32, scale: u32) {
-    let colour = pack_rgba8(LABEL_COLOUR);
-    for (i, ch) in text.chars().enumerate() {
-        let glyph = BASIC_LEGACY[if ch.is_ascii() { ch as usize } else { '?' as usize }];
-        let gx = x + i as u32 * 8 * scale;
-        for (row, bits) in glyph.iter().enumerate() {
-            for col in 0..8 {
-                if bits >> col & 1 == 0 {
-                    continue;
-                }
-                for dy in 0..scale {
-                    for dx in 0..scale {
-                        let px = gx + col * scale + dx;
-                        let py = y + row as u32 * scale + dy;
-                        if px < image.width && py < image.height {
-                            image.pixels[(py * image.width + px) as usize] = colour;
-                        }
-                    }
-                }
-            }
-        }
-    }
 }
 
 #[cfg(test)]

@@ -16,9 +16,10 @@ use winit::window::{CursorGrabMode, Window, WindowId};
 
 use super::camera_control::{describe_pose, FlyCamera, SPRINT_FACTOR};
 use super::controls::{binding, Action, Move, HELP};
-use super::effects::{describe, EffectOverrides};
+use super::effects::{describe, describe_quality, EffectOverrides};
 use super::engine::{Engine, EngineChain};
 use super::live_scene::{FileWatch, LiveScene};
+use super::panel::{Overlay, PanelContent, SliderTarget};
 use super::params::ParamControl;
 use super::path_file::{load_camera_path, CameraPathFile};
 use super::present::{GpuFrameError, GpuPresenter, SoftPresenter};
@@ -41,6 +42,8 @@ const SPEED_STEP: f64 = 1.25;
 const TIME_STEP: f64 = 1.0;
 /// Pixels of scroll per mouse-wheel line.
 const PIXELS_PER_LINE: f64 = 40.0;
+/// The time slider's range when the scene has no camera path to take it from.
+const DEFAULT_TIME_SPAN: f64 = 60.0;
 
 pub fn run(scene: ViewerScene, options: ViewerOptions) -> Result<ViewerSummary, ViewerError> {
     let live = LiveScene::load(&scene).map_err(ViewerError::Scene)?;
@@ -164,6 +167,11 @@ struct App {
     fatal: Option<ViewerError>,
     /// The last message printed by a per-frame check, so a persisting problem is printed once.
     last_report: Option<String>,
+    /// Whether the panel is shown (`O`), the panel as last drawn, the slider being dragged and the cursor.
+    panel_shown: bool,
+    overlay: Option<Overlay>,
+    dragging: Option<SliderTarget>,
+    cursor: (f64, f64),
 }
 
 impl App {
@@ -210,6 +218,11 @@ impl App {
             summary: ViewerSummary::default(),
             fatal: None,
             last_report: None,
+            // A scripted run (tests, benchmarks) draws the frame alone, so its screenshots are the render's.
+            panel_shown: options.script.is_none(),
+            overlay: None,
+            dragging: None,
+            cursor: (0.0, 0.0),
             live,
             options,
         })
@@ -383,6 +396,9 @@ impl App {
             }
             Action::PrintPose => {
                 let pose = self.fly.map(|f| f.pose()).or(self.last_pose).or_else(|| self.scene_pose().ok());
+                if let Some(pose) = &pose {
+                    println!("{}", super::camera_control::camera_line(pose));
+                }
                 match pose {
                     Some(pose) => println!("{}", describe_pose(&pose, self.time)),
                     None => println!("no camera pose yet"),
@@ -427,6 +443,69 @@ impl App {
                 }
             }
             Action::Help => println!("{HELP}"),
+            Action::TogglePanel => self.panel_shown = !self.panel_shown,
+            Action::MoreSteps | Action::FewerSteps => {
+                self.overrides.scale_steps(&authored, if action == Action::MoreSteps { 2.0 } else { 0.5 });
+                self.apply_overrides();
+            }
+            Action::FinerEpsilon | Action::CoarserEpsilon => {
+                self.overrides.scale_epsilon(&authored, if action == Action::FinerEpsilon { 0.5 } else { 2.0 });
+                self.apply_overrides();
+            }
+        }
+    }
+
+    /// The panel for the current state, or `None` while it is hidden.
+    fn panel(&self, window_width: u32) -> Option<Overlay> {
+        if !self.panel_shown {
+            return None;
+        }
+        let timing = match self.clock.average() {
+            Some(s) => format!("{:.1} ms, {:.0} FPS", s * 1e3, 1.0 / s.max(1e-9)),
+            None => "measuring".to_string(),
+        };
+        let settings = &self.live.scene.settings;
+        let (params, selected) = self.params.rows();
+        let content = PanelContent {
+            status: vec![
+                self.live.name.clone(),
+                format!("{}, {timing}, {}x{}", self.engine.device().backend, self.render_size.0, self.render_size.1),
+            ],
+            time: self.time,
+            time_span: self.time_span(),
+            paused: self.paused,
+            quality: vec![
+                format!("{} (0/9, 8/7)", describe_quality(settings)),
+                format!("{} (1-4)", describe(settings)),
+            ],
+            params,
+            selected,
+        };
+        Some(super::panel::draw(&content, super::panel::scale_for(window_width)))
+    }
+
+    /// The time slider's range: to the scene's last camera key, or a minute.
+    fn time_span(&self) -> f64 {
+        match &self.live.scene.camera.placement {
+            fractal_dsl::CameraPlacement::Path { keys, .. } => {
+                keys.last().map_or(DEFAULT_TIME_SPAN, |k| k.time).max(self.time).max(1.0)
+            }
+            _ => DEFAULT_TIME_SPAN.max(self.time),
+        }
+    }
+
+    /// A slider set from window column `x`: the time, or a parameter (a uniform: nothing recompiles).
+    fn slide(&mut self, target: SliderTarget, x: f64) {
+        let Some(slider) = self.overlay.as_ref().and_then(|o| o.sliders.iter().find(|s| s.target == target).copied())
+        else {
+            return;
+        };
+        let value = slider.value_at(x);
+        match target {
+            SliderTarget::Time => self.time = value,
+            SliderTarget::Param(i) => {
+                self.params.set_index(i, value);
+            }
         }
     }
 
@@ -575,6 +654,7 @@ impl App {
                 }
             };
         let want_screenshot = self.screenshot_request.is_some();
+        self.overlay = self.panel(window_size.0);
         match self.draw(&frame, window_size, want_screenshot) {
             Ok(shown) => {
                 self.last_good = None;
@@ -591,7 +671,8 @@ impl App {
     fn draw(&mut self, frame: &Frame, window_size: (u32, u32), screenshot: bool) -> Result<Option<Image>, DrawError> {
         match (&mut self.presenter, &mut self.engine) {
             (Some(Presenter::Gpu(gpu)), Engine::Wgpu(renderer)) => {
-                gpu.draw(renderer, self.live.wgsl(), frame, window_size, screenshot).map_err(|e| match e {
+                let overlay = self.overlay.as_ref();
+                gpu.draw(renderer, self.live.wgsl(), frame, window_size, screenshot, overlay).map_err(|e| match e {
                     GpuFrameError::Render(e) => DrawError::Render(e),
                     GpuFrameError::Surface(e) => DrawError::Present(e),
                 })
@@ -599,7 +680,7 @@ impl App {
             (Some(Presenter::Soft(soft)), engine) => {
                 let image =
                     engine.renderer().render(&RenderJob::new(self.live.kernels(), frame)).map_err(DrawError::Render)?;
-                soft.present(&image, window_size).map_err(DrawError::Present)?;
+                soft.present(&image, window_size, self.overlay.as_ref()).map_err(DrawError::Present)?;
                 Ok(if screenshot { soft.screenshot() } else { None })
             }
             (Some(Presenter::Gpu(_)), Engine::Other(_)) => {
@@ -738,10 +819,28 @@ impl ApplicationHandler for App {
                     self.key(code, event.state, event.repeat, event_loop);
                 }
             }
+            WindowEvent::CursorMoved { position, .. } => {
+                self.cursor = (position.x, position.y);
+                if let Some(target) = self.dragging {
+                    self.slide(target, position.x);
+                }
+            }
             WindowEvent::MouseInput { state: ElementState::Pressed, button: MouseButton::Left, .. }
                 if !self.captured =>
             {
-                self.capture_mouse();
+                let (x, y) = self.cursor;
+                match self.overlay.as_ref().map(|o| (o.contains(x, y), o.slider_at(x, y))) {
+                    Some((_, Some(slider))) => {
+                        self.dragging = Some(slider.target);
+                        self.slide(slider.target, x);
+                    }
+                    // A click on the panel's text does nothing; anywhere else it takes the mouse to look around.
+                    Some((true, None)) => {}
+                    _ => self.capture_mouse(),
+                }
+            }
+            WindowEvent::MouseInput { state: ElementState::Released, button: MouseButton::Left, .. } => {
+                self.dragging = None;
             }
             WindowEvent::MouseWheel { delta, .. } => {
                 let lines = match delta {

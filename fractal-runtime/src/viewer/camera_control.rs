@@ -90,6 +90,16 @@ impl FlyCamera {
 
 /// A pose as a `.fractal` camera-path key and as a TOML `[[key]]` (the format of [`super::path_file`]); the target is
 /// one unit along the view.
+/// The pose as the `.fractal` camera line that reproduces it.
+pub fn camera_line(pose: &Pose) -> String {
+    let p = pose.position;
+    let t = pose.position + pose.forward.normalize_or(DVec3::Z);
+    format!(
+        ".camera(camera(vec3({:.4}, {:.4}, {:.4}), vec3({:.4}, {:.4}, {:.4})).fov({:.2}))",
+        p.x, p.y, p.z, t.x, t.y, t.z, pose.fov_degrees
+    )
+}
+
 pub fn describe_pose(pose: &Pose, time: f64) -> String {
     let p = pose.position;
     let t = pose.position + pose.forward.normalize_or(DVec3::Z);

@@ -44,6 +44,14 @@ pub enum Action {
     /// Release the mouse, or quit when it is not captured.
     ReleaseOrQuit,
     Help,
+    /// Show or hide the panel (sliders for time and parameters, quality, frame time).
+    TogglePanel,
+    /// Max steps ×2 / ÷2 (recompiles the kernels).
+    MoreSteps,
+    FewerSteps,
+    /// Hit epsilon ÷2 / ×2 (recompiles the kernels).
+    FinerEpsilon,
+    CoarserEpsilon,
 }
 
 impl Action {
@@ -85,6 +93,11 @@ pub fn binding(key: KeyCode, shift: bool) -> Option<Action> {
         KeyC => Action::FollowScenePath,
         Escape => Action::ReleaseOrQuit,
         KeyH | F1 => Action::Help,
+        KeyO => Action::TogglePanel,
+        Digit0 | Numpad0 => Action::MoreSteps,
+        Digit9 | Numpad9 => Action::FewerSteps,
+        Digit8 | Numpad8 => Action::FinerEpsilon,
+        Digit7 | Numpad7 => Action::CoarserEpsilon,
         _ => return None,
     })
 }
@@ -96,8 +109,10 @@ controls:
   W A S D / Q E     move forward, left, back, right / down, up (Shift: 4x faster)
   + / -             move speed x1.25 / /1.25      ] / [   mouse sensitivity x1.25 / /1.25
   mouse wheel       field of view                 C       back to the scene's camera path
-  P                 print the camera pose (as a .fractal key(..) and a TOML [[key]])
+  P                 print the camera pose (as a .fractal camera(..) line, a key(..) and a TOML [[key]])
   1 2 3 4           shadows none/hard/soft, ambient occlusion, glow, fog (recompiles the kernels)
+  0 / 9, 8 / 7      max steps x2 / /2, hit epsilon /2 / x2 (recompiles the kernels)
+  O                 show / hide the panel: drag its sliders to scrub time and set each param(..)
   Space             pause / resume time           <- / -> time -1 s / +1 s
   Tab / Shift+Tab   next / previous param(..)     Up / Down  change it (Shift: 5x)   Backspace  reset it
   F12 or K          save a PNG screenshot         H       this help";
@@ -117,6 +132,11 @@ mod tests {
             (KeyCode::KeyP, Action::PrintPose),
             (KeyCode::Escape, Action::ReleaseOrQuit),
             (KeyCode::Digit1, Action::CycleShadows),
+            (KeyCode::KeyO, Action::TogglePanel),
+            (KeyCode::Digit0, Action::MoreSteps),
+            (KeyCode::Digit9, Action::FewerSteps),
+            (KeyCode::Digit8, Action::FinerEpsilon),
+            (KeyCode::Digit7, Action::CoarserEpsilon),
         ];
         for (key, action) in keys {
             assert_eq!(binding(key, false), Some(action), "{key:?}");

@@ -1,8 +1,11 @@
-//! Effect toggles: the viewer's overrides of a scene's shadows, ambient occlusion, glow and fog. Effects are compiled
-//! into the kernels (a disabled effect costs nothing), so applying a changed override means recompiling. Overrides
-//! outlive hot reloads: a reloaded file gets the user's toggles again.
+//! Effect and quality overrides: the viewer's changes to a scene's shadows, ambient occlusion, glow, fog, step budget
+//! and hit epsilon. They are compiled into the kernels (a disabled effect costs nothing), so applying a changed
+//! override means recompiling. Overrides outlive hot reloads: a reloaded file gets the user's changes again.
 
-use fractal_dsl::{Fog, RenderSettings, Shadows};
+use fractal_dsl::{Fog, HitEpsilon, RenderSettings, Shadows};
+
+/// The step budget the viewer lets the user reach, both ways.
+const STEPS_RANGE: (u32, u32) = (8, 4096);
 
 /// Soft-shadow sharpness used when the scene never chose one.
 const DEFAULT_SOFT_SHADOW_K: f64 = 16.0;
@@ -17,6 +20,8 @@ pub struct EffectOverrides {
     ambient_occlusion: Option<Option<f64>>,
     glow: Option<Option<[f64; 3]>>,
     fog: Option<Option<Fog>>,
+    max_steps: Option<u32>,
+    epsilon: Option<HitEpsilon>,
 }
 
 impl EffectOverrides {
@@ -35,7 +40,27 @@ impl EffectOverrides {
         if let Some(fog) = &self.fog {
             s.fog = fog.clone();
         }
+        if let Some(steps) = self.max_steps {
+            s.max_steps = steps;
+        }
+        if let Some(epsilon) = self.epsilon {
+            s.epsilon = epsilon;
+        }
         s
+    }
+
+    /// The step budget times `factor`, within 8..=4096.
+    pub fn scale_steps(&mut self, authored: &RenderSettings, factor: f64) {
+        let now = self.apply(authored).max_steps as f64;
+        self.max_steps = Some((now * factor).round().clamp(STEPS_RANGE.0 as f64, STEPS_RANGE.1 as f64) as u32);
+    }
+
+    /// The hit epsilon (fixed or per pixel) times `factor`.
+    pub fn scale_epsilon(&mut self, authored: &RenderSettings, factor: f64) {
+        self.epsilon = Some(match self.apply(authored).epsilon {
+            HitEpsilon::Fixed(e) => HitEpsilon::Fixed((e * factor).clamp(1e-7, 1.0)),
+            HitEpsilon::Pixel(k) => HitEpsilon::Pixel((k * factor).clamp(1e-3, 64.0)),
+        });
     }
 
     /// Shadows none → hard → soft → none; soft uses the scene's sharpness when it has one.
@@ -68,6 +93,15 @@ impl EffectOverrides {
         let default = || Fog { color: authored.background, density: DEFAULT_FOG_DENSITY };
         self.fog = Some(if on { None } else { Some(authored.fog.clone().unwrap_or_else(default)) });
     }
+}
+
+/// The step budget and hit epsilon of `settings`, e.g. `steps 128, epsilon 0.5 px`.
+pub fn describe_quality(settings: &RenderSettings) -> String {
+    let epsilon = match settings.epsilon {
+        HitEpsilon::Fixed(e) => format!("{e}"),
+        HitEpsilon::Pixel(k) => format!("{k} px"),
+    };
+    format!("steps {}, epsilon {epsilon}", settings.max_steps)
 }
 
 /// A short description of the effects in `settings`, e.g. `shadows soft(16), AO, fog`.

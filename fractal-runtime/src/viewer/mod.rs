@@ -43,6 +43,7 @@ mod effects;
 mod engine;
 mod headless;
 mod live_scene;
+mod panel;
 mod params;
 pub mod path_file;
 mod present;

@@ -78,6 +78,30 @@ impl ParamControl {
     }
 
     /// `name = value (min..max)` of the selected parameter.
+    /// Every parameter as the panel shows it, and which is selected.
+    pub fn rows(&self) -> (Vec<super::panel::ParamRow>, usize) {
+        let rows = self
+            .values
+            .decls()
+            .iter()
+            .map(|d| super::panel::ParamRow {
+                name: d.name.clone(),
+                value: self.values.get(&d.name).unwrap_or(d.default),
+                min: d.min,
+                max: d.max,
+            })
+            .collect();
+        (rows, self.selected)
+    }
+
+    /// Sets the parameter at `index` (clamped to its range) and selects it.
+    pub fn set_index(&mut self, index: usize, value: f64) -> Option<String> {
+        let decl = self.values.decls().get(index)?.clone();
+        let _ = self.values.set(&decl.name, value.clamp(decl.min, decl.max));
+        self.selected = index;
+        self.describe()
+    }
+
     pub fn describe(&self) -> Option<String> {
         let decl = self.values.decls().get(self.selected)?;
         let value = self.values.get(&decl.name).unwrap_or(decl.default);

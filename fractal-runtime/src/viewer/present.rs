@@ -22,6 +22,8 @@ use crate::error::RenderError;
 use crate::frame::Frame;
 use crate::image::Image;
 
+use super::panel::Overlay;
+
 /// The source pixel shown at window pixel `d` when `src` pixels are stretched over `dst`.
 pub fn source_index(d: u32, dst: u32, src: u32) -> u32 {
     let i = ((2 * d as u64 + 1) * src as u64) / (2 * dst.max(1) as u64);
@@ -77,7 +79,7 @@ impl SoftPresenter {
     }
 
     /// Shows `image` stretched over a window of `window` pixels.
-    pub fn present(&mut self, image: &Image, window: (u32, u32)) -> Result<(), String> {
+    pub fn present(&mut self, image: &Image, window: (u32, u32), overlay: Option<&Overlay>) -> Result<(), String> {
         let (Some(w), Some(h)) = (NonZeroU32::new(window.0), NonZeroU32::new(window.1)) else {
             return Ok(());
         };
@@ -87,6 +89,9 @@ impl SoftPresenter {
         }
         let mut buffer = self.surface.buffer_mut().map_err(|e| format!("softbuffer: {e}"))?;
         upscale_into(image, window.0, window.1, &mut buffer, to_softbuffer);
+        if let Some(overlay) = overlay {
+            overlay.blend_over_xrgb(&mut buffer, window.0);
+        }
         self.shown.clear();
         self.shown.extend_from_slice(&buffer);
         self.shown_size = window;
@@ -108,6 +113,8 @@ const BLIT_WGSL: &str = r#"
 struct Blit {
     src_size: vec2<u32>,
     dst_size: vec2<u32>,
+    overlay_origin: vec2<u32>,
+    overlay_size: vec2<u32>,
     decode_srgb: u32,
     pad0: u32,
     pad1: u32,
@@ -116,6 +123,8 @@ struct Blit {
 
 @group(0) @binding(0) var<storage, read> pixels: array<u32>;
 @group(0) @binding(1) var<uniform> blit: Blit;
+// The panel (RGBA8 with alpha, R in the low byte), blended over its rectangle of the window.
+@group(0) @binding(2) var<storage, read> overlay: array<u32>;
 
 @vertex
 fn vs_main(@builtin(vertex_index) index: u32) -> @builtin(position) vec4<f32> {
@@ -139,6 +148,12 @@ fn fs_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
     let x = source_index(u32(position.x), blit.dst_size.x, blit.src_size.x);
     let y = source_index(u32(position.y), blit.dst_size.y, blit.src_size.y);
     var rgb = unpack4x8unorm(pixels[y * blit.src_size.x + x]).rgb;
+    let d = vec2<u32>(position.xy);
+    if all(d >= blit.overlay_origin) && all(d < blit.overlay_origin + blit.overlay_size) {
+        let o = d - blit.overlay_origin;
+        let over = unpack4x8unorm(overlay[o.y * blit.overlay_size.x + o.x]);
+        rgb = mix(rgb, over.rgb, over.a);
+    }
     // The kernels write display-encoded colour; an sRGB target would encode it again.
     if blit.decode_srgb == 1u {
         rgb = srgb_to_linear(rgb);
@@ -236,6 +251,7 @@ impl GpuPresenter {
         frame: &Frame,
         window: (u32, u32),
         screenshot: bool,
+        overlay: Option<&Overlay>,
     ) -> Result<Option<Image>, GpuFrameError> {
         if window.0 == 0 || window.1 == 0 {
             return Ok(None);
@@ -302,10 +318,22 @@ impl GpuPresenter {
                 usage: wgpu::BufferUsages::UNIFORM,
             });
             let decode_srgb = self.config.format.is_srgb() as u32;
+            // No panel: an empty rectangle over a one-word buffer (a binding cannot be empty).
+            let (origin, size, words) = match overlay {
+                Some(o) => (o.origin, (o.image.width, o.image.height), o.image.pixels.as_slice()),
+                None => ((0, 0), (0, 0), &[0u32][..]),
+            };
+            let uniform_words =
+                [width, height, window.0, window.1, origin.0, origin.1, size.0, size.1, decode_srgb, 0, 0, 0];
             let blit_uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("blit"),
-                contents: bytemuck::cast_slice(&[width, height, window.0, window.1, decode_srgb, 0, 0, 0]),
+                contents: bytemuck::cast_slice(&uniform_words),
                 usage: wgpu::BufferUsages::UNIFORM,
+            });
+            let overlay_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("panel"),
+                contents: bytemuck::cast_slice(words),
+                usage: wgpu::BufferUsages::STORAGE,
             });
             let compute_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("render"),
@@ -321,6 +349,7 @@ impl GpuPresenter {
                 entries: &[
                     wgpu::BindGroupEntry { binding: 0, resource: pixels.buffer.as_entire_binding() },
                     wgpu::BindGroupEntry { binding: 1, resource: blit_uniform.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 2, resource: overlay_buffer.as_entire_binding() },
                 ],
             });
             let view = texture.texture.create_view(&wgpu::TextureViewDescriptor::default());
