@@ -299,8 +299,9 @@ pub struct GalleryArgs {
 #[derive(Debug, Args)]
 #[command(after_help = "\
 Controls: click to capture the mouse (Esc releases it), W A S D to move, Q / E down / up, Shift faster, P prints the
-camera pose, 1-4 toggle shadows / ambient occlusion / glow / fog, Space pauses time, Tab and the arrow keys change
-parameters, F12 or K saves a screenshot, H prints all controls. A .fractal file is reloaded whenever it is saved.")]
+camera pose, 1-4 toggle shadows / ambient occlusion / glow / fog, 0/9 and 8/7 change steps and epsilon, Space pauses
+time, Tab and the arrow keys change parameters, O shows or hides the panel (drag its sliders for time and parameters),
+F12 or K saves a screenshot, H prints all controls. A .fractal file is reloaded whenever it is saved.")]
 pub struct ViewArgs {
     /// Built-in scene name or .fractal file
     pub scene: String,
