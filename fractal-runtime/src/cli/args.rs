@@ -62,18 +62,25 @@ pub enum Command {
     View(ViewArgs),
 }
 
-/// Options shared by the commands that render.
-#[derive(Debug, Args)]
-pub struct RenderOptions {
-    /// Image size, WIDTHxHEIGHT (each side 1..=16384)
-    #[arg(long, value_name = "WxH", default_value = "1920x1080", value_parser = parse_size)]
-    pub size: (u32, u32),
+/// Which device renders: the backend and OpenCL's math mode (render, bench, view, gallery).
+#[derive(Clone, Copy, Debug, Args)]
+pub struct DeviceArgs {
     /// Backend: auto tries wgpu, then OpenCL, then the CPU
     #[arg(long, value_name = "auto|wgpu|opencl|cpu", default_value = "auto", value_parser = parse_backend)]
     pub backend: BackendChoice,
     /// OpenCL: build without -cl-fast-relaxed-math
     #[arg(long)]
     pub precise: bool,
+}
+
+/// Options shared by the commands that render.
+#[derive(Debug, Args)]
+pub struct RenderOptions {
+    /// Image size, WIDTHxHEIGHT (each side 1..=16384)
+    #[arg(long, value_name = "WxH", default_value = "1920x1080", value_parser = parse_size)]
+    pub size: (u32, u32),
+    #[command(flatten)]
+    pub device: DeviceArgs,
     /// Set a scene parameter (repeatable)
     #[arg(long = "param", value_name = "NAME=VALUE", value_parser = parse_param)]
     pub params: Vec<(String, f64)>,
@@ -282,12 +289,8 @@ pub struct GalleryArgs {
     /// Size of each scene's image, WIDTHxHEIGHT
     #[arg(long, value_name = "WxH", default_value = "320x180", value_parser = parse_size)]
     pub size: (u32, u32),
-    /// Backend: auto tries wgpu, then OpenCL, then the CPU
-    #[arg(long, value_name = "auto|wgpu|opencl|cpu", default_value = "auto", value_parser = parse_backend)]
-    pub backend: BackendChoice,
-    /// OpenCL: build without -cl-fast-relaxed-math
-    #[arg(long)]
-    pub precise: bool,
+    #[command(flatten)]
+    pub device: DeviceArgs,
     /// Scene time of every image, in seconds
     #[arg(long, allow_negative_numbers = true, value_name = "SECONDS", default_value_t = 0.0, value_parser = parse_time)]
     pub time: f64,
@@ -308,12 +311,8 @@ pub struct ViewArgs {
     /// Window size, WIDTHxHEIGHT
     #[arg(long, value_name = "WxH", default_value = "1280x720", value_parser = parse_size)]
     pub size: (u32, u32),
-    /// Backend: auto tries wgpu, then OpenCL, then the CPU
-    #[arg(long, value_name = "auto|wgpu|opencl|cpu", default_value = "auto", value_parser = parse_backend)]
-    pub backend: BackendChoice,
-    /// OpenCL: build without -cl-fast-relaxed-math
-    #[arg(long)]
-    pub precise: bool,
+    #[command(flatten)]
+    pub device: DeviceArgs,
     /// Scene time at start, in seconds
     #[arg(long, allow_negative_numbers = true, value_name = "SECONDS", default_value_t = 0.0, value_parser = parse_time)]
     pub time: f64,

@@ -40,8 +40,8 @@ pub fn bench(args: &BenchArgs, library: &SceneLibrary) -> Result<(), CliError> {
         width,
         height,
         length,
-        backend: args.render.backend,
-        options: RendererOptions { precise: args.render.precise },
+        backend: args.render.device.backend,
+        options: RendererOptions { precise: args.render.device.precise },
         baseline: args.baseline,
         baseline_comparable: loaded.origin == SceneOrigin::BuiltIn && loaded.name == BASELINE_SCENE,
     };

@@ -20,7 +20,7 @@ pub const SHEET: &str = "gallery.png";
 pub fn gallery(args: &GalleryArgs, library: &SceneLibrary) -> Result<(), CliError> {
     let sheet_path = args.output.join(SHEET);
     prepare_output(&sheet_path)?;
-    let options = RenderOptions { size: args.size, backend: args.backend, precise: args.precise, params: vec![] };
+    let options = RenderOptions { size: args.size, device: args.device, params: vec![] };
     let mut renderer = open_renderer(&options)?;
     let mut tiles: Vec<(&str, Image)> = Vec::new();
     for &(name, _) in library.scenes {

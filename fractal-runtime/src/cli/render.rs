@@ -104,11 +104,11 @@ fn note(message: &str) {
 }
 
 pub(super) fn open_renderer(options: &RenderOptions) -> Result<Box<dyn Renderer>, CliError> {
-    let mut renderer = select(options.backend, &RendererOptions { precise: options.precise })?;
+    let mut renderer = select(options.device.backend, &RendererOptions { precise: options.device.precise })?;
     for n in renderer.take_notes() {
         note(&n);
     }
-    if options.backend != BackendChoice::Auto {
+    if options.device.backend != BackendChoice::Auto {
         note(&format!("using {}", renderer.device()));
     }
     Ok(renderer)
@@ -176,7 +176,7 @@ pub fn render(args: &RenderArgs, library: &SceneLibrary) -> Result<(), CliError>
     let mut loaded = LoadedScene::load(&args.scene, library)?;
     args.camera.apply(&mut loaded.scene.camera);
     let params = loaded.params(&args.render.params)?;
-    if !args.aov.is_empty() && !matches!(args.render.backend, BackendChoice::Only(Backend::Cpu)) {
+    if !args.aov.is_empty() && !matches!(args.render.device.backend, BackendChoice::Only(Backend::Cpu)) {
         return Err(CliError::usage(
             "--aov is computed by the CPU renderer, whose depth, normals and steps match its image: add --backend cpu",
         ));
@@ -219,8 +219,8 @@ fn sequence_settings(args: &RenderArgs, loaded: &LoadedScene, params: &ParamValu
         args.render.size.1,
         args.fps,
         values.join(" "),
-        args.render.backend,
-        args.render.precise,
+        args.render.device.backend,
+        args.render.device.precise,
         fractal_dsl::print::to_source(&loaded.scene).replace('\n', " "),
     )
 }

@@ -23,8 +23,8 @@ pub fn view(args: &ViewArgs, library: &SceneLibrary) -> Result<(), CliError> {
         },
     };
     let options = ViewerOptions {
-        backend: args.backend,
-        renderer: RendererOptions { precise: args.precise },
+        backend: args.device.backend,
+        renderer: RendererOptions { precise: args.device.precise },
         window_size: args.size,
         camera_path: args.camera_path.clone(),
         start_time: args.time,
