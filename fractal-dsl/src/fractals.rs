@@ -224,44 +224,44 @@ pub mod families {
         Some(PrimBound { aabb: Aabb::cube(1.0), reach: 0.95 })
     }
 
-    pub static OCTAHEDRAL_KIFS: FractalDecl = FractalDecl {
-        name: "octahedral_kifs",
-        doc: "a kaleidoscopic IFS with octahedral folds, scaled by `scale` about (1, 0, 0) (at 2: the Sierpinski \
-              octahedron), turned by `.angle(a)` about z each iteration",
-        arg: FractalArg {
-            name: "scale",
-            what: "octahedral_kifs scale",
-            shape: FractalArgShape::Number,
-            rule: KIFS_SCALE,
-        },
-        iterations: KIFS_ITERATIONS,
-        settings: &[(Setting::Angle, 0.0)],
-        call: |f| (Leaf::DeOctahedralKifs, kifs_args(f)),
-        step_factor: |_| 1.0,
-        bound: kifs_bound,
-        membership: Membership { leaves: &[(Leaf::DeOctahedralKifs, Leaf::InOctahedralKifs)], approaches_limit: false },
-    };
+    /// A KIFS family: every one takes a scale, an angle and its own estimator and membership leaves.
+    const fn kifs(
+        name: &'static str,
+        doc: &'static str,
+        what: &'static str,
+        call: fn(&Fractal) -> (Leaf, Vec<CallArg>),
+        leaves: &'static [(Leaf, Leaf)],
+    ) -> FractalDecl {
+        FractalDecl {
+            name,
+            doc,
+            arg: FractalArg { name: "scale", what, shape: FractalArgShape::Number, rule: KIFS_SCALE },
+            iterations: KIFS_ITERATIONS,
+            settings: &[(Setting::Angle, 0.0)],
+            call,
+            step_factor: |_| 1.0,
+            bound: kifs_bound,
+            membership: Membership { leaves, approaches_limit: false },
+        }
+    }
 
-    pub static ICOSAHEDRAL_KIFS: FractalDecl = FractalDecl {
-        name: "icosahedral_kifs",
-        doc: "a kaleidoscopic IFS with icosahedral folds, scaled by `scale` about a vertex (at φ² ≈ 2.618: the \
-              icosahedron flake), turned by `.angle(a)` about z each iteration",
-        arg: FractalArg {
-            name: "scale",
-            what: "icosahedral_kifs scale",
-            shape: FractalArgShape::Number,
-            rule: KIFS_SCALE,
-        },
-        iterations: KIFS_ITERATIONS,
-        settings: &[(Setting::Angle, 0.0)],
-        call: |f| (Leaf::DeIcosahedralKifs, kifs_args(f)),
-        step_factor: |_| 1.0,
-        bound: kifs_bound,
-        membership: Membership {
-            leaves: &[(Leaf::DeIcosahedralKifs, Leaf::InIcosahedralKifs)],
-            approaches_limit: false,
-        },
-    };
+    pub static OCTAHEDRAL_KIFS: FractalDecl = kifs(
+        "octahedral_kifs",
+        "a kaleidoscopic IFS with octahedral folds, scaled by `scale` about (1, 0, 0) (at 2: the Sierpinski \
+         octahedron), turned by `.angle(a)` about z each iteration",
+        "octahedral_kifs scale",
+        |f| (Leaf::DeOctahedralKifs, kifs_args(f)),
+        &[(Leaf::DeOctahedralKifs, Leaf::InOctahedralKifs)],
+    );
+
+    pub static ICOSAHEDRAL_KIFS: FractalDecl = kifs(
+        "icosahedral_kifs",
+        "a kaleidoscopic IFS with icosahedral folds, scaled by `scale` about a vertex (at φ² ≈ 2.618: the \
+         icosahedron flake), turned by `.angle(a)` about z each iteration",
+        "icosahedral_kifs scale",
+        |f| (Leaf::DeIcosahedralKifs, kifs_args(f)),
+        &[(Leaf::DeIcosahedralKifs, Leaf::InIcosahedralKifs)],
+    );
 
     /// The Juliabulb's step factor for its lowest power (measured, see the module comment).
     fn juliabulb_step_factor(lowest: f64) -> f64 {

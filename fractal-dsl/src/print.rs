@@ -66,14 +66,6 @@ fn precedence(e: &Expr) -> u8 {
 /// The names of the point's coordinates in scene source.
 pub const POINT_NAMES: [&str; 3] = ["x", "y", "z"];
 
-/// The last argument of a call.
-fn e_last(e: &Expr) -> Option<&Expr> {
-    match e {
-        Expr::Call(_, args) => args.last(),
-        _ => None,
-    }
-}
-
 /// Writes a scalar expression.
 pub fn expr(e: &Expr) -> String {
     match e {
@@ -94,14 +86,18 @@ pub fn expr(e: &Expr) -> String {
             format!("{left} {} {right}", op.symbol())
         }
         Expr::Call(f, args) => {
-            let mut args: Vec<String> = args.iter().map(expr).collect();
-            // A count is an integer in source (`fbm2(x, z, 4)`), not `4.0`.
-            if let (true, Some(Expr::Lit(n))) = (f.takes_count(), e_last(e)) {
-                if let Some(last) = args.last_mut().filter(|_| n.fract() == 0.0 && *n >= 0.0) {
-                    *last = format!("{}", *n as u64);
-                }
-            }
-            format!("{}({})", f.name(), args.join(", "))
+            let written: Vec<String> = args
+                .iter()
+                .enumerate()
+                .map(|(i, a)| match a {
+                    // A count is an integer in source (`fbm2(x, z, 4)`), not `4.0`.
+                    Expr::Lit(n) if f.takes_count() && i + 1 == args.len() && n.fract() == 0.0 && *n >= 0.0 => {
+                        format!("{}", *n as u64)
+                    }
+                    _ => expr(a),
+                })
+                .collect();
+            format!("{}({})", f.name(), written.join(", "))
         }
     }
 }

@@ -461,7 +461,8 @@ fn icosahedral_vertex<F: Num>() -> V3<F> {
 }
 
 /// The orbit of a kaleidoscopic IFS from z = p: fold, turn by `angle` about z, then z ← scale·z − (scale − 1)·vertex,
-/// for `iterations` steps or until `going_on(z)` fails; returns the final z and the orbit trap. Every step is
+/// for `iterations` steps or until `going_on(z)` fails; returns the final z, the orbit trap and scaleᵏ for the k
+/// steps taken. Every step is
 /// `scale`-Lipschitz (folds and turns are isometries) and the set stays within the unit ball (past it |z| − 1 grows by
 /// the scale each step), so after all n steps (|z| − 1)/scaleⁿ is a 1-Lipschitz lower bound of the distance to the set:
 /// a step factor of 1. (Stopping early where |z| is large would be faster but makes the estimate jump between counts.)
@@ -474,18 +475,18 @@ fn kifs_orbit<F: Num>(
     vertex: V3<F>,
     fold: impl Fn(V3<F>) -> V3<F>,
     going_on: impl Fn(V3<F>) -> F::Mask,
-) -> (V3<F>, F) {
+) -> (V3<F>, F, F) {
     let (co, si) = (cos(angle), sin(angle));
     let shift = vertex * (scale - c(1.0));
     F::iterate(
         iterations,
-        (p, c::<F>(1.0)),
-        |&(z, _)| going_on(z),
-        |(z, trap)| {
+        (p, c::<F>(1.0), c::<F>(1.0)),
+        |&(z, _, _)| going_on(z),
+        |(z, trap, grown)| {
             let z = fold(z);
             let z = v3(co * z.x - si * z.y, si * z.x + co * z.y, z.z);
             let z = z * scale - shift;
-            (z, min(trap, dot(z, z)))
+            (z, min(trap, dot(z, z)), grown * scale)
         },
     )
 }
@@ -500,9 +501,8 @@ fn kifs_estimate<F: Num>(
     vertex: V3<F>,
     fold: impl Fn(V3<F>) -> V3<F>,
 ) -> [F; 2] {
-    let (z, trap) = kifs_orbit(p, scale, angle, iterations, vertex, fold, |_| F::Mask::splat(true));
-    let shrink = repeat(iterations, c::<F>(1.0), |k| k * scale);
-    [(length(z) - c(1.0)) / shrink, min(trap, c(1.0))]
+    let (z, trap, grown) = kifs_orbit(p, scale, angle, iterations, vertex, fold, |_| F::Mask::splat(true));
+    [(length(z) - c(1.0)) / grown, min(trap, c(1.0))]
 }
 
 /// The octahedral KIFS (at scale 2, the Sierpinski octahedron with vertices (±1, 0, 0), (0, ±1, 0), (0, 0, ±1)).
@@ -686,7 +686,7 @@ fn kifs_membership<F: Num>(
     fold: impl Fn(V3<F>) -> V3<F>,
 ) -> F {
     let inside = |z: V3<F>| le(dot(z, z), c(1.0));
-    let (z, _) = kifs_orbit(p, scale, angle, iterations, vertex, fold, inside);
+    let (z, _, _) = kifs_orbit(p, scale, angle, iterations, vertex, fold, inside);
     membership(inside(z), length(p) - c(1.0))
 }
 

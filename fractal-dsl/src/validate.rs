@@ -682,13 +682,13 @@ fn abs_between(o: &mut Vec<Problem>, family: &str, arg: FractalArg, e: &Expr, lo
 /// Rules of one node's own values (not its children's): the primitive, fractal or operator's arguments, or the
 /// material.
 pub fn check_node(node: &Node) -> Vec<Problem> {
-    // A displacement's amount and a material are the places the point may be read; an expression breaking that (or
-    // a count rule) is reported alone, before the ranges it makes meaningless.
-    let displaced = node.op().filter(|op| op.decl().meaning == Meaning::Displace).and_then(|op| op.args.first());
-    let amount = displaced.map(|a| a.exprs().as_ptr());
+    // A displacement's amount (a displacement's only argument) and a material are the places the point may be read;
+    // an expression breaking that (or a count rule) is reported alone, before the ranges it makes meaningless.
+    let displaces = node.op().is_some_and(|op| op.decl().meaning == Meaning::Displace);
+    let allow_point = displaces || matches!(node, Node::Material(..));
     let broken: Vec<Problem> = own_exprs(node)
         .into_iter()
-        .filter_map(|e| expr_rule_problem(e, matches!(node, Node::Material(..)) || amount == Some(e as *const Expr)))
+        .filter_map(|e| expr_rule_problem(e, allow_point))
         .map(|m| Problem::new("", m))
         .collect();
     if !broken.is_empty() {

@@ -5,14 +5,11 @@
 use fractal_dsl::math::v3;
 use fractal_dsl::noise::{fbm2, fbm3, noise2, noise3, NOISE2_SLOPE, NOISE3_SLOPE};
 
-struct Rng(u64);
+mod common;
+use common::Rng;
+
 impl Rng {
-    fn unit(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
+    /// Uniform in [−half, half).
     fn signed(&mut self, half: f64) -> f64 {
         (2.0 * self.unit() - 1.0) * half
     }

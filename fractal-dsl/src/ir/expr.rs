@@ -230,7 +230,8 @@ impl Func {
         use crate::leaf::LeafArg;
         use crate::num::*;
         use crate::sdf::Leaf;
-        let octaves = |_: usize| LeafArg::Count(F::count(count));
+        // Made only for the functions that take a count, so the others trace no extra constant.
+        let counted = || LeafArg::Count(F::count(count));
         match self {
             Func::Sin => sin(v[0]),
             Func::Cos => cos(v[0]),
@@ -243,11 +244,11 @@ impl Func {
             Func::Mix => mix(v[0], v[1], v[2]),
             Func::Noise2 => F::leaf(Leaf::Noise2, &[LeafArg::F(v[0]), LeafArg::F(v[1])]).distance(),
             Func::Noise3 => F::leaf(Leaf::Noise3, &[LeafArg::V3(crate::math::v3(v[0], v[1], v[2]))]).distance(),
-            Func::Fbm2 => F::leaf(Leaf::Fbm2, &[LeafArg::F(v[0]), LeafArg::F(v[1]), octaves(2)]).distance(),
-            Func::Fbm3 => F::leaf(Leaf::Fbm3, &[LeafArg::V3(crate::math::v3(v[0], v[1], v[2])), octaves(3)]).distance(),
+            Func::Fbm2 => F::leaf(Leaf::Fbm2, &[LeafArg::F(v[0]), LeafArg::F(v[1]), counted()]).distance(),
+            Func::Fbm3 => F::leaf(Leaf::Fbm3, &[LeafArg::V3(crate::math::v3(v[0], v[1], v[2])), counted()]).distance(),
             Func::Mandelbrot => {
                 let inverse = LeafArg::F(F::lit(1.0 / f64::from(count.max(1))));
-                F::leaf(Leaf::Mandelbrot, &[LeafArg::F(v[0]), LeafArg::F(v[1]), octaves(2), inverse]).distance()
+                F::leaf(Leaf::Mandelbrot, &[LeafArg::F(v[0]), LeafArg::F(v[1]), counted(), inverse]).distance()
             }
         }
     }

@@ -61,16 +61,6 @@ impl Setting {
             Setting::Angle => "angle",
         }
     }
-    /// What the setting is, for documentation.
-    pub const fn doc(self) -> &'static str {
-        match self {
-            Setting::Bailout => "the escape radius of an escape-time orbit",
-            Setting::MinRadius => "the inner radius of the Mandelbox's sphere fold",
-            Setting::FoldLimit => "the Mandelbox's box fold limit",
-            Setting::Power => "the Juliabulb's power",
-            Setting::Angle => "the KIFS rotation per iteration, radians",
-        }
-    }
     /// The position of the setting in [`Setting::ALL`] and in [`Fractal::settings`].
     pub const fn index(self) -> usize {
         self as usize

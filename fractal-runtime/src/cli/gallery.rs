@@ -1,7 +1,6 @@
 //! `fractal gallery`: every built-in scene rendered from its own camera at one time, each written as
 //! `<dir>/<scene>.png`, and a labelled contact sheet of them all, `<dir>/gallery.png`.
 
-use std::path::Path;
 use std::time::Instant;
 
 use crate::cli::args::{GalleryArgs, RenderOptions};
@@ -31,16 +30,12 @@ pub fn gallery(args: &GalleryArgs, library: &SceneLibrary) -> Result<(), CliErro
         let ms = start.elapsed().as_secs_f64() * 1e3;
         let path = args.output.join(format!("{name}.png"));
         write_png(&path, &image)?;
-        eprintln!("{name:<24} {}x{} {ms:8.1} ms  {}", args.size.0, args.size.1, shown(&path));
+        eprintln!("{name:<24} {}x{} {ms:8.1} ms  {}", args.size.0, args.size.1, path.display());
         tiles.push((name, image));
     }
     let labelled: Vec<(&str, &Image)> = tiles.iter().map(|(n, i)| (*n, i)).collect();
     let sheet = contact_sheet(&labelled, args.columns);
     write_png(&sheet_path, &sheet)?;
-    eprintln!("wrote {} ({} scenes, {}x{})", shown(&sheet_path), tiles.len(), sheet.width, sheet.height);
+    eprintln!("wrote {} ({} scenes, {}x{})", sheet_path.display(), tiles.len(), sheet.width, sheet.height);
     Ok(())
-}
-
-fn shown(path: &Path) -> String {
-    path.display().to_string()
 }
