@@ -1,7 +1,8 @@
 //! Every built-in scene rendered at 96×96 by each backend — CPU (the native evaluator), wgpu (the WGSL kernel) and
 //! OpenCL (the OpenCL C kernel, precise and fast-math) — must draw the same picture: hit masks agree on at least 99 %
 //! of pixels and colours agree within a stated tolerance. This also proves every render kernel builds on each driver.
-//! And every scene draws something at its own camera and time — at least 5 % of its pixels hit — with no NaN or Inf
+//! A scene with a camera path is also drawn at its last key (for `mandelbrot_zoom`, a view 1.04e-12 wide, where its
+//! pattern is computed by perturbation). And every scene draws something at its own camera and time — at least 5 % of its pixels hit — with no NaN or Inf
 //! anywhere in its CPU traces (colour before packing, depth, normal), which packing to RGBA8 would hide.
 //!
 //! Tolerance: a pixel "agrees" when every channel is within 8/255 of the CPU image. The kernels run the same algorithm
@@ -16,14 +17,34 @@ const CHANNEL_TOLERANCE: u8 = 8;
 /// Of pixels, the share allowed to differ in hit/miss, and the share allowed to differ in colour beyond tolerance.
 const MASK_AGREEMENT: f64 = 0.99;
 const COLOUR_AGREEMENT: f64 = 0.97;
+/// The share of colours that must agree at the deepest key of `mandelbrot_zoom` (a view 1e-12 wide). About half of
+/// its pixels have escape counts that change when c moves by a fiftieth of a pixel (measured with a double-double
+/// iteration in `tests/mandelbrot_zoom.rs`), so two f32 renderers that round differently disagree on a part of them.
+/// lavapipe rounds like the CPU and agrees on 100 %; pocl fuses multiply-adds (OpenCL's default `FP_CONTRACT`) and
+/// agrees on 90 % (97 % with `#pragma OPENCL FP_CONTRACT OFF`, measured). The hit mask is held to the usual 99 %.
+const DEEP_ZOOM_COLOUR_AGREEMENT: f64 = 0.85;
 
 fn require_gpu() -> bool {
     std::env::var("FRACTAL_REQUIRE_GPU_BACKENDS").is_ok_and(|v| v == "1")
 }
 
 fn frame_of(scene: &fractal::dsl::Scene) -> Frame {
-    let pose = Pose::from_camera(&scene.camera, 0.0, &|p| p.default).expect("built-in cameras are valid");
-    Frame::new(scene, &pose, 0.0, SIZE, SIZE, &ParamValues::defaults(scene)).expect("96x96 is a valid size")
+    frame_at(scene, 0.0)
+}
+
+fn frame_at(scene: &fractal::dsl::Scene, time: f64) -> Frame {
+    let pose = Pose::from_camera(&scene.camera, time, &|p| p.default).expect("built-in cameras are valid");
+    Frame::new(scene, &pose, time, SIZE, SIZE, &ParamValues::defaults(scene)).expect("96x96 is a valid size")
+}
+
+/// The times a backend's picture is compared at: 0, and the last key of a camera path.
+fn compared_times(scene: &fractal::dsl::Scene) -> Vec<f64> {
+    match &scene.camera.placement {
+        fractal::dsl::CameraPlacement::Path { keys, .. } => {
+            vec![0.0, keys.iter().map(|k| k.time).fold(0.0, f64::max)]
+        }
+        _ => vec![0.0],
+    }
 }
 
 fn background(scene: &fractal::dsl::Scene) -> [u8; 4] {
@@ -59,25 +80,46 @@ fn check_backend(label: &str, mut renderer: impl Renderer, kernels: impl Fn(&str
     let mut cpu = CpuRenderer::new();
     for (name, compiled) in scenes::ALL {
         let scene = compiled.scene();
-        let frame = frame_of(scene);
-        let native = compiled.native();
-        let reference = cpu
-            .render(&RenderJob::new(KernelSources::default().with_cpu(&native, scene), &frame))
-            .expect("the CPU renderer renders every built-in scene");
-        let image = renderer
-            .render(&RenderJob::new(kernels(name), &frame))
-            .unwrap_or_else(|e| panic!("{label} failed on {name}: {e}"));
-        let c = compare(&reference, &image, background(scene));
-        eprintln!(
-            "{name:>22} {label:>14}: hit mask {:.2} %, colour within {CHANNEL_TOLERANCE}/255 {:.2} % ({} hit pixels)",
-            100.0 * c.mask,
-            100.0 * c.colour,
-            c.hits
-        );
-        assert!(c.hits > 0, "{name}: the reference image hits nothing");
-        assert!(c.mask >= MASK_AGREEMENT, "{name} on {label}: hit masks agree on {:.2} % only", 100.0 * c.mask);
-        assert!(c.colour >= COLOUR_AGREEMENT, "{name} on {label}: colours agree on {:.2} % only", 100.0 * c.colour);
+        for time in compared_times(scene) {
+            check_frame(label, &mut cpu, &mut renderer, &kernels, name, compiled, time);
+        }
     }
+}
+
+fn check_frame(
+    label: &str,
+    cpu: &mut CpuRenderer,
+    renderer: &mut impl Renderer,
+    kernels: &impl Fn(&str) -> KernelSources<'static>,
+    name: &str,
+    compiled: &'static fractal::dsl::CompiledScene,
+    time: f64,
+) {
+    let scene = compiled.scene();
+    let frame = frame_at(scene, time);
+    let native = compiled.native();
+    let reference = cpu
+        .render(&RenderJob::new(KernelSources::default().with_cpu(&native, scene), &frame))
+        .expect("the CPU renderer renders every built-in scene");
+    let image = renderer
+        .render(&RenderJob::new(kernels(name), &frame))
+        .unwrap_or_else(|e| panic!("{label} failed on {name}: {e}"));
+    let c = compare(&reference, &image, background(scene));
+    eprintln!(
+        "{name:>22} {label:>14} t = {time:>4}: hit mask {:.2} %, colour within {CHANNEL_TOLERANCE}/255 {:.2} % ({} \
+             hit pixels)",
+        100.0 * c.mask,
+        100.0 * c.colour,
+        c.hits
+    );
+    assert!(c.hits > 0, "{name}: the reference image hits nothing");
+    assert!(
+        c.mask >= MASK_AGREEMENT,
+        "{name} on {label} at t = {time}: hit masks agree on {:.2} % only",
+        100.0 * c.mask
+    );
+    let required = if name == "mandelbrot_zoom" && time > 0.0 { DEEP_ZOOM_COLOUR_AGREEMENT } else { COLOUR_AGREEMENT };
+    assert!(c.colour >= required, "{name} on {label} at t = {time}: colours agree on {:.2} % only", 100.0 * c.colour);
 }
 
 /// Of pixels, the share that must hit geometry at each scene's own camera and time: a scene that renders (nearly)

@@ -21,8 +21,8 @@ fn check(name: &str, compiled: &CompiledScene) {
     assert_eq!(compiled.default_params::<f32>(), defaults_f32.as_slice(), "{name}: f32 defaults");
 
     let native = compiled.native();
-    let env_f32 = Env { time: 0.0f32, params: &defaults_f32 };
-    let env_f64 = Env { time: 0.0f64, params: &defaults_f64 };
+    let env_f32 = Env::new(0.0f32, &defaults_f32);
+    let env_f64 = Env::new(0.0f64, &defaults_f64);
     for p in POINTS {
         let (single, double) = (Vec3::from_array(p), DVec3::from_array(p.map(f64::from)));
         let expected = (native.distance_f32)(single.into(), &env_f32);
@@ -55,8 +55,7 @@ fn distance_reads_the_build_time_parameter_defaults() {
     assert!((compiled.distance(Vec3::new(-0.3, 0.0, 0.0)) + 0.75).abs() < 1e-6);
     assert!((compiled.distance_f64(DVec3::new(-0.3, 0.0, 0.0)) + 0.75).abs() < 1e-12);
     // Other values through an environment of the caller's own.
-    let moved =
-        (compiled.native().distance_f32)(Vec3::new(-0.3, 0.0, 0.0).into(), &Env { time: 0.0, params: &[0.0, 1.5] });
+    let moved = (compiled.native().distance_f32)(Vec3::new(-0.3, 0.0, 0.0).into(), &Env::new(0.0, &[0.0, 1.5]));
     assert!((moved - (0.3 - 1.5)).abs() < 1e-6, "{moved}");
 }
 

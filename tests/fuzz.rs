@@ -253,7 +253,7 @@ fn check_accepted(text: &str, scene: &Scene) {
     }
     let interp = Interpreter::new(scene).expect("compile accepted it");
     let params = interp.default_params::<f64>();
-    let env = Env { time: 0.0, params: &params };
+    let env = Env::new(0.0, &params);
     for [x, y, z] in [[0.0, 0.0, 0.0], [0.5, -0.25, 2.0], [1e4, 0.0, -1e4]] {
         interp.distance_in(v3(x, y, z), &env);
     }

@@ -96,11 +96,11 @@ impl CompiledScene {
     }
     /// Distance at `p` by the native f32 evaluator, at time 0 with parameters at their defaults: one call.
     pub fn distance(&self, p: impl Into<glam::Vec3>) -> f32 {
-        (self.native.distance_f32)(p.into().into(), &Env { time: 0.0, params: self.defaults.f32 })
+        (self.native.distance_f32)(p.into().into(), &Env::new(0.0, self.defaults.f32))
     }
     /// Distance at `p` by the native f64 evaluator (the twin for reference work).
     pub fn distance_f64(&self, p: impl Into<glam::DVec3>) -> f64 {
-        (self.native.distance_f64)(p.into().into(), &Env { time: 0.0, params: self.defaults.f64 })
+        (self.native.distance_f64)(p.into().into(), &Env::new(0.0, self.defaults.f64))
     }
     /// Parameter defaults in uniform order ([`Scene::params`] order), in precision `F`.
     pub fn default_params<F: CompiledReal>(&self) -> &'static [F] {

@@ -3,7 +3,7 @@
 //! and one dispatcher that calls it in any [`Num`]. The table itself stands in `sdf.rs`, beside the functions.
 
 use crate::math::V3;
-use crate::num::Num;
+use crate::num::{Num, Orbit};
 
 /// The type of a leaf function's parameter.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -14,6 +14,8 @@ pub enum ArgKind {
     V3,
     /// A loop count (iterations, levels).
     Count,
+    /// A perturbation reference orbit ([`Orbit`]): the frame's, in a kernel.
+    Orbit,
 }
 
 /// What a leaf function returns.
@@ -27,18 +29,19 @@ pub enum RetKind {
 
 /// An argument of a leaf call.
 #[derive(Debug)]
-pub enum LeafArg<F: Num> {
+pub enum LeafArg<'a, F: Num> {
     F(F),
     V3(V3<F>),
     Count(F::Count),
+    Orbit(Orbit<'a>),
 }
 
-impl<F: Num> Clone for LeafArg<F> {
+impl<F: Num> Clone for LeafArg<'_, F> {
     fn clone(&self) -> Self {
         *self
     }
 }
-impl<F: Num> Copy for LeafArg<F> {}
+impl<F: Num> Copy for LeafArg<'_, F> {}
 
 /// The result of a leaf call.
 #[derive(Clone, Copy, Debug)]
@@ -85,9 +88,15 @@ macro_rules! take {
             _ => unreachable!("leaf arguments are built from Leaf::params"),
         }
     };
+    ($it:ident, Orbit) => {
+        match $it.next() {
+            Some($crate::leaf::LeafArg::Orbit(v)) => *v,
+            _ => unreachable!("leaf arguments are built from Leaf::params"),
+        }
+    };
 }
 
-/// Writes the leaf table: `Variant => function(param: Kind, ..) -> Result;` rows, Kind one of F, V3, Count and
+/// Writes the leaf table: `Variant => function(param: Kind, ..) -> Result;` rows, Kind one of F, V3, Count, Orbit and
 /// Result F or Pair, each row naming a function of the module it is written in.
 macro_rules! leaves {
     ($($variant:ident => $func:ident($($arg:ident: $kind:ident),*) -> $ret:ident;)*) => {

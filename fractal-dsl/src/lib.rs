@@ -37,6 +37,7 @@ pub mod geom;
 pub mod ir;
 pub mod leaf;
 pub mod lower;
+pub mod mandelbrot;
 pub mod math;
 pub mod noise;
 pub mod num;

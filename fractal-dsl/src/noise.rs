@@ -1,6 +1,6 @@
-//! The patterns expressions can call: gradient noise (Perlin's improved noise) in 2D and 3D, its fractal sums (fbm),
-//! and the 2D Mandelbrot set's smooth escape count — written once, generic over [`Num`], and reached through the
-//! leaf table (`noise2`, `noise3`, `fbm2`, `fbm3`, `mandelbrot` in every kernel that uses them).
+//! Gradient noise (Perlin's improved noise) in 2D and 3D and its fractal sums (fbm), patterns expressions can call —
+//! written once, generic over [`Num`], and reached through the leaf table (`noise2`, `noise3`, `fbm2`, `fbm3` in every
+//! kernel that uses them). The other pattern, the Mandelbrot set, is [`crate::mandelbrot`].
 //!
 //! The lattice hash is the permutation polynomial (34x² + x) mod 289 (Gustavson and McEwan's table-free noise), on
 //! whole numbers below 2^23, so every product is exact in f32 and every backend picks the same gradients: there is no
@@ -23,10 +23,6 @@ pub const NOISE3_SLOPE: f64 = 4.1;
 pub const FBM_RANGE: f64 = 2.0;
 /// Most octaves an fbm takes.
 pub const MAX_OCTAVES: u32 = 12;
-/// Most iterations of the Mandelbrot pattern.
-pub const MAX_MANDELBROT_ITERATIONS: u32 = 10_000;
-/// Squared escape radius of the Mandelbrot pattern: a large radius makes the smooth count smooth.
-const MANDELBROT_ESCAPE2: f64 = 256.0;
 
 /// x mod 289 for whole numbers 0 ≤ |x| < 2^23 (see the module comment).
 #[inline(always)]
@@ -152,26 +148,3 @@ pub fn fbm3<F: Num>(p: V3<F>, octaves: F::Count) -> F {
     );
     sum
 }
-
-/// The 2D Mandelbrot set at c = (cx, cy): the smooth escape count ν = n + 1 − log₂(log₂|z|) of z ← z² + c over
-/// `iterations` (`inverse` = 1/iterations), clamped to (0, 1]; 0 for c whose orbit stays within radius 16 (inside
-/// the set, at this count). Material colours read it at the hit only.
-#[inline(always)]
-pub fn mandelbrot<F: Num>(cx: F, cy: F, iterations: F::Count, inverse: F) -> F {
-    let zero = c::<F>(0.0);
-    let escape2 = c::<F>(MANDELBROT_ESCAPE2);
-    let (zx, zy, steps) = F::iterate(
-        iterations,
-        (zero, zero, zero),
-        |&(zx, zy, _)| le(zx * zx + zy * zy, escape2),
-        |(zx, zy, steps)| (zx * zx - zy * zy + cx, c::<F>(2.0) * zx * zy + cy, steps + c(1.0)),
-    );
-    let m2 = zx * zx + zy * zy;
-    let inv_ln2 = c::<F>(std::f64::consts::LOG2_E);
-    // log₂|z| = ½·ln|z|²/ln 2, over 2 at the escape radius: its log₂ stays finite.
-    let smooth = steps + c(1.0) - ln(c::<F>(0.5) * ln(max(m2, escape2)) * inv_ln2) * inv_ln2;
-    select(gt(m2, escape2), clamp(smooth * inverse, c(TINY_PATTERN), c(1.0)), zero)
-}
-
-/// The least value an escaping Mandelbrot point reads (0 is the set itself).
-const TINY_PATTERN: f64 = 1e-6;

@@ -92,7 +92,32 @@ pub trait Num:
     fn iterate<S: Carry<Self>>(n: Self::Count, init: S, active: impl Fn(&S) -> Self::Mask, step: impl Fn(S) -> S) -> S;
     /// `body(state)` where `cond` holds, else `state`; the body runs only if some lane needs it.
     fn when<S: Carry<Self>>(cond: Self::Mask, state: S, body: impl FnOnce(S) -> S) -> S;
+
+    /// Entry `index` of a perturbation reference orbit, the last entry for an index past it (see [`Orbit`]).
+    ///
+    /// The default picks the entry with one select per entry, which any lane type can run; the scalar types index
+    /// the slice, and the tracer reads the kernel's frame.
+    fn orbit_entry(orbit: Orbit<'_>, index: Self) -> [Self; 2] {
+        let mut entry = [Self::lit(0.0); 2];
+        for (i, e) in orbit.iter().enumerate() {
+            let reached = Self::le(Self::lit(i as f64), index);
+            entry = [0, 1].map(|k| Self::select(reached, Self::lit(f64::from(e[k])), entry[k]));
+        }
+        entry
+    }
+    /// The index of a reference orbit's last entry.
+    fn orbit_last(orbit: Orbit<'_>) -> Self {
+        Self::lit(orbit.len().saturating_sub(1) as f64)
+    }
 }
+
+/// A perturbation reference orbit: Z₀, Z₁, … of z ← z² + C at one reference point C, in f32 as the kernels hold it
+/// (see [`crate::mandelbrot::mandelbrot_perturbed`]). Where a kernel computes, the orbit is the frame's, and the slice a
+/// traced formula is handed is empty.
+pub type Orbit<'a> = &'a [[f32; 2]];
+
+/// The orbit of the reference point 0 (which never moves): perturbation around it is the plain iteration.
+pub const ORBIT_AT_ZERO: Orbit<'static> = &[[0.0, 0.0]];
 
 macro_rules! scalar_num {
     ($t:ty) => {
@@ -200,6 +225,12 @@ macro_rules! scalar_num {
                 } else {
                     state
                 }
+            }
+            #[inline(always)]
+            fn orbit_entry(orbit: Orbit<'_>, index: Self) -> [Self; 2] {
+                // `as usize` saturates (NaN reads 0); an empty orbit reads the orbit at 0.
+                let e = orbit.get((index as usize).min(orbit.len().saturating_sub(1))).unwrap_or(&[0.0, 0.0]);
+                [e[0] as $t, e[1] as $t]
             }
         }
     };

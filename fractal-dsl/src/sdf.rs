@@ -5,8 +5,9 @@
 //! constants below reach every kernel as traced literals. The table just below lists them with their signatures.
 
 use crate::leaf::{leaves, LeafArg, LeafOut};
+pub use crate::mandelbrot::{mandelbrot, mandelbrot_perturbed};
 use crate::math::*;
-pub use crate::noise::{fbm2, fbm3, mandelbrot, noise2, noise3};
+pub use crate::noise::{fbm2, fbm3, noise2, noise3};
 
 // The leaf table: every function below with its parameters' kinds and its result ([`crate::leaf`]).
 leaves! {
@@ -29,6 +30,7 @@ leaves! {
     Fbm2 => fbm2(x: F, y: F, octaves: Count) -> F;
     Fbm3 => fbm3(p: V3, octaves: Count) -> F;
     Mandelbrot => mandelbrot(cx: F, cy: F, iterations: Count, inverse: F) -> F;
+    MandelbrotPerturbed => mandelbrot_perturbed(dcx: F, dcy: F, iterations: Count, inverse: F, orbit: Orbit) -> F;
     DeMandelbulb => de_mandelbulb(p: V3, power: F, iterations: Count, bailout: F) -> Pair;
     DeMandelbulb8 => de_mandelbulb8(p: V3, iterations: Count, bailout: F) -> Pair;
     DeMenger => de_menger(p: V3, levels: Count) -> Pair;

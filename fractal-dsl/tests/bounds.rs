@@ -45,7 +45,7 @@ fn param_values(interp: &Interpreter, rng: &mut Rng) -> Vec<f64> {
 }
 
 fn distance(interp: &Interpreter, p: [f64; 3], time: f64, params: &[f64]) -> f64 {
-    interp.distance_in(v3(p[0], p[1], p[2]), &Env { time, params })
+    interp.distance_in(v3(p[0], p[1], p[2]), &Env::new(time, params))
 }
 
 // ---- random trees -----------------------------------------------------------------------------------------------------

@@ -204,10 +204,7 @@ fn fractal_leaves_call_the_leaf_functions_times_the_step_factor() {
     assert_eq!(folded.distance_in(p, &env), sdf::de_mandelbulb8(p, 8, 2.0)[0] * 0.75);
     // Its step factor is that of the lowest power it can take (2 here).
     let animated = Interpreter::new(&scene(mandelbulb(param("power", 8.0, 2.0..12.0)))).unwrap();
-    assert_eq!(
-        animated.distance_in(p, &Env { time: 0.0, params: &[8.0] }),
-        sdf::de_mandelbulb(p, 8.0, 8, 2.0)[0] * 0.35
-    );
+    assert_eq!(animated.distance_in(p, &Env::new(0.0, &[8.0])), sdf::de_mandelbulb(p, 8.0, 8, 2.0)[0] * 0.35);
 }
 
 #[test]
@@ -218,7 +215,7 @@ fn parameters_are_read_by_slot_and_default_when_missing() {
     ));
     let i = Interpreter::new(&s).unwrap();
     assert_eq!(i.params().iter().map(|p| p.name.as_str()).collect::<Vec<_>>(), ["r", "x"]);
-    let at = |p: [f64; 3], time: f64, params: &[f64]| i.distance_in(v3(p[0], p[1], p[2]), &Env { time, params });
+    let at = |p: [f64; 3], time: f64, params: &[f64]| i.distance_in(v3(p[0], p[1], p[2]), &Env::new(time, params));
     assert!((at([0.0, 0.0, 0.0], 0.0, &[1.5, 3.0]) + 1.5).abs() < 1e-12);
     assert!((at([4.0, 0.0, 0.0], 1.0, &[0.1, 3.0]) + 0.5).abs() < 1e-12, "x + t = 4");
     assert!((at([0.0, 0.0, 0.0], 0.0, &[]) + 1.0).abs() < 1e-12, "missing slots read the defaults");

@@ -166,13 +166,22 @@ impl Num for L4 {
 
 // ---- arguments for every leaf ---------------------------------------------------------------------------------------
 
+/// The reference orbit perturbed patterns are given: that of c = −0.75 + 0.1i, near the neck of the set, so it
+/// stays bounded for the 8 iterations the patterns run.
+static REFERENCE_ORBIT: std::sync::LazyLock<Vec<[f32; 2]>> =
+    std::sync::LazyLock::new(|| fractal_dsl::mandelbrot::reference_orbit(-0.75, 0.1, 8));
+
 /// Arguments for `leaf` at the point `p`, in any precision, from a table of plausible values per parameter name.
-fn args<F: Num>(leaf: Leaf, p: V3<F>, f: impl Fn(f64) -> F) -> Vec<LeafArg<F>> {
+fn args<F: Num>(leaf: Leaf, p: V3<F>, f: impl Fn(f64) -> F) -> Vec<LeafArg<'static, F>> {
     let vector = |v: [f64; 3]| LeafArg::V3(v3(f(v[0]), f(v[1]), f(v[2])));
     leaf.params()
         .iter()
         .map(|&(name, kind)| match (name, kind) {
             ("p", ArgKind::V3) => LeafArg::V3(p),
+            (_, ArgKind::Orbit) => LeafArg::Orbit(&REFERENCE_ORBIT),
+            // A perturbed pattern's offset from the reference: small, and moving with the point.
+            ("dcx", _) => LeafArg::F(p.x * f(1e-3)),
+            ("dcy", _) => LeafArg::F(p.y * f(1e-3)),
             (_, ArgKind::Count) => LeafArg::Count(F::count(if leaf == Leaf::DeMenger { 4 } else { 8 })),
             ("a", ArgKind::V3) => vector([0.0, -0.5, 0.1]),
             ("b", ArgKind::V3) => vector([0.5, 0.6, 0.7]),
@@ -290,6 +299,13 @@ impl Run<'_> {
             Op::IntLit(n) => V::I(*n),
             Op::Time | Op::Param(_) => panic!("leaf functions read no frame"),
             Op::Arg(name) => self.args.iter().find(|(n, _)| n == name).expect("every argument is given").1,
+            Op::Orbit => panic!("leaf functions pass no orbit on"),
+            Op::OrbitEntry(i) => {
+                let last = REFERENCE_ORBIT.len() - 1;
+                let e = REFERENCE_ORBIT[(self.get(*i).f() as usize).min(last)];
+                V::Pair([e[0] as f64, e[1] as f64])
+            }
+            Op::OrbitLast => V::F((REFERENCE_ORBIT.len() - 1) as f64),
             Op::MakeV3(x, y, z) => V::V3([self.get(*x).f(), self.get(*y).f(), self.get(*z).f()]),
             Op::MakePair(d, t) => V::Pair([self.get(*d).f(), self.get(*t).f()]),
             Op::Comp(v, i) => match self.get(*v) {
@@ -393,6 +409,8 @@ fn every_leaf_traced_computes_what_the_formula_computes() {
                             LeafArg::F(x) => V::F(*x),
                             LeafArg::V3(v) => V::V3([v.x, v.y, v.z]),
                             LeafArg::Count(n) => V::I(*n),
+                            // The body reads the orbit through `Op::OrbitEntry`, from the same table.
+                            LeafArg::Orbit(_) => V::I(0),
                         },
                     )
                 })
@@ -420,7 +438,11 @@ fn every_leaf_traced_computes_what_the_formula_computes() {
 
 #[test]
 fn every_traced_leaf_validates_as_wgsl_and_guard_constants_arrive_as_literals() {
-    let module = fractal_dsl::back::wgsl::functions(&Leaf::ALL.iter().map(|&l| trace_leaf(l)).collect::<Vec<_>>());
+    let functions = fractal_dsl::back::wgsl::functions(&Leaf::ALL.iter().map(|&l| trace_leaf(l)).collect::<Vec<_>>());
+    // The perturbed Mandelbrot pattern reads the reference orbit from the frame uniform, which a kernel declares.
+    let frame = "struct Frame {\n    reference: vec4<f32>,\n    orbit: array<vec4<f32>, 5>,\n}\n\n\
+                 @group(0) @binding(1) var<uniform> frame: Frame;\n\n";
+    let module = format!("{frame}{functions}");
     let parsed = naga::front::wgsl::parse_str(&module).unwrap_or_else(|e| panic!("{}", e.emit_to_string(&module)));
     naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::all())
         .validate(&parsed)

@@ -29,7 +29,7 @@ fn samples() -> Vec<Fractal> {
 }
 
 /// The fractal's leaf arguments (after the point), folded to numbers.
-fn call_args(f: &Fractal) -> (Leaf, Vec<LeafArg<f64>>) {
+fn call_args(f: &Fractal) -> (Leaf, Vec<LeafArg<'static, f64>>) {
     let (leaf, args) = f.call();
     let args = args
         .into_iter()
@@ -41,7 +41,7 @@ fn call_args(f: &Fractal) -> (Leaf, Vec<LeafArg<f64>>) {
     (leaf, args)
 }
 
-fn with_point(p: [f64; 3], args: &[LeafArg<f64>]) -> Vec<LeafArg<f64>> {
+fn with_point<'a>(p: [f64; 3], args: &[LeafArg<'a, f64>]) -> Vec<LeafArg<'a, f64>> {
     std::iter::once(LeafArg::V3(v3(p[0], p[1], p[2]))).chain(args.iter().copied()).collect()
 }
 

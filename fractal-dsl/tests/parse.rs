@@ -520,7 +520,7 @@ fn validation_errors_point_at_the_argument() {
         ("octahedral_kifs(2.0).power(3.0)", "1:22: `power` applies only to juliabulb, not octahedral_kifs"),
         ("octahedral_kifs(0.9)", "1:17: octahedral_kifs scale must be >= 1.1, found 0.9"),
         ("sphere(1.0 + x)", "1:1: `x` (the point) can be read only in a displacement or a material: shape.displace(..), shape.material(..)"),
-        ("sphere(1.0).material(rgb(mandelbrot(x, z, 0), 0.5, 0.5))", "1:13: mandelbrot iterations must be a whole number from 1 to 10000"),
+        ("sphere(1.0).material(rgb(mandelbrot(x, z, 0), 0.5, 0.5))", "1:13: mandelbrot iterations must be a whole number from 1 to 7500"),
         ("sphere(1.0).displace(x)", "1:22: displace amount must stay within a bounded range (wrap the point in noise, sin, clamp, ..)"),
         ("sphere(1.0).displace(0.1 * sqrt(noise2(x, y) + 1.0))", "1:22: displace amount must change with the point at a bounded rate (no division by a value that can be 0, no sqrt reaching 0, no pow with a varying exponent)"),
         ("sphere(1.0).displace(fbm2(x, y, 40))", "1:13: fbm2 octaves must be a whole number from 1 to 12"),

@@ -3,7 +3,12 @@
 //!
 //! Lights are expressions of `t` and `param(..)`; they are evaluated here (in f64, then rounded to f32), so a kernel
 //! only reads numbers and a moving light never recompiles anything.
+//!
+//! A scene with perturbed Mandelbrot patterns ([`fractal_dsl::mandelbrot`]) also gets the reference orbit of the
+//! camera position's pattern coordinates, computed here in f64 from the f64 pose: that is what lets a zoom go past
+//! what the kernels' f32 can resolve.
 
+use fractal_dsl::analyse::ReferenceSpec;
 use fractal_dsl::back::FrameLayout;
 use fractal_dsl::{LightKind, ParamDecl, Scene};
 use glam::DVec3;
@@ -143,6 +148,15 @@ pub fn check_image_size(width: u32, height: u32) -> Result<(), FrameError> {
     Ok(())
 }
 
+/// The slots of `scene` with the perturbation reference `reference`.
+fn layout(scene: &Scene, reference: Option<ReferenceSpec>) -> FrameLayout {
+    FrameLayout {
+        lights: scene.effective_lights().len(),
+        params: scene.params().len(),
+        orbit: reference.map_or(0, |r| r.entries()),
+    }
+}
+
 fn finite3(v: [f64; 3]) -> bool {
     v.iter().all(|c| c.is_finite())
 }
@@ -166,7 +180,8 @@ impl Frame {
         let scene_params = scene.params();
         params.check_matches(&scene_params)?;
         let lights = scene.effective_lights();
-        let layout = FrameLayout { lights: lights.len(), params: scene_params.len() };
+        let reference = fractal_dsl::analyse::scene_reference(scene);
+        let layout = layout(scene, reference);
 
         let fov = pose.fov_degrees;
         if !(fov.is_finite() && fov > 0.0 && fov < 180.0) {
@@ -227,7 +242,22 @@ impl Frame {
         for (j, &v) in params.values().iter().enumerate() {
             slots[first + j / 4][j % 4] = v as f32;
         }
+        if let Some(spec) = reference {
+            let position = pose.position.to_array();
+            let [a, b] = spec.axes.map(|axis| position[axis as usize % 3]);
+            let orbit = fractal_dsl::mandelbrot::reference_orbit(a, b, spec.iterations);
+            slots[layout.reference_slot()] = [(orbit.len() - 1) as f32, 0.0, 0.0, 0.0];
+            for (k, pair) in orbit.chunks(2).enumerate() {
+                let second = pair.get(1).copied().unwrap_or([0.0, 0.0]);
+                slots[layout.orbit_slot(k)] = [pair[0][0], pair[0][1], second[0], second[1]];
+            }
+        }
         Ok(Frame { layout, width, height, slots })
+    }
+
+    /// The frame layout of `scene`: the slots [`Frame::new`] packs for it.
+    pub fn layout_of(scene: &Scene) -> FrameLayout {
+        layout(scene, fractal_dsl::analyse::scene_reference(scene))
     }
 
     /// A frame from slots packed elsewhere (hand-written kernels, replays); the slot count must match `layout`.
@@ -286,6 +316,23 @@ impl Frame {
         let first = self.layout.params_slot();
         (0..self.layout.params).map(|j| self.slots[first + j / 4][j % 4]).collect()
     }
+    /// The perturbation reference orbit up to its last entry, as the kernels read it (empty without one).
+    pub fn reference_orbit(&self) -> Vec<[f32; 2]> {
+        if self.layout.orbit == 0 {
+            return Vec::new();
+        }
+        let last = self.slots[self.layout.reference_slot()][0] as usize;
+        (0..=last.min(self.layout.orbit - 1))
+            .map(|i| {
+                let slot = self.slots[self.layout.orbit_slot(i / 2)];
+                if i % 2 == 0 {
+                    [slot[0], slot[1]]
+                } else {
+                    [slot[2], slot[3]]
+                }
+            })
+            .collect()
+    }
 }
 
 #[cfg(test)]
@@ -301,7 +348,7 @@ mod tests {
     fn camera_slots_follow_the_layout() {
         let s = scene(sphere(1.0));
         let f = Frame::new(&s, &pose(), 2.5, 200, 100, &ParamValues::defaults(&s)).unwrap();
-        assert_eq!(f.layout(), FrameLayout { lights: 1, params: 0 });
+        assert_eq!(f.layout(), FrameLayout { lights: 1, params: 0, orbit: 0 });
         assert_eq!(f.slots().len(), 6);
         assert_eq!(f.as_bytes().len(), 6 * 16);
         let s0 = f.slots()[0];
@@ -327,7 +374,7 @@ mod tests {
         assert_eq!(params.values(), &[1.0, 2.0]);
         params.set("glow", 4.0).unwrap();
         let f = Frame::new(&s, &pose(), 0.5, 8, 8, &params).unwrap();
-        assert_eq!(f.layout(), FrameLayout { lights: 2, params: 2 });
+        assert_eq!(f.layout(), FrameLayout { lights: 2, params: 2, orbit: 0 });
         assert_eq!(f.slots()[4], [0.5, 2.0, 0.0, 1.0]);
         assert_eq!(f.slots()[5], [12.0, 6.0, 3.0, 0.0]);
         assert_eq!(f.slots()[6], [0.0, 1.0, 0.0, 0.0]);

@@ -158,7 +158,7 @@ impl Truth {
     fn with_ray<R>(&self, px: f64, py: f64, f: impl FnOnce(&TruthRay) -> R) -> R {
         let (member_time, member_params) =
             (Member(self.time), self.params.iter().map(|&p| Member(p)).collect::<Vec<_>>());
-        let env = Env { time: member_time, params: &member_params };
+        let env = Env::new(member_time, &member_params);
         let (ro, rd) = self.view.ray(px, py);
         let ray = TruthRay {
             membership: &self.membership,
@@ -232,7 +232,7 @@ impl Truth {
     fn exact_normal(&self, p: V3<f64>, rd: V3<f64>, t: f64) -> Option<[f64; 3]> {
         let h = 1e-3 * self.footprint_at(t.max(NEAR));
         let member_params: Vec<Member> = self.params.iter().map(|&p| Member(p)).collect();
-        let env = Env { time: Member(self.time), params: &member_params };
+        let env = Env::new(Member(self.time), &member_params);
         let value = |q: V3<f64>| self.membership.value([q.x, q.y, q.z], &env);
         let at = value(p);
         let mut g = [0.0; 3];

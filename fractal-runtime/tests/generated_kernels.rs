@@ -107,7 +107,7 @@ fn lattice() -> Vec<[f32; 4]> {
 fn check_probe(name: &str, backend: &str, s: &Scene, frame: &Frame, points: &[[f32; 4]], got: &[[f32; 8]]) {
     let interpreter = Interpreter::new(s).unwrap();
     let params = frame.params();
-    let env = Env { time: frame.time(), params: &params };
+    let env = Env::new(frame.time(), &params);
     assert_eq!(got.len(), points.len());
     for (p, g) in points.iter().zip(got) {
         let at = v3(p[0], p[1], p[2]);

@@ -123,7 +123,7 @@ pub trait Subject {
 /// entry points share their arithmetic, only the material bookkeeping differs.
 pub fn cpu_answers<F: Real>(e: &dyn Evaluator<F>, row: &Row, points: &[V3<f32>]) -> Result<Vec<Answer>, String> {
     let (time, params) = row.env_values::<F>();
-    let env = Env { time, params: &params };
+    let env = Env::new(time, &params);
     let mut out = Vec::with_capacity(points.len());
     for p in points {
         let q = p.cast::<F>();
@@ -157,10 +157,10 @@ impl Reference {
         Reference { interp: Interpreter::new(row.scene()).unwrap(), time, params }
     }
     pub fn distance(&self, p: V3<f64>) -> f64 {
-        Evaluator::<f64>::distance(&self.interp, p, &Env { time: self.time, params: &self.params })
+        Evaluator::<f64>::distance(&self.interp, p, &Env::new(self.time, &self.params))
     }
     pub fn answer(&self, p: V3<f64>) -> Answer {
-        let env = Env { time: self.time, params: &self.params };
+        let env = Env::new(self.time, &self.params);
         let d = Evaluator::<f64>::distance(&self.interp, p, &env);
         let s = Evaluator::<f64>::sample(&self.interp, p, &env);
         [d, s.ambient, s.diffuse, s.specular, s.albedo.x, s.albedo.y, s.albedo.z, s.shininess]

@@ -3,9 +3,11 @@
 pub mod bounds;
 pub mod fold;
 pub mod interval;
+pub mod reference;
 pub mod slope;
 
 pub use bounds::{bound, Aabb};
+pub use reference::{reference, scene_reference, ReferenceSpec};
 
 use crate::ir::Node;
 

@@ -110,6 +110,20 @@ impl<D: Dialect> Syntax for GpuSyntax<'_, D> {
     fn param(&self, slot: usize) -> String {
         self.0.frame_field(&format!("params[{}].{}", slot / 4, COMPONENTS[slot % 4]))
     }
+    fn orbit(&self) -> Option<String> {
+        self.0.frame_parameter().map(|_| "frame".to_string())
+    }
+    fn orbit_entry(&self, index: &str) -> String {
+        // Two entries per slot: entry i is the xy (even i) or zw (odd i) of slot i / 2.
+        let d = self.0;
+        let i = d.cast(d.type_name(Ty::Int), index);
+        let (two, one) = (d.index_lit(2), d.index_lit(1));
+        let slot = d.frame_field(&format!("orbit[{i} / {two}]"));
+        d.select(&format!("({i} % {two} == {one})"), &format!("{slot}.zw"), &format!("{slot}.xy"))
+    }
+    fn orbit_last(&self) -> String {
+        self.0.frame_field("reference.x")
+    }
     fn make_v3(&self, x: &str, y: &str, z: &str) -> String {
         let components = if x == y && y == z { x.to_string() } else { format!("{x}, {y}, {z}") };
         self.0.construct(self.0.type_name(Ty::V3), &components)
@@ -148,7 +162,15 @@ pub fn write_functions<D: Dialect>(functions: &[Function], dialect: &D) -> Strin
     let syn = GpuSyntax(dialect);
     let mut out = String::new();
     for f in functions {
-        let params: Vec<(&str, &str)> = f.params.iter().map(|&(name, ty)| (name, dialect.type_name(ty))).collect();
+        // An orbit parameter is the frame, where the language passes it (see `Syntax::orbit`).
+        let params: Vec<(&str, &str)> = f
+            .params
+            .iter()
+            .filter_map(|&(name, ty)| match ty {
+                Ty::Orbit => dialect.frame_parameter().map(|frame| ("frame", frame)),
+                _ => Some((name, dialect.type_name(ty))),
+            })
+            .collect();
         let _ = writeln!(out, "{}", dialect.function_open(dialect.type_name(f.returns), f.name(), &params));
         let spelling = Spelling::new(&f.body, &syn, &[f.result]);
         spelling.write(&mut out, Level(1));
@@ -283,7 +305,11 @@ impl<D: Dialect> Kernel<'_, D> {
         self.line(Level(1), &format!("return {result};"));
         self.function_close();
 
-        self.function_open("Sample", "scene_sample", &[("p", vec3)], p.sample_reads_frame);
+        let mut params = vec![("p", vec3)];
+        if p.reference.is_some() {
+            params.push((crate::lower::REFERENCE_OFFSET, vec3));
+        }
+        self.function_open("Sample", "scene_sample", &params, p.sample_reads_frame);
         let spelling = Spelling::new(&p.sample, &syn, &p.sample_result.all());
         spelling.write(&mut self.out, Level(1));
         let fields: Vec<(&str, String)> =
@@ -455,7 +481,9 @@ impl<D: Dialect> Kernel<'_, D> {
         self.line(l2, &self.constant("p", vec3, "ro + rd * t"));
         let n = self.call("scene_normal", "p, eps", p.distance_reads_frame);
         self.line(l2, &self.constant("n", vec3, &n));
-        self.line(l2, &self.constant("m", "Sample", &self.call("scene_sample", "p", p.sample_reads_frame)));
+        // A perturbed pattern reads the hit relative to the camera, rd·t: exact to t's precision at any zoom.
+        let sample_args = if p.reference.is_some() { "p, rd * t" } else { "p" };
+        self.line(l2, &self.constant("m", "Sample", &self.call("scene_sample", sample_args, p.sample_reads_frame)));
         if s.ambient_occlusion.is_some() {
             let ao = self.call("scene_ao", "p, n", p.distance_reads_frame);
             self.line(l2, &format!("col = m.albedo * (m.ambient * {ao});"));
@@ -540,7 +568,9 @@ impl<D: Dialect> Kernel<'_, D> {
         self.line(l2, "return;");
         self.line(l1, "}");
         self.line(l1, &self.constant("p", self.vec3(), "points[i].xyz"));
-        self.line(l1, &self.constant("s", "Sample", &self.call("scene_sample", "p", p.sample_reads_frame)));
+        let sample_args =
+            if p.reference.is_some() { format!("p, p - {}", d.frame_field("origin.xyz")) } else { "p".to_string() };
+        self.line(l1, &self.constant("s", "Sample", &self.call("scene_sample", &sample_args, p.sample_reads_frame)));
         let (out, two, one, vec4) = (d.probe_output(), d.index_lit(2), d.index_lit(1), d.vec4_type());
         let lighting = d.construct(vec4, &format!("{}, s.ambient, s.diffuse, s.specular", self.de("p")));
         self.line(l1, &format!("{out}[{two} * i] = {lighting};"));

@@ -60,12 +60,18 @@ pub fn f32_literal(v: f64) -> String {
 /// | 4 + 2i | light i: direction towards the light (directional, unit) or position (point) | 0 directional, 1 point |
 /// | 5 + 2i | light i: colour · intensity | unused |
 /// | 4 + 2L + j/4 | `params[j]` in component j % 4 | |
+/// | R = 4 + 2L + ⌈P/4⌉ | `reference`: x = index of the reference orbit's last entry (only with an orbit) | |
+/// | R + 1 + i/2 | `orbit[i / 2]`: entry i of the reference orbit in xy (even i) or zw (odd i) | |
 ///
 /// Pixel (x, y) looks along forward + u·right + v·up with u = (2(x + 0.5) − w)/h and v = −(2(y + 0.5) − h)/h.
+/// The reference orbit ([`crate::mandelbrot`]) is that of the camera position's pattern coordinates; the sample
+/// function reads the hit point relative to the camera, rd·t.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct FrameLayout {
     pub lights: usize,
     pub params: usize,
+    /// Entries of the reference orbit the frame holds (0: none, and no `reference` slot).
+    pub orbit: usize,
 }
 
 impl FrameLayout {
@@ -80,8 +86,20 @@ impl FrameLayout {
     pub fn param_slots(&self) -> usize {
         self.params.div_ceil(4)
     }
-    pub fn slots(&self) -> usize {
+    /// The `reference` slot (meaningful only when the frame holds an orbit).
+    pub fn reference_slot(&self) -> usize {
         self.params_slot() + self.param_slots()
+    }
+    /// The slot of orbit entries 2k and 2k + 1.
+    pub fn orbit_slot(&self, k: usize) -> usize {
+        self.reference_slot() + 1 + k
+    }
+    /// Number of float4 slots holding the orbit.
+    pub fn orbit_slots(&self) -> usize {
+        self.orbit.div_ceil(2)
+    }
+    pub fn slots(&self) -> usize {
+        self.reference_slot() + if self.orbit > 0 { 1 + self.orbit_slots() } else { 0 }
     }
     pub fn bytes(&self) -> usize {
         self.slots() * 16
@@ -106,6 +124,10 @@ pub enum Entry {
 
 impl Program {
     pub fn layout(&self) -> FrameLayout {
-        FrameLayout { lights: self.lights.len(), params: self.params.len() }
+        FrameLayout {
+            lights: self.lights.len(),
+            params: self.params.len(),
+            orbit: self.reference.map_or(0, |r| r.entries()),
+        }
     }
 }

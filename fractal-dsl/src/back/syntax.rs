@@ -23,6 +23,13 @@ pub trait Syntax {
     fn int(&self, v: u32) -> String;
     fn time(&self) -> String;
     fn param(&self, slot: usize) -> String;
+    /// The frame's reference orbit as a call passes it to a leaf function; `None` where the callee reads the frame
+    /// itself (and the argument is left out).
+    fn orbit(&self) -> Option<String>;
+    /// Entry `index` (an atom: an F holding a whole number) of the frame's reference orbit, as a Pair.
+    fn orbit_entry(&self, index: &str) -> String;
+    /// The index of the reference orbit's last entry, as an F.
+    fn orbit_last(&self) -> String;
     fn make_v3(&self, x: &str, y: &str, z: &str) -> String;
     fn make_pair(&self, distance: &str, trap: &str) -> String;
     fn comp(&self, v: &str, ty: Ty, i: u8) -> String;
@@ -173,6 +180,9 @@ impl<'a> Spelling<'a> {
             Op::Time => atom(syn.time()),
             Op::Param(i) => atom(syn.param(*i)),
             Op::Arg(name) => atom(name.to_string()),
+            Op::Orbit => atom(syn.orbit().unwrap_or_default()),
+            Op::OrbitEntry(i) => atom(syn.orbit_entry(&self.operand(*i, Prec::Atom))),
+            Op::OrbitLast => atom(syn.orbit_last()),
             Op::MakeV3(x, y, z) => atom(syn.make_v3(&any(x), &any(y), &any(z))),
             Op::MakePair(d, t) => atom(syn.make_pair(&any(d), &any(t))),
             Op::Comp(v, i) => atom(syn.comp(&self.operand(*v, Prec::Atom), self.body.ty(*v), *i)),
@@ -192,7 +202,11 @@ impl<'a> Spelling<'a> {
                 (format!("{} {symbol} {}", self.operand(*x, p), self.operand(*y, tighter)), p)
             }
             Op::Math(f, args) => atom(syn.math(*f, &args.iter().map(any).collect::<Vec<_>>())),
-            Op::Call(leaf, args) => atom(syn.call(*leaf, &args.iter().map(any).collect::<Vec<_>>())),
+            Op::Call(leaf, args) => {
+                // An orbit argument is left out where the callee reads the frame itself.
+                let passed = |v: &&Val| syn.orbit().is_some() || self.body.op(**v) != Some(&Op::Orbit);
+                atom(syn.call(*leaf, &args.iter().filter(passed).map(any).collect::<Vec<_>>()))
+            }
             Op::Cmp(op, x, y) => {
                 atom(format!("({} {} {})", self.operand(*x, Prec::Add), op.symbol(), self.operand(*y, Prec::Add)))
             }

@@ -19,18 +19,48 @@ pub mod walk;
 
 use crate::math::{Num, Real, V3};
 
-/// What an expression may read besides literals: the time and the parameter values (in [`crate::Scene::params`]
-/// order).
+/// What an expression may read besides literals: the time, the parameter values (in [`crate::Scene::params`]
+/// order), and — where a frame provides one — the perturbation reference of deep Mandelbrot patterns.
 #[derive(Clone, Copy, Debug)]
 pub struct Env<'a, F> {
     pub time: F,
     pub params: &'a [F],
+    /// The frame's perturbation reference at the point being sampled; `None` evaluates those patterns around the
+    /// reference point 0, which is the plain iteration ([`crate::mandelbrot`]).
+    pub reference: Option<Reference<'a, F>>,
 }
 
-impl<F: Num> Env<'_, F> {
+/// A frame's perturbation reference, as the sample at one point reads it. The reference point is the camera's
+/// position R (held by the host in f64); a pattern `mandelbrot(x, z, n)` on a shape in world coordinates computes
+/// c = (R.x + offset.x, R.z + offset.z) by perturbation around `orbit`, the orbit of (R.x, R.z).
+#[derive(Clone, Copy, Debug)]
+pub struct Reference<'a, F> {
+    /// The point minus R: along a camera ray, the ray direction times t, exact to the precision of t however far
+    /// the camera has zoomed in.
+    pub offset: V3<F>,
+    /// The orbit of the reference point's pattern coordinates ([`crate::mandelbrot::reference_orbit`]).
+    pub orbit: crate::num::Orbit<'a>,
+}
+
+impl<'a, F: Num> Env<'a, F> {
+    /// An environment with these time and parameter values and no perturbation reference.
+    pub fn new(time: F, params: &'a [F]) -> Env<'a, F> {
+        Env { time, params, reference: None }
+    }
     /// Time 0 and no parameters.
     pub fn still() -> Env<'static, F> {
-        Env { time: F::lit(0.0), params: &[] }
+        Env::new(F::lit(0.0), &[])
+    }
+    /// The point `p` relative to the perturbation reference: the reference's offset, or `p` itself around the
+    /// reference point 0.
+    #[inline]
+    pub fn reference_offset(&self, p: V3<F>) -> V3<F> {
+        self.reference.map_or(p, |r| r.offset)
+    }
+    /// The perturbation reference orbit, or the orbit of 0.
+    #[inline]
+    pub fn reference_orbit(&self) -> crate::num::Orbit<'a> {
+        self.reference.map_or(crate::num::ORBIT_AT_ZERO, |r| r.orbit)
     }
 }
 

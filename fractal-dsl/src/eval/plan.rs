@@ -24,10 +24,27 @@ pub enum Term {
     Neg(Box<Term>),
     Bin(BinOp, Box<Term>, Box<Term>),
     Call(Func, Box<[Term]>),
+    /// `mandelbrot(a, b, iterations)` of two point coordinates, in a world-coordinate material: computed by
+    /// perturbation around the environment's reference ([`crate::analyse::reference`]).
+    PerturbedMandelbrot {
+        axes: [u8; 2],
+        iterations: u32,
+    },
 }
 
 impl Term {
     fn compile(e: &Expr, params: &[ParamDecl]) -> Term {
+        Term::compile_in(e, params, None)
+    }
+
+    /// Compiles `e`; `mandelbrot` calls of the point coordinates `perturbed` become [`Term::PerturbedMandelbrot`].
+    fn compile_in(e: &Expr, params: &[ParamDecl], perturbed: Option<[u8; 2]>) -> Term {
+        if let Some((axes, iterations)) = crate::analyse::reference::perturbable(e) {
+            if perturbed == Some(axes) {
+                return Term::PerturbedMandelbrot { axes, iterations };
+            }
+        }
+        let compile = |e: &Expr| Box::new(Term::compile_in(e, params, perturbed));
         match e {
             Expr::Lit(v) => Term::Lit(*v),
             Expr::Time => Term::Time,
@@ -37,11 +54,9 @@ impl Term {
                 // Every parameter of a scene is listed by `Scene::params`; a stray one reads its default.
                 None => Term::Lit(p.default),
             },
-            Expr::Neg(a) => Term::Neg(Box::new(Term::compile(a, params))),
-            Expr::Bin(op, a, b) => {
-                Term::Bin(*op, Box::new(Term::compile(a, params)), Box::new(Term::compile(b, params)))
-            }
-            Expr::Call(f, args) => Term::Call(*f, args.iter().map(|a| Term::compile(a, params)).collect()),
+            Expr::Neg(a) => Term::Neg(compile(a)),
+            Expr::Bin(op, a, b) => Term::Bin(*op, compile(a), compile(b)),
+            Expr::Call(f, args) => Term::Call(*f, args.iter().map(|a| *compile(a)).collect()),
         }
     }
 
@@ -72,6 +87,19 @@ impl Term {
                 };
                 f.apply(&v, octaves)
             }
+            Term::PerturbedMandelbrot { axes, iterations } => {
+                let Some(p) = p else { return F::lit(f64::NAN) };
+                let offset = env.reference_offset(p);
+                let offset = [offset.x, offset.y, offset.z];
+                let args = [
+                    LeafArg::F(offset[axes[0] as usize % 3]),
+                    LeafArg::F(offset[axes[1] as usize % 3]),
+                    LeafArg::Count(F::count(*iterations)),
+                    LeafArg::F(F::lit(crate::mandelbrot::inverse_count(*iterations))),
+                    LeafArg::Orbit(env.reference_orbit()),
+                ];
+                F::leaf(Leaf::MandelbrotPerturbed, &args).distance()
+            }
         }
     }
 }
@@ -82,7 +110,10 @@ pub struct Term3(pub [Term; 3]);
 
 impl Term3 {
     fn compile(v: &Vec3Expr, params: &[ParamDecl]) -> Term3 {
-        Term3([0, 1, 2].map(|i| Term::compile(&v.0[i], params)))
+        Term3::compile_in(v, params, None)
+    }
+    fn compile_in(v: &Vec3Expr, params: &[ParamDecl], perturbed: Option<[u8; 2]>) -> Term3 {
+        Term3([0, 1, 2].map(|i| Term::compile_in(&v.0[i], params, perturbed)))
     }
     /// The vector's value when every component is a literal.
     pub fn constant(&self) -> Option<[f64; 3]> {
@@ -118,7 +149,7 @@ impl ArgTerm {
         }
     }
     #[inline]
-    pub fn eval<F: CallLeaf>(&self, env: &Env<F>) -> LeafArg<F> {
+    pub fn eval<F: CallLeaf>(&self, env: &Env<F>) -> LeafArg<'static, F> {
         match self {
             ArgTerm::Num(t) => LeafArg::F(t.eval(env)),
             ArgTerm::Vec(t) => LeafArg::V3(t.eval(env)),
@@ -151,16 +182,19 @@ pub struct Mat {
 }
 
 impl Mat {
-    fn compile(m: &Material, params: &[ParamDecl]) -> Mat {
+    /// Compiles a material; its `mandelbrot` calls of the point coordinates `perturbed` are perturbed.
+    fn compile(m: &Material, params: &[ParamDecl], perturbed: Option<[u8; 2]>) -> Mat {
+        let vec = |v| Term3::compile_in(v, params, perturbed);
+        let num = |e| Term::compile_in(e, params, perturbed);
         Mat {
             albedo: match &m.albedo {
-                Albedo::Rgb(c) => Paint::Rgb(Term3::compile(c, params)),
-                Albedo::OrbitTrap(a, b) => Paint::OrbitTrap(Term3::compile(a, params), Term3::compile(b, params)),
+                Albedo::Rgb(c) => Paint::Rgb(vec(c)),
+                Albedo::OrbitTrap(a, b) => Paint::OrbitTrap(vec(a), vec(b)),
             },
-            ambient: Term::compile(&m.ambient, params),
-            diffuse: Term::compile(&m.diffuse, params),
-            specular: Term::compile(&m.specular, params),
-            shininess: Term::compile(&m.shininess, params),
+            ambient: num(&m.ambient),
+            diffuse: num(&m.diffuse),
+            specular: num(&m.specular),
+            shininess: num(&m.shininess),
         }
     }
 }
@@ -254,6 +288,8 @@ pub struct Plan {
     pub default_material: Mat,
     /// The parameters in slot order ([`Scene::params`]).
     pub params: Vec<ParamDecl>,
+    /// The perturbation reference the frame provides for the scene's Mandelbrot patterns.
+    pub reference: Option<crate::analyse::ReferenceSpec>,
 }
 
 impl Plan {
@@ -265,17 +301,21 @@ impl Plan {
     /// Prepares a scene already folded, whose parameter slots (taken before folding, which may drop a parameter's
     /// only use) are `params`.
     pub fn folded(folded: &Scene, params: Vec<ParamDecl>) -> Plan {
-        let compiler = Compiler { params: &params };
+        let reference = crate::analyse::reference(&folded.root);
+        let compiler = Compiler { params: &params, perturbed: reference.map(|r| r.axes) };
         Plan {
-            root: compiler.node(&folded.root),
-            default_material: Mat::compile(&Material::default_surface(), &params),
+            root: compiler.node(&folded.root, true),
+            default_material: Mat::compile(&Material::default_surface(), &params, None),
             params,
+            reference,
         }
     }
 }
 
 struct Compiler<'a> {
     params: &'a [ParamDecl],
+    /// The axes of the perturbed Mandelbrot patterns, if any.
+    perturbed: Option<[u8; 2]>,
 }
 
 impl Compiler<'_> {
@@ -286,13 +326,15 @@ impl Compiler<'_> {
         LeafCall { leaf, args }
     }
 
-    fn node(&self, n: &Node) -> Step {
+    /// The step for `n`; `world` when its point is the world point (its materials' patterns may be perturbed).
+    fn node(&self, n: &Node, world: bool) -> Step {
         match n {
             Node::Prim(p) => Step::Leaf(self.prim(p)),
             Node::Fractal(f) => Step::Fractal { call: self.fractal(f), step: f.step_factor() },
             Node::Op(op) if op.shapes.is_empty() => Step::Empty,
             Node::Op(op) => {
                 let meaning = op.decl().meaning;
+                let world = world && meaning.keeps_point();
                 let shapes = if meaning == Meaning::Union {
                     union_order(&op.shapes)
                         .into_iter()
@@ -300,11 +342,11 @@ impl Compiler<'_> {
                         .map(|(pos, i)| {
                             let guard = guarded_bound(&op.shapes, pos)
                                 .map(|b| Guard { center: b.center(), half: b.half_extents() });
-                            (self.node(&op.shapes[i]), guard)
+                            (self.node(&op.shapes[i], world), guard)
                         })
                         .collect()
                 } else {
-                    op.shapes.iter().map(|s| (self.node(s), None)).collect()
+                    op.shapes.iter().map(|s| (self.node(s, world), None)).collect()
                 };
                 let mut args: Vec<ArgTerm> = op.args.iter().map(|a| ArgTerm::compile(a, self.params)).collect();
                 if let (Meaning::Displace, Some(ArgValue::Num(amount))) = (meaning, op.args.first()) {
@@ -313,7 +355,10 @@ impl Compiler<'_> {
                 }
                 Step::Op(OpStep { meaning, shapes, args })
             }
-            Node::Material(c, m) => Step::Material(Box::new(self.node(c)), Box::new(Mat::compile(m, self.params))),
+            Node::Material(c, m) => {
+                let perturbed = self.perturbed.filter(|_| world);
+                Step::Material(Box::new(self.node(c, world)), Box::new(Mat::compile(m, self.params, perturbed)))
+            }
         }
     }
 

@@ -97,7 +97,7 @@ impl Func {
     pub fn count_arg(self) -> Option<(&'static str, u32)> {
         match self {
             Func::Fbm2 | Func::Fbm3 => Some(("octaves", crate::noise::MAX_OCTAVES)),
-            Func::Mandelbrot => Some(("iterations", crate::noise::MAX_MANDELBROT_ITERATIONS)),
+            Func::Mandelbrot => Some(("iterations", crate::mandelbrot::MAX_MANDELBROT_ITERATIONS)),
             _ => None,
         }
     }
@@ -247,7 +247,7 @@ impl Func {
             Func::Fbm2 => F::leaf(Leaf::Fbm2, &[LeafArg::F(v[0]), LeafArg::F(v[1]), counted()]).distance(),
             Func::Fbm3 => F::leaf(Leaf::Fbm3, &[LeafArg::V3(crate::math::v3(v[0], v[1], v[2])), counted()]).distance(),
             Func::Mandelbrot => {
-                let inverse = LeafArg::F(F::lit(1.0 / f64::from(count.max(1))));
+                let inverse = LeafArg::F(F::lit(crate::mandelbrot::inverse_count(count)));
                 F::leaf(Leaf::Mandelbrot, &[LeafArg::F(v[0]), LeafArg::F(v[1]), counted(), inverse]).distance()
             }
         }

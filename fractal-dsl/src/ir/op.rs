@@ -68,6 +68,25 @@ pub enum Meaning {
     Displace,
 }
 
+impl Meaning {
+    /// Whether the operator hands its shapes the point it was given (combinations, and the operators that only
+    /// change the distance): a material below it reads the same coordinates as one above it.
+    pub fn keeps_point(self) -> bool {
+        matches!(
+            self,
+            Meaning::Union
+                | Meaning::Intersect
+                | Meaning::Subtract
+                | Meaning::SmoothUnion
+                | Meaning::SmoothIntersect
+                | Meaning::SmoothSubtract
+                | Meaning::Round
+                | Meaning::Onion
+                | Meaning::Displace
+        )
+    }
+}
+
 /// When an operator changes nothing (folding removes it).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Identity {

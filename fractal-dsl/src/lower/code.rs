@@ -17,6 +17,8 @@ pub enum Ty {
     Bool,
     /// A loop count.
     Int,
+    /// The frame's perturbation reference orbit ([`crate::num::Orbit`]), handed to the leaf function that reads it.
+    Orbit,
 }
 
 /// A value: an SSA name, or a mutable variable (see [`Stmt::Var`]).
@@ -98,6 +100,12 @@ pub enum Op {
     Param(usize),
     /// A parameter of the function being built, by name.
     Arg(&'static str),
+    /// The frame's reference orbit, as an argument of a leaf call.
+    Orbit,
+    /// Entry (a Pair) of the frame's reference orbit at an index (an F holding a whole number ≤ the last index).
+    OrbitEntry(Val),
+    /// The index of the reference orbit's last entry (an F).
+    OrbitLast,
     MakeV3(Val, Val, Val),
     /// A fractal's (distance, orbit trap).
     MakePair(Val, Val),
@@ -147,13 +155,11 @@ pub enum Stmt {
     },
 }
 
-/// Values a writer spells in place rather than naming: literals, time, params, arguments, components and
-/// comparisons (whose operands are immutable values, so spelling them where used reads the same numbers).
+/// Values a writer spells in place rather than naming: the values that read no other (literals, time, params,
+/// arguments, the frame's orbit), components and comparisons (whose operands are immutable values, so spelling them
+/// where used reads the same numbers).
 pub fn is_inline(op: &Op) -> bool {
-    matches!(
-        op,
-        Op::Lit(_) | Op::BoolLit(_) | Op::IntLit(_) | Op::Time | Op::Param(_) | Op::Arg(_) | Op::Comp(..) | Op::Cmp(..)
-    )
+    matches!(op, Op::Comp(..) | Op::Cmp(..)) || operands(op).is_empty()
 }
 
 /// What kind of block is open.
@@ -249,6 +255,15 @@ impl Builder {
     /// A parameter of the function being built.
     pub fn arg(&mut self, name: &'static str, ty: Ty) -> Val {
         self.emit(ty, Op::Arg(name))
+    }
+    pub fn orbit(&mut self) -> Val {
+        self.emit(Ty::Orbit, Op::Orbit)
+    }
+    pub fn orbit_entry(&mut self, index: Val) -> Val {
+        self.emit(Ty::Pair, Op::OrbitEntry(index))
+    }
+    pub fn orbit_last(&mut self) -> Val {
+        self.emit(Ty::F, Op::OrbitLast)
     }
     pub fn v3(&mut self, x: Val, y: Val, z: Val) -> Val {
         if let (Some(Op::Comp(a, 0)), Some(Op::Comp(b, 1)), Some(Op::Comp(c, 2))) = (self.op(x), self.op(y), self.op(z))
@@ -497,9 +512,16 @@ impl Body {
 /// The values an op reads.
 pub fn operands(op: &Op) -> Vec<Val> {
     match op {
-        Op::Lit(_) | Op::BoolLit(_) | Op::IntLit(_) | Op::Time | Op::Param(_) | Op::Arg(_) => vec![],
+        Op::Lit(_)
+        | Op::BoolLit(_)
+        | Op::IntLit(_)
+        | Op::Time
+        | Op::Param(_)
+        | Op::Arg(_)
+        | Op::Orbit
+        | Op::OrbitLast => vec![],
         Op::MakeV3(a, b, c) | Op::Select(a, b, c) => vec![*a, *b, *c],
-        Op::Comp(a, _) | Op::Neg(a) | Op::Not(a) | Op::Load(a) => vec![*a],
+        Op::Comp(a, _) | Op::Neg(a) | Op::Not(a) | Op::Load(a) | Op::OrbitEntry(a) => vec![*a],
         Op::Bin(_, a, b) | Op::Cmp(_, a, b) | Op::Logic(_, a, b) | Op::MakePair(a, b) => vec![*a, *b],
         Op::Math(_, args) | Op::Call(_, args) => args.clone(),
     }

@@ -15,7 +15,7 @@ use std::collections::BTreeSet;
 use crate::analyse::{self, fold, Aabb};
 use crate::eval::plan::Plan;
 use crate::eval::walk::Walk;
-use crate::eval::Env;
+use crate::eval::{Env, Reference};
 use crate::ir::*;
 use code::{visit_ops, Body, Op, Ty, Val};
 use trace::{trace, trace_leaf, Function, Sym};
@@ -65,8 +65,15 @@ pub struct Program {
     pub bound: Option<Aabb>,
     /// Whether any material can have a specular term (otherwise the kernels omit it).
     pub specular: bool,
+    /// The perturbation reference the frame holds for the scene's Mandelbrot patterns; when there is one, the
+    /// sample function takes the point relative to it as a second argument, [`REFERENCE_OFFSET`].
+    pub reference: Option<crate::analyse::ReferenceSpec>,
     pub settings: RenderSettings,
 }
+
+/// The name of the sample function's second argument where the scene has a perturbation reference: the point minus
+/// the reference point (the camera's position), exact to the precision of the ray's t.
+pub const REFERENCE_OFFSET: &str = "dp";
 
 /// Lowers a scene (folding it first).
 pub fn lower(scene: &Scene) -> Program {
@@ -77,12 +84,18 @@ pub fn lower(scene: &Scene) -> Program {
 
     let (distance, distance_result) = trace(|| {
         let (p, slots) = scene_inputs(params.len());
-        walk.distance(p, &Env { time: Sym::time(), params: &slots }).0
+        walk.distance(p, &Env::new(Sym::time(), &slots)).0
     });
     let distance = distance.pruned(&[distance_result]);
     let (sample, sample_result) = trace(|| {
         let (p, slots) = scene_inputs(params.len());
-        let s = walk.sample(p, &Env { time: Sym::time(), params: &slots });
+        let mut env = Env::new(Sym::time(), &slots);
+        if plan.reference.is_some() {
+            // The point relative to the reference, which the kernels pass beside the point (`dp`).
+            let offset = Sym::components(Sym::arg_of(REFERENCE_OFFSET, Ty::V3));
+            env.reference = Some(Reference { offset, orbit: &[] });
+        }
+        let s = walk.sample(p, &env);
         SampleVals {
             distance: s.distance.0,
             albedo: Sym::vector(s.albedo),
@@ -101,7 +114,7 @@ pub fn lower(scene: &Scene) -> Program {
             Op::Call(leaf, _) => {
                 used.insert(*leaf);
             }
-            Op::Time | Op::Param(_) => reads[i] = true,
+            Op::Time | Op::Param(_) | Op::Orbit | Op::OrbitEntry(_) | Op::OrbitLast => reads[i] = true,
             _ => {}
         });
     }
@@ -121,6 +134,7 @@ pub fn lower(scene: &Scene) -> Program {
         sample_reads_frame: reads[1],
         bound: analyse::bound(&folded.root),
         specular: analyse::has_specular(&folded.root),
+        reference: plan.reference,
         settings: folded.settings.clone(),
         distance,
         distance_result,

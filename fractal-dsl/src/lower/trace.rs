@@ -230,6 +230,14 @@ impl Num for Sym {
         load_all(vars)
     }
 
+    fn orbit_entry(_orbit: crate::num::Orbit<'_>, index: Self) -> [Self; 2] {
+        let entry = with(|b| b.orbit_entry(index.0));
+        [0, 1].map(|i| Sym(with(|b| b.comp(entry, i))))
+    }
+    fn orbit_last(_orbit: crate::num::Orbit<'_>) -> Self {
+        Sym(with(|b| b.orbit_last()))
+    }
+
     fn when<S: Carry<Self>>(cond: SymMask, state: S, body: impl FnOnce(S) -> S) -> S {
         match with(|b| b.bool_value(cond.0)) {
             Some(true) => return body(state),
@@ -253,6 +261,7 @@ impl CallLeaf for Sym {
                 LeafArg::F(x) => x.0,
                 LeafArg::V3(v) => Sym::vector(*v),
                 LeafArg::Count(n) => n.0,
+                LeafArg::Orbit(_) => with(|b| b.orbit()),
             })
             .collect();
         let result = with(|b| b.call(leaf, vals));
@@ -291,6 +300,7 @@ pub fn trace_leaf(leaf: Leaf) -> Function {
                 ArgKind::F => Ty::F,
                 ArgKind::V3 => Ty::V3,
                 ArgKind::Count => Ty::Int,
+                ArgKind::Orbit => Ty::Orbit,
             };
             (name, ty)
         })
@@ -301,6 +311,8 @@ pub fn trace_leaf(leaf: Leaf) -> Function {
             .map(|&(name, ty)| match ty {
                 Ty::V3 => LeafArg::V3(Sym::components(Sym::arg_of(name, Ty::V3))),
                 Ty::Int => LeafArg::Count(SymCount(Sym::arg_of(name, Ty::Int))),
+                // The orbit is the frame's: its entries are read by `Num::orbit_entry`, not from this slice.
+                Ty::Orbit => LeafArg::Orbit(&[]),
                 _ => LeafArg::F(Sym::arg(name)),
             })
             .collect();

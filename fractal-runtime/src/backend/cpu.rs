@@ -6,8 +6,7 @@
 
 use fractal_dsl::analyse::{bound, fold::fold_node, has_specular, Aabb};
 use fractal_dsl::back::render::{AO_SAMPLES, AO_SPAN, AO_START, GLOW_FALLOFF, GLOW_NORM, MIN_DIRECTION, T_SPACING};
-use fractal_dsl::back::FrameLayout;
-use fractal_dsl::eval::{Env, Evaluator};
+use fractal_dsl::eval::{Env, Evaluator, Reference};
 use fractal_dsl::math::{dot, length, normalize, v3, Real, V3};
 use fractal_dsl::{HitEpsilon, RenderSettings, Scene, Shadows};
 use rayon::prelude::*;
@@ -82,7 +81,7 @@ fn render_with_bound<F: Real, E: Evaluator<F> + ?Sized>(
     let width = frame.width() as usize;
     let mut pixels = vec![0u32; width * frame.height() as usize];
     pixels.par_chunks_mut(width).enumerate().for_each(|(y, row)| {
-        let env = Env { time: view.time, params: &view.params };
+        let env = Env::new(view.time, &view.params);
         for (x, px) in row.iter_mut().enumerate() {
             *px = pack(view.trace_pixel(evaluator, &env, x as u32, y as u32).colour, view.gamma);
         }
@@ -145,7 +144,7 @@ pub fn trace_scene_with<F: Real, E: Evaluator<F> + ?Sized>(
     let mut traces = vec![PixelTrace::default(); width * frame.height() as usize];
     let counted = Counted(evaluator);
     traces.par_chunks_mut(width).enumerate().for_each(|(y, row)| {
-        let env = Env { time: view.time, params: &view.params };
+        let env = Env::new(view.time, &view.params);
         for (x, out) in row.iter_mut().enumerate() {
             let before = EVALUATIONS.with(Cell::get);
             let pixel = view.trace_pixel(&counted, &env, x as u32, y as u32);
@@ -241,6 +240,8 @@ pub(crate) struct View<F> {
     gamma: f64,
     /// Over-relaxation factor of the march (1: plain sphere tracing, the render algorithm's).
     relaxation: F,
+    /// The frame's perturbation reference orbit (empty without one).
+    orbit: Vec<[f32; 2]>,
 }
 
 enum Light<F> {
@@ -262,7 +263,7 @@ fn c<F: Real>(v: f64) -> F {
 
 impl<F: Real> View<F> {
     pub(crate) fn new(scene: &Scene, frame: &Frame, scene_bound: Option<Aabb>) -> Result<View<F>, RenderError> {
-        let expected = FrameLayout { lights: scene.effective_lights().len(), params: scene.params().len() };
+        let expected = Frame::layout_of(scene);
         if frame.layout() != expected {
             return Err(FrameError::SlotCount { expected: expected.slots(), got: frame.layout().slots() }.into());
         }
@@ -314,6 +315,7 @@ impl<F: Real> View<F> {
             background: d3(background),
             gamma,
             relaxation: F::one(),
+            orbit: frame.reference_orbit(),
         })
     }
 
@@ -325,7 +327,7 @@ impl<F: Real> View<F> {
 
     /// What expressions read: the frame's time and parameters.
     pub(crate) fn env(&self) -> Env<'_, F> {
-        Env { time: self.time, params: &self.params }
+        Env::new(self.time, &self.params)
     }
 
     /// Pixel footprint per unit distance along a ray.
@@ -473,7 +475,12 @@ impl<F: Real> View<F> {
     ) -> V3<F> {
         let de = |q: V3<F>| eval.distance(q, env);
         let one = F::one();
-        let m = eval.sample(p, env);
+        // A perturbed pattern reads the hit relative to the camera, rd·t, as the kernels pass it.
+        let at_hit = Env {
+            reference: (!self.orbit.is_empty()).then(|| Reference { offset: rd * t, orbit: &self.orbit }),
+            ..*env
+        };
+        let m = eval.sample(p, &at_hit);
 
         let ao = match self.ambient_occlusion {
             None => F::one(),

@@ -127,11 +127,11 @@ struct Probe<'a> {
 
 impl Probe<'_> {
     fn inside(&self, p: [f64; 3]) -> bool {
-        self.membership.value(p, &Env { time: Member(0.0), params: &[] }) <= 0.0
+        self.membership.value(p, &Env::new(Member(0.0), &[])) <= 0.0
     }
 
     fn raw_estimate(&self, p: [f64; 3], step_factor: f64) -> f64 {
-        self.estimate.distance_in(v3(p[0], p[1], p[2]), &Env { time: 0.0, params: &[] }) / step_factor
+        self.estimate.distance_in(v3(p[0], p[1], p[2]), &Env::new(0.0, &[])) / step_factor
     }
 
     /// Distance from `p` to the first crossing into the set along `dir`, within `radius`.

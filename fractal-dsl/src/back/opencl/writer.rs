@@ -33,6 +33,10 @@ impl Dialect for OpenCl {
         if layout.params > 0 {
             let _ = writeln!(out, "    float4 params[{}];", layout.param_slots());
         }
+        if layout.orbit > 0 {
+            out.push_str("    float4 reference;\n");
+            let _ = writeln!(out, "    float4 orbit[{}];", layout.orbit_slots());
+        }
         out.push_str("} Frame;\n\n");
         out.push_str(
             "typedef struct {\n    float distance;\n    float3 albedo;\n    float ambient;\n    float diffuse;\n    float specular;\n    float shininess;\n} Sample;\n\n",
@@ -46,6 +50,7 @@ impl Dialect for OpenCl {
             Ty::Pair => "float2",
             Ty::Bool => "int",
             Ty::Int => "uint",
+            Ty::Orbit => "__constant const Frame*",
         }
     }
     fn vec4_type(&self) -> &'static str {

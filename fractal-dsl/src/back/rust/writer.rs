@@ -21,6 +21,7 @@ impl Syntax for RustSyntax {
             Ty::Pair => "[F; 2]",
             Ty::Bool => "bool",
             Ty::Int => "u32",
+            Ty::Orbit => "Orbit<'_>",
         }
     }
     fn declare(&self, name: &str, ty: Ty, value: &str, mutable: bool) -> String {
@@ -42,6 +43,15 @@ impl Syntax for RustSyntax {
     }
     fn param(&self, slot: usize) -> String {
         format!("env.params[{slot}]")
+    }
+    fn orbit(&self) -> Option<String> {
+        Some("env.reference_orbit()".to_string())
+    }
+    fn orbit_entry(&self, index: &str) -> String {
+        format!("F::orbit_entry(env.reference_orbit(), {index})")
+    }
+    fn orbit_last(&self) -> String {
+        "F::orbit_last(env.reference_orbit())".to_string()
     }
     fn make_v3(&self, x: &str, y: &str, z: &str) -> String {
         format!("V3 {{ x: {x}, y: {y}, z: {z} }}")
@@ -96,6 +106,9 @@ pub fn write(program: &Program, krate: &str) -> String {
     out.push_str("}\n\n");
 
     header(&mut out, SAMPLE_FN, &format!("{krate}::eval::Sample<F>"));
+    if program.reference.is_some() {
+        let _ = writeln!(out, "    let {} = env.reference_offset(p);", crate::lower::REFERENCE_OFFSET);
+    }
     let spelling = Spelling::new(&program.sample, &RustSyntax, &program.sample_result.all());
     spelling.write(&mut out, Level(1));
     let r = program.sample_result;

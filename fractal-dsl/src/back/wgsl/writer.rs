@@ -35,6 +35,10 @@ impl Dialect for Wgsl {
         if layout.params > 0 {
             let _ = writeln!(out, "    params: array<vec4<f32>, {}>,", layout.param_slots());
         }
+        if layout.orbit > 0 {
+            out.push_str("    reference: vec4<f32>,\n");
+            let _ = writeln!(out, "    orbit: array<vec4<f32>, {}>,", layout.orbit_slots());
+        }
         out.push_str("}\n\n");
         out.push_str(
             "struct Sample {\n    distance: f32,\n    albedo: vec3<f32>,\n    ambient: f32,\n    diffuse: f32,\n    specular: f32,\n    shininess: f32,\n}\n\n",
@@ -59,6 +63,8 @@ impl Dialect for Wgsl {
             Ty::Pair => "vec2<f32>",
             Ty::Bool => "bool",
             Ty::Int => "u32",
+            // Never declared: WGSL functions read the orbit from the module's `frame`.
+            Ty::Orbit => "Frame",
         }
     }
     fn vec4_type(&self) -> &'static str {
