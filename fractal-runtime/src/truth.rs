@@ -412,4 +412,17 @@ mod tests {
         assert!(blunt.traced.unwrap().depth_thin.median > 3.0 * good_traced.depth_thin.median.max(0.1));
         assert!(blunt.false_hits > good.false_hits);
     }
+
+    /// An image of a scene with glow has no hit mask (glow tints the misses): its hit figures are not made up.
+    #[test]
+    fn an_image_with_glow_reports_no_hit_figures() {
+        let glowing = scene(sphere(1.0)).camera(camera([0.0, 0.0, -3.0], [0.0; 3])).glow(rgb(0.2, 0.4, 1.0));
+        let f = frame(&glowing, 32, 18);
+        let truth = Truth::compute(&glowing, &f, TruthSettings::default()).unwrap();
+        let image = crate::render_scene::<f32, _>(&Interpreter::new(&glowing).unwrap(), &glowing, &f).unwrap();
+        let error = measure(&glowing, &truth, Observed::Image(&image));
+        assert!(error.false_hits.is_nan() && error.false_misses.is_nan(), "{}", error.describe());
+        assert!(error.describe().starts_with("hit mask not readable"), "{}", error.describe());
+        assert!(error.psnr > 20.0, "{}", error.describe());
+    }
 }

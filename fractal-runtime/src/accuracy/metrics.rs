@@ -97,7 +97,7 @@ pub struct TracedError {
 pub struct TrueError {
     pub width: u32,
     pub height: u32,
-    /// Fractions of all pixels.
+    /// Fractions of all pixels; NaN when the render is an image whose hit mask cannot be read (glow tints misses).
     pub false_hits: f64,
     pub false_misses: f64,
     /// Colour PSNR in dB (+∞ when identical).
@@ -112,12 +112,16 @@ impl TrueError {
 
     /// One line for reports.
     pub fn describe(&self) -> String {
-        let mut s = format!(
-            "false hits {:.3} %, false misses {:.3} %, colour PSNR {:.1} dB",
-            100.0 * self.false_hits,
-            100.0 * self.false_misses,
-            self.psnr
-        );
+        let mut s = if self.false_hits.is_nan() {
+            format!("hit mask not readable from the image (glow tints misses), colour PSNR {:.1} dB", self.psnr)
+        } else {
+            format!(
+                "false hits {:.3} %, false misses {:.3} %, colour PSNR {:.1} dB",
+                100.0 * self.false_hits,
+                100.0 * self.false_misses,
+                self.psnr
+            )
+        };
         if let Some(t) = &self.traced {
             s += &format!(
                 "; depth error (footprints) median {:.2}, p99 {:.2} thin-ray / {:.2} cone-consistent, interior p99 \
@@ -163,17 +167,21 @@ pub fn measure(scene: &Scene, truth: &Truth, observed: Observed) -> TrueError {
     let n = truth.pixels.len();
     let gamma = scene.settings.gamma;
     let truth_colours = truth.pixels.iter().map(|p| packed(p.colour, gamma));
-    let hits: Vec<bool> = match &observed {
-        Observed::Traced(traces) => traces.iter().map(|p| p.hit).collect(),
-        // Glow tints misses; then every pixel reads as a hit.
-        Observed::Image(image) => scene_hits(scene, image).unwrap_or_else(|| vec![true; n]),
+    // Glow tints misses, so an image of a scene with glow has no hit mask (`None`).
+    let hits: Option<Vec<bool>> = match &observed {
+        Observed::Traced(traces) => Some(traces.iter().map(|p| p.hit).collect()),
+        Observed::Image(image) => scene_hits(scene, image),
     };
     let psnr = match &observed {
         Observed::Traced(traces) => psnr(traces.iter().map(|p| packed(p.colour, gamma)).zip(truth_colours)),
         Observed::Image(image) => psnr(image.pixels.iter().map(|&p| unpack_rgba8(p)).zip(truth_colours)),
     };
-    let false_hits = hits.iter().zip(&truth.pixels).filter(|(h, t)| **h && !t.hit()).count();
-    let false_misses = hits.iter().zip(&truth.pixels).filter(|(h, t)| !**h && t.hit()).count();
+    let share = |wrong: &dyn Fn(bool, bool) -> bool| match &hits {
+        Some(hits) => {
+            hits.iter().zip(&truth.pixels).filter(|(h, t)| wrong(**h, t.hit())).count() as f64 / n.max(1) as f64
+        }
+        None => f64::NAN,
+    };
     let traced = match observed {
         Observed::Traced(traces) => Some(traced_error(truth, traces)),
         Observed::Image(_) => None,
@@ -181,8 +189,8 @@ pub fn measure(scene: &Scene, truth: &Truth, observed: Observed) -> TrueError {
     TrueError {
         width: truth.width,
         height: truth.height,
-        false_hits: false_hits as f64 / n.max(1) as f64,
-        false_misses: false_misses as f64 / n.max(1) as f64,
+        false_hits: share(&|hit, truth| hit && !truth),
+        false_misses: share(&|hit, truth| !hit && truth),
         psnr,
         traced,
     }
