@@ -352,6 +352,47 @@ fn export_writes_every_target() {
     assert!(stdout(&out).contains("fn render"), "{}", stdout(&out));
 }
 
+/// `--camera-path` writes a glTF 2.0 file that the `gltf` crate imports (buffers included): one perspective camera
+/// with the scene's field of view, and an animation sampled at every key and every 1/fps second, whose first and last
+/// translations are the path's first and last positions with z mirrored (glTF is right-handed).
+#[test]
+fn export_writes_the_camera_path_as_gltf() {
+    let dir = scratch("export_camera");
+    assert_ok(&run_in(&dir, &["export", "mandelbrot_zoom", "--camera-path", "--fps", "2", "-o", "camera.gltf"]));
+    let (document, buffers, _) = gltf::import(dir.join("camera.gltf")).expect("the export imports as glTF");
+    let camera = document.cameras().next().expect("a camera");
+    let gltf::camera::Projection::Perspective(perspective) = camera.projection() else { panic!("not perspective") };
+    assert!((perspective.yfov() - 55f32.to_radians()).abs() < 1e-6);
+    assert!((perspective.aspect_ratio().unwrap() - 16.0 / 9.0).abs() < 1e-6);
+
+    let animation = document.animations().next().expect("an animation");
+    assert_eq!(animation.channels().count(), 2);
+    let mut translations = Vec::new();
+    for channel in animation.channels() {
+        let reader = channel.reader(|b| Some(&buffers[b.index()]));
+        let times: Vec<f32> = reader.read_inputs().expect("times").collect();
+        // Keys every 5 s from 0 to 90, frames every 0.5 s: 181 samples, in order.
+        assert_eq!(times.len(), 181);
+        assert!(times.windows(2).all(|w| w[0] < w[1]) && times[0] == 0.0 && times[180] == 90.0);
+        match reader.read_outputs().expect("values") {
+            gltf::animation::util::ReadOutputs::Translations(t) => translations = t.collect(),
+            gltf::animation::util::ReadOutputs::Rotations(r) => {
+                let unit = |q: [f32; 4]| (q.iter().map(|c| c * c).sum::<f32>() - 1.0).abs() < 1e-5;
+                assert!(r.into_f32().all(unit), "rotations are unit quaternions");
+            }
+            _ => panic!("only translation and rotation are animated"),
+        }
+    }
+    assert_eq!(translations.first(), Some(&[-0.7, 2.4, 0.048]));
+    let last = translations.last().unwrap();
+    assert!((last[1] - 5.4e-13).abs() < 1e-18 && (last[0] + 0.743_643_9).abs() < 1e-6, "{last:?}");
+
+    // A still camera: the node's transform, no animation.
+    assert_ok(&run_in(&dir, &["export", "hello_world", "--camera-path", "-o", "still.gltf"]));
+    let (still, _, _) = gltf::import(dir.join("still.gltf")).expect("the export imports as glTF");
+    assert_eq!((still.cameras().count(), still.animations().count()), (1, 0));
+}
+
 #[test]
 fn bench_appends_a_csv_row_and_a_json_line() {
     let dir = scratch("bench");
@@ -490,6 +531,8 @@ fn bad_input_is_one_clear_line_and_the_right_exit_status() {
         (vec!["render", "hello_world", "--time", "inf"], 2, "not finite".into()),
         (vec!["bench", "hello_world", "--frames", "0"], 2, "invalid value '0'".into()),
         (vec!["export", "hello_world", "--target", "dxil"], 2, "unknown export target `dxil`".into()),
+        (vec!["export", "mandelbrot_zoom", "--camera-path", "--fps", "1e9"], 2, "lower --fps".into()),
+        (vec!["export", "hello_world", "--target", "wgsl", "--fps", "24"], 2, "go with --camera-path".into()),
         (vec!["bench", "hello_world", "--csv", "a-file/b.csv"], 1, "cannot write a-file/b.csv".into()),
         (vec!["accuracy", "hello_world", "--backend", "auto"], 2, "accuracy needs one backend".into()),
         (vec!["accuracy", "hello_world", "--report"], 2, "give no scene with it".into()),
@@ -502,6 +545,18 @@ fn bad_input_is_one_clear_line_and_the_right_exit_status() {
         assert_eq!(out.status.code(), Some(*code), "fractal {}: exit status\n{err}", args.join(" "));
         assert!(err.contains(message.as_str()), "fractal {}: expected `{message}` in\n{err}", args.join(" "));
         assert_eq!(err.trim().lines().count(), 1, "fractal {}: not one line:\n{err}", args.join(" "));
+        assert!(!err.contains("panicked"), "{err}");
+    }
+    // Grammar errors: clap's own message and usage lines, status 2.
+    let grammar: [(&[&str], &str); 2] = [
+        (&["export", "hello_world"], "--target <TARGET>"),
+        (&["export", "hello_world", "--target", "wgsl", "--camera-path"], "cannot be used with"),
+    ];
+    for (args, message) in grammar {
+        let out = run_in(&dir, args);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(2), "fractal {}: exit status\n{err}", args.join(" "));
+        assert!(err.contains(message), "fractal {}: expected `{message}` in\n{err}", args.join(" "));
         assert!(!err.contains("panicked"), "{err}");
     }
     // Missing ffmpeg: an empty PATH, so no ffmpeg can be found.

@@ -270,9 +270,23 @@ terminal (a pipe or a file).")]
 pub struct ExportArgs {
     /// Built-in scene name or .fractal file
     pub scene: String,
-    /// Target language
-    #[arg(long, value_name = "TARGET", value_parser = parse_target)]
-    pub target: Target,
+    /// Target language of the render kernel
+    #[arg(long, value_name = "TARGET", value_parser = parse_target, required_unless_present = "camera_path")]
+    pub target: Option<Target>,
+    /// Export the scene's camera as a glTF 2.0 camera animation instead of a kernel (z mirrored: glTF is
+    /// right-handed)
+    #[arg(long, conflicts_with = "target")]
+    pub camera_path: bool,
+    /// Camera export: samples per second between the camera path's keys, every key sampled too [default: 30]
+    #[arg(long, value_name = "FPS", value_parser = parse_fps)]
+    pub fps: Option<f64>,
+    /// Camera export: seconds sampled of a look-at camera that moves with `t`; a path runs from its first key to its
+    /// last [default: 10]
+    #[arg(long, value_name = "SECONDS", value_parser = parse_positive)]
+    pub duration: Option<f64>,
+    /// Camera export: the image size whose aspect ratio the glTF camera records, WIDTHxHEIGHT [default: 1920x1080]
+    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    pub size: Option<(u32, u32)>,
     /// Output file
     #[arg(short, long, value_name = "PATH")]
     pub output: Option<PathBuf>,

@@ -1,5 +1,6 @@
-//! `fractal export`: a scene's render kernel for another engine ([`crate::export`]), to a file (written atomically) or
-//! to standard output. SPIR-V is binary, so it goes to standard output only when that is not a terminal.
+//! `fractal export`: a scene's render kernel for another engine ([`crate::export`]) or its camera as a glTF animation
+//! ([`crate::output::gltf_camera`]), to a file (written atomically) or to standard output. SPIR-V is binary, so it
+//! goes to standard output only when that is not a terminal.
 
 use std::io::{IsTerminal, Write};
 
@@ -9,30 +10,64 @@ use crate::cli::scene::LoadedScene;
 use crate::cli::SceneLibrary;
 use crate::output::png::{prepare_output, write_atomic};
 
+/// Most samples a camera export writes (fps × seconds).
+const MAX_CAMERA_SAMPLES: f64 = 1e6;
+
 pub fn export(args: &ExportArgs, library: &SceneLibrary) -> Result<(), CliError> {
     let loaded = LoadedScene::load(&args.scene, library)?;
+    let Some(target) = args.target else {
+        return export_camera(args, &loaded);
+    };
+    if args.fps.is_some() || args.duration.is_some() || args.size.is_some() {
+        return Err(CliError::usage("--fps, --duration and --size go with --camera-path, not --target"));
+    }
     let stdout = std::io::stdout();
-    if args.output.is_none() && args.target.is_binary() && stdout.is_terminal() {
+    if args.output.is_none() && target.is_binary() && stdout.is_terminal() {
         return Err(CliError::usage(format!(
-            "{} is binary: write it to a file with -o {}.{} (or redirect standard output)",
-            args.target,
+            "{target} is binary: write it to a file with -o {}.{} (or redirect standard output)",
             loaded.name,
-            args.target.extension()
+            target.extension()
         )));
     }
     if let Some(path) = &args.output {
         prepare_output(path)?;
     }
-    let exported =
-        loaded.export(args.target).map_err(|e| CliError::failure(format!("export to {}: {e}", args.target)))?;
+    let exported = loaded.export(target).map_err(|e| CliError::failure(format!("export to {target}: {e}")))?;
+    write(args, exported.as_bytes(), &target.to_string())
+}
+
+/// `--camera-path`: the scene's camera as glTF.
+fn export_camera(args: &ExportArgs, loaded: &LoadedScene) -> Result<(), CliError> {
+    let scene = &loaded.scene;
+    let (fps, duration) = (args.fps.unwrap_or(30.0), args.duration.unwrap_or(10.0));
+    let (width, height) = args.size.unwrap_or((1920, 1080));
+    let times = crate::output::gltf_camera::sample_times(scene, 1.0, duration);
+    let span = times.last().copied().unwrap_or(0.0) - times.first().copied().unwrap_or(0.0);
+    if span * fps > MAX_CAMERA_SAMPLES {
+        return Err(CliError::usage(format!(
+            "{fps} fps over {span} s is more than {MAX_CAMERA_SAMPLES} camera samples: lower --fps"
+        )));
+    }
+    if let Some(path) = &args.output {
+        prepare_output(path)?;
+    }
+    let aspect = f64::from(width) / f64::from(height);
+    let gltf = crate::output::gltf_camera::camera_gltf(scene, fps, duration, aspect)
+        .map_err(|e| CliError::failure(format!("camera of {}: {e}", loaded.name)))?;
+    write(args, gltf.as_bytes(), "glTF camera")
+}
+
+/// Writes `bytes` to the output file or standard output.
+fn write(args: &ExportArgs, bytes: &[u8], what: &str) -> Result<(), CliError> {
+    let stdout = std::io::stdout();
     match &args.output {
         Some(path) => {
-            write_atomic(path, exported.as_bytes())?;
-            eprintln!("wrote {} ({} bytes of {})", path.display(), exported.as_bytes().len(), args.target);
+            write_atomic(path, bytes)?;
+            eprintln!("wrote {} ({} bytes of {what})", path.display(), bytes.len());
         }
         None => {
             let mut out = stdout.lock();
-            out.write_all(exported.as_bytes())
+            out.write_all(bytes)
                 .and_then(|()| out.flush())
                 .map_err(|e| CliError::failure(format!("writing to standard output: {e}")))?;
         }

@@ -1,10 +1,11 @@
 //! Offline output of rendered images: PNG files written atomically ([`png`]), numbered frame sequences that resume
 //! after an interruption and split into shards across machines ([`sequence`]), video through ffmpeg ([`video`]),
-//! per-pixel depth, normals and steps as OpenEXR beside an image ([`aov`]), and the gallery's contact sheet
-//! ([`contact_sheet`]).
+//! per-pixel depth, normals and steps as OpenEXR beside an image ([`aov`]), the gallery's contact sheet
+//! ([`contact_sheet`]), and a scene's camera as a glTF 2.0 animation for other tools ([`gltf_camera`]).
 
 pub mod aov;
 pub mod contact_sheet;
+pub mod gltf_camera;
 pub mod png;
 pub mod sequence;
 pub mod video;
