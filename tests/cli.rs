@@ -393,6 +393,33 @@ fn export_writes_the_camera_path_as_gltf() {
     assert_eq!((still.cameras().count(), still.animations().count()), (1, 0));
 }
 
+/// `fractal mesh` writes every format; the .glb imports with the `gltf` crate and holds positions, normals, colours
+/// and indices of a closed mesh.
+#[test]
+fn mesh_writes_every_format() {
+    let dir = scratch("mesh");
+    for ext in ["glb", "ply", "stl", "obj"] {
+        let file = format!("sphere.{ext}");
+        let out = run_in(&dir, &["mesh", "hello_world", "--resolution", "24", "-o", &file]);
+        assert_ok(&out);
+        assert!(stderr(&out).contains("closed"), "{}", stderr(&out));
+        assert!(fs::metadata(dir.join(&file)).unwrap().len() > 1000, "{ext}: too small");
+    }
+    let (document, buffers, _) = gltf::import(dir.join("sphere.glb")).expect("the mesh imports as glTF");
+    let primitive = document.meshes().next().unwrap().primitives().next().unwrap();
+    let reader = primitive.reader(|b| Some(&buffers[b.index()]));
+    let positions: Vec<[f32; 3]> = reader.read_positions().expect("positions").collect();
+    let indices: Vec<u32> = reader.read_indices().expect("indices").into_u32().collect();
+    assert_eq!(reader.read_normals().expect("normals").count(), positions.len());
+    assert_eq!(reader.read_colors(0).expect("colours").into_rgb_f32().count(), positions.len());
+    assert!(indices.len() % 3 == 0 && indices.iter().all(|&i| (i as usize) < positions.len()));
+    // hello_world's sphere of radius 1 at the origin: every vertex within a cell (2/24 of a side) of it.
+    let cell = 2.0 / 24.0;
+    assert!(positions.iter().all(|p| ((p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt() - 1.0).abs() < cell));
+    let stl = fs::read(dir.join("sphere.stl")).unwrap();
+    assert_eq!(stl.len(), 84 + 50 * indices.len() / 3, "STL: one 50-byte record per triangle");
+}
+
 #[test]
 fn bench_appends_a_csv_row_and_a_json_line() {
     let dir = scratch("bench");
@@ -533,6 +560,9 @@ fn bad_input_is_one_clear_line_and_the_right_exit_status() {
         (vec!["export", "hello_world", "--target", "dxil"], 2, "unknown export target `dxil`".into()),
         (vec!["export", "mandelbrot_zoom", "--camera-path", "--fps", "1e9"], 2, "lower --fps".into()),
         (vec!["export", "hello_world", "--target", "wgsl", "--fps", "24"], 2, "go with --camera-path".into()),
+        (vec!["mesh", "hello_world", "-o", "out.fbx"], 2, "meshes are written as .glb, .ply, .stl or .obj".into()),
+        (vec!["mesh", "hello_world", "-o", "a.ply", "--resolution", "4"], 2, "invalid value '4'".into()),
+        (vec!["mesh", "hello_world", "-o", "a.ply", "--bounds", "1,1,1,0,0,0"], 2, "each minimum must be below".into()),
         (vec!["bench", "hello_world", "--csv", "a-file/b.csv"], 1, "cannot write a-file/b.csv".into()),
         (vec!["accuracy", "hello_world", "--backend", "auto"], 2, "accuracy needs one backend".into()),
         (vec!["accuracy", "hello_world", "--report"], 2, "give no scene with it".into()),

@@ -54,6 +54,8 @@ pub enum Command {
     Accuracy(AccuracyArgs),
     /// Write a scene's render kernel for another engine
     Export(ExportArgs),
+    /// Write a scene's surface as a triangle mesh (.glb, .ply, .stl, .obj)
+    Mesh(MeshArgs),
     /// List the built-in scenes
     List,
     /// Render every built-in scene into a folder, with a labelled contact sheet of them all
@@ -294,6 +296,32 @@ pub struct ExportArgs {
 
 #[derive(Debug, Args)]
 #[command(after_help = "\
+The surface is extracted by surface nets from the scene's distance function, cut to the meshing box (the scene's
+bound, the cube of half-side 4 around the origin for an unbounded scene, or --bounds), so the mesh is closed. The grid
+streams through memory a layer at a time. Files are in glTF's right-handed frame: the renderer's with z mirrored,
+as `fractal export --camera-path` writes cameras.")]
+pub struct MeshArgs {
+    /// Built-in scene name or .fractal file
+    pub scene: String,
+    /// Cells along the longest side of the meshing box
+    #[arg(long, value_name = "N", default_value_t = 256, value_parser = clap::value_parser!(u32).range(8..=4096))]
+    pub resolution: u32,
+    /// Output file: .glb, .ply, .stl or .obj
+    #[arg(short, long, value_name = "PATH")]
+    pub output: PathBuf,
+    /// The box to mesh, X0,Y0,Z0,X1,Y1,Z1 (default: the scene's bound)
+    #[arg(long, value_name = "X0,Y0,Z0,X1,Y1,Z1", value_parser = parse_bounds)]
+    pub bounds: Option<[f64; 6]>,
+    /// Scene time in seconds
+    #[arg(long, allow_negative_numbers = true, value_name = "SECONDS", default_value_t = 0.0, value_parser = parse_time)]
+    pub time: f64,
+    /// Set a scene parameter (repeatable)
+    #[arg(long = "param", value_name = "NAME=VALUE", value_parser = parse_param)]
+    pub params: Vec<(String, f64)>,
+}
+
+#[derive(Debug, Args)]
+#[command(after_help = "\
 Each scene is drawn from its own camera (the start of its camera path) with its parameters at their defaults, into
 DIR/<scene>.png; DIR/gallery.png is the contact sheet, scene names under the images.")]
 pub struct GalleryArgs {
@@ -374,6 +402,17 @@ pub fn parse_shard(text: &str) -> Result<Shard, String> {
 }
 
 /// `name=value` with a finite number.
+pub fn parse_bounds(text: &str) -> Result<[f64; 6], String> {
+    let values: Vec<f64> = text.split(',').map(|v| finite(v.trim(), "bound")).collect::<Result<_, _>>()?;
+    let Ok(b) = <[f64; 6]>::try_from(values) else {
+        return Err(format!("bounds `{text}`: expected X0,Y0,Z0,X1,Y1,Z1"));
+    };
+    if (0..3).any(|a| b[a] >= b[a + 3]) {
+        return Err(format!("bounds `{text}`: each minimum must be below its maximum"));
+    }
+    Ok(b)
+}
+
 pub fn parse_param(text: &str) -> Result<(String, f64), String> {
     let (name, value) = text.split_once('=').ok_or_else(|| format!("expected NAME=VALUE, got `{text}`"))?;
     let value: f64 = value.trim().parse().map_err(|_| format!("`{value}` is not a number"))?;

@@ -1,4 +1,4 @@
-//! The `fractal` command line: `render`, `bench`, `accuracy`, `export`, `list`, `gallery` and `view` (the interactive viewer,
+//! The `fractal` command line: `render`, `bench`, `accuracy`, `export`, `mesh`, `list`, `gallery` and `view` (the interactive viewer,
 //! [`crate::viewer`]). The binary is a shim that passes in the built-in scene table ([`SceneLibrary`]), so the runtime
 //! does not depend on the scene library.
 //!
@@ -12,6 +12,7 @@ pub mod error;
 mod export;
 mod gallery;
 mod list;
+mod mesh;
 mod render;
 pub mod scene;
 mod view;
@@ -77,6 +78,7 @@ fn run(command: Command, library: &SceneLibrary) -> Result<(), CliError> {
         Command::Bench(args) => bench::bench(&args, library),
         Command::Accuracy(args) => accuracy::accuracy(&args, library),
         Command::Export(args) => export::export(&args, library),
+        Command::Mesh(args) => mesh::mesh(&args, library),
         Command::List => list::list(library),
         Command::Gallery(args) => gallery::gallery(&args, library),
         Command::View(args) => view::view(&args, library),
