@@ -13,7 +13,10 @@ use crate::cli::scene::LoadedScene;
 use crate::cli::SceneLibrary;
 use crate::frame::check_time;
 use crate::mesh::{default_bounds, default_level, extract, write_mesh, MeshFormat, MeshSettings};
-use crate::output::png::{prepare_output, write_atomic};
+use crate::output::png::{prepare_output, write_atomic_with};
+
+/// Meshes up to this many triangles are checked for closure before they are written.
+const CHECKED_TRIANGLES: usize = 4_000_000;
 
 pub fn mesh(args: &MeshArgs, library: &SceneLibrary) -> Result<(), CliError> {
     let format = MeshFormat::from_path(&args.output).ok_or_else(|| {
@@ -47,15 +50,23 @@ pub fn mesh(args: &MeshArgs, library: &SceneLibrary) -> Result<(), CliError> {
         bar.set_position(done as u64);
     });
     bar.finish_and_clear();
-    let bytes = write_mesh(&mesh, format);
-    write_atomic(&args.output, &bytes)?;
-    let closed = if mesh.unmatched_edges() == 0 { "closed" } else { "NOT closed" };
+    // The closure check counts every edge in a hash map: worth it only for meshes that are not huge.
+    let closed = match mesh.triangles.len() <= CHECKED_TRIANGLES {
+        true if mesh.unmatched_edges() == 0 => "closed",
+        true => "NOT closed",
+        false => "closure not checked at this size",
+    };
+    let (vertices, triangles) = (mesh.positions.len(), mesh.triangles.len());
+    let mut mesh = Some(mesh);
+    write_atomic_with(&args.output, &mut |out| match mesh.take() {
+        Some(mesh) => write_mesh(mesh, format, out),
+        None => Ok(()),
+    })?;
     let memory = peak_memory_mib().map_or(String::new(), |m| format!(", peak memory {m:.0} MiB"));
     eprintln!(
-        "wrote {} ({} vertices, {} triangles, {closed}; {} cells along the longest side; {:.1} s{memory})",
+        "wrote {} ({vertices} vertices, {triangles} triangles, {closed}; {} cells along the longest side; {:.1} s\
+         {memory})",
         args.output.display(),
-        mesh.positions.len(),
-        mesh.triangles.len(),
         args.resolution,
         start.elapsed().as_secs_f64()
     );

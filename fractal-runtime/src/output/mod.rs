@@ -15,7 +15,7 @@ use std::path::PathBuf;
 
 pub use aov::{write_aov, Aov};
 pub use contact_sheet::contact_sheet;
-pub use png::{partial_path, read_png, write_atomic, write_png};
+pub use png::{partial_path, read_png, write_atomic, write_atomic_with, write_png};
 pub use sequence::{plan, FramePattern, FrameRange, SequencePlan, Shard};
 pub use video::{Container, VideoWriter};
 
