@@ -418,6 +418,15 @@ fn mesh_writes_every_format() {
     assert!(positions.iter().all(|p| ((p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt() - 1.0).abs() < cell));
     let stl = fs::read(dir.join("sphere.stl")).unwrap();
     assert_eq!(stl.len(), 84 + 50 * indices.len() / 3, "STL: one 50-byte record per triangle");
+
+    // A sequence: one file per frame, each of the scene at its own time (julia's constant drifts with t).
+    let out = run_in(
+        &dir,
+        &["mesh", "julia", "--resolution", "16", "--frames", "0..2", "--fps", "0.5", "-o", "seq/%03d.ply"],
+    );
+    assert_ok(&out);
+    assert_eq!(files_in(&dir.join("seq")), ["000.ply".to_string(), "001.ply".to_string()].into());
+    assert_ne!(fs::read(dir.join("seq/000.ply")).unwrap(), fs::read(dir.join("seq/001.ply")).unwrap());
 }
 
 #[test]

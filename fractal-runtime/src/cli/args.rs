@@ -306,9 +306,15 @@ pub struct MeshArgs {
     /// Cells along the longest side of the meshing box
     #[arg(long, value_name = "N", default_value_t = 256, value_parser = clap::value_parser!(u32).range(8..=4096))]
     pub resolution: u32,
-    /// Output file: .glb, .ply, .stl or .obj
+    /// Output file: .glb, .ply, .stl or .obj; with --frames a pattern such as meshes/%05d.glb
     #[arg(short, long, value_name = "PATH")]
     pub output: PathBuf,
+    /// A mesh sequence: frames START..END (end exclusive) or START..=END; frame f is at time f / fps
+    #[arg(long, value_name = "START..END", value_parser = parse_frames, conflicts_with = "time")]
+    pub frames: Option<FrameRange>,
+    /// Frames per second of the sequence
+    #[arg(long, default_value_t = 30.0, value_parser = parse_fps)]
+    pub fps: f64,
     /// The box to mesh, X0,Y0,Z0,X1,Y1,Z1 (default: the scene's bound)
     #[arg(long, value_name = "X0,Y0,Z0,X1,Y1,Z1", value_parser = parse_bounds)]
     pub bounds: Option<[f64; 6]>,

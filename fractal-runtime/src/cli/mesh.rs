@@ -1,7 +1,9 @@
-//! `fractal mesh`: a scene's surface as a triangle mesh file ([`crate::mesh`]), with a progress bar over the grid's
-//! layers and a summary line: vertices, triangles, whether the mesh is closed, time and peak memory.
+//! `fractal mesh`: a scene's surface as a triangle mesh file ([`crate::mesh`]), or one per frame of an animation
+//! (`--frames`, a numbered pattern), with a progress bar over the grid's layers and a summary line per file:
+//! vertices, triangles, whether the mesh is closed, time and peak memory.
 
 use std::io::IsTerminal;
+use std::path::Path;
 use std::time::Instant;
 
 use fractal_dsl::analyse::Aabb;
@@ -14,6 +16,7 @@ use crate::cli::SceneLibrary;
 use crate::frame::check_time;
 use crate::mesh::{default_bounds, default_level, extract, write_mesh, MeshFormat, MeshSettings};
 use crate::output::png::{prepare_output, write_atomic_with};
+use crate::output::FramePattern;
 
 /// Meshes up to this many triangles are checked for closure before they are written.
 const CHECKED_TRIANGLES: usize = 4_000_000;
@@ -23,20 +26,43 @@ pub fn mesh(args: &MeshArgs, library: &SceneLibrary) -> Result<(), CliError> {
         CliError::usage(format!("{}: meshes are written as {}", args.output.display(), MeshFormat::EXTENSIONS))
     })?;
     let loaded = LoadedScene::load(&args.scene, library)?;
-    check_time(args.time).map_err(|e| CliError::usage(e.to_string()))?;
     let params = loaded.params(&args.params)?;
     let bounds = match args.bounds {
         Some(b) => Aabb::new([b[0], b[1], b[2]], [b[3], b[4], b[5]]),
         None => default_bounds(&loaded.scene),
     };
-    prepare_output(&args.output)?;
-    let settings = MeshSettings {
+    let settings = |time: f64| MeshSettings {
         bounds,
         resolution: args.resolution,
         level: default_level(&loaded.scene),
-        time: args.time as f32,
+        time: time as f32,
         params: params.values().iter().map(|&v| v as f32).collect(),
     };
+    let Some(frames) = args.frames else {
+        check_time(args.time).map_err(|e| CliError::usage(e.to_string()))?;
+        prepare_output(&args.output)?;
+        return mesh_one(args, &loaded, format, &settings(args.time), &args.output);
+    };
+    let text = args.output.to_string_lossy();
+    let pattern = FramePattern::parse(&text).map_err(|e| CliError::usage(format!("--frames: {e}")))?;
+    for frame in frames.iter() {
+        let time = frame as f64 / args.fps;
+        check_time(time).map_err(|e| CliError::usage(e.to_string()))?;
+        let path = pattern.path(frame);
+        prepare_output(&path)?;
+        mesh_one(args, &loaded, format, &settings(time), &path)?;
+    }
+    Ok(())
+}
+
+/// Meshes one moment into `path`.
+fn mesh_one(
+    args: &MeshArgs,
+    loaded: &LoadedScene,
+    format: MeshFormat,
+    settings: &MeshSettings,
+    path: &Path,
+) -> Result<(), CliError> {
     let bar = if std::io::stderr().is_terminal() {
         let style = ProgressStyle::with_template("mesh [{bar:30}] {pos}/{len} layers, {elapsed}")
             .unwrap_or_else(|_| ProgressStyle::default_bar());
@@ -45,7 +71,7 @@ pub fn mesh(args: &MeshArgs, library: &SceneLibrary) -> Result<(), CliError> {
         ProgressBar::with_draw_target(None, ProgressDrawTarget::hidden())
     };
     let start = Instant::now();
-    let mesh = extract(loaded.evaluator(), &settings, &|done, total| {
+    let mesh = extract(loaded.evaluator(), settings, &|done, total| {
         bar.set_length(total as u64);
         bar.set_position(done as u64);
     });
@@ -58,7 +84,7 @@ pub fn mesh(args: &MeshArgs, library: &SceneLibrary) -> Result<(), CliError> {
     };
     let (vertices, triangles) = (mesh.positions.len(), mesh.triangles.len());
     let mut mesh = Some(mesh);
-    write_atomic_with(&args.output, &mut |out| match mesh.take() {
+    write_atomic_with(path, &mut |out| match mesh.take() {
         Some(mesh) => write_mesh(mesh, format, out),
         None => Ok(()),
     })?;
@@ -66,7 +92,7 @@ pub fn mesh(args: &MeshArgs, library: &SceneLibrary) -> Result<(), CliError> {
     eprintln!(
         "wrote {} ({vertices} vertices, {triangles} triangles, {closed}; {} cells along the longest side; {:.1} s\
          {memory})",
-        args.output.display(),
+        path.display(),
         args.resolution,
         start.elapsed().as_secs_f64()
     );
