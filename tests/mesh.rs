@@ -8,7 +8,7 @@
 //! 1/256 (a vertex the mesher bisected onto a grid edge, where a fractal's estimate is no distance, has the
 //! other side within 1/64 of a cell along that edge, possibly on a thin sliver). Every vertex must pass.
 
-use fractal::runtime::mesh::{default_bounds, default_level, extract, field_distance, MeshSettings};
+use fractal::runtime::mesh::{default_bounds, default_level, extract, field, MeshSettings};
 use fractal::scenes;
 
 const RESOLUTION: u32 = 128;
@@ -30,7 +30,7 @@ fn every_scene_meshes_closed_with_vertices_on_the_surface() {
         let seconds = started.elapsed().as_secs_f64();
         let b = settings.bounds;
         let cell = (0..3).map(|a| b.max[a] - b.min[a]).fold(0.0, f64::max) / RESOLUTION as f64;
-        let field = |p: [f64; 3]| field_distance(&native, &settings, p);
+        let field = field(&native, &settings);
         let beyond = |radius: f64| -> Vec<&[f32; 3]> {
             mesh.positions
                 .iter()

@@ -148,13 +148,9 @@ pub fn check_image_size(width: u32, height: u32) -> Result<(), FrameError> {
     Ok(())
 }
 
-/// The slots of `scene` with the perturbation reference `reference`.
-fn layout(scene: &Scene, reference: Option<ReferenceSpec>) -> FrameLayout {
-    FrameLayout {
-        lights: scene.effective_lights().len(),
-        params: scene.params().len(),
-        orbit: reference.map_or(0, |r| r.entries()),
-    }
+/// The slots of a scene with this many lights and parameters and the perturbation reference `reference`.
+fn layout(lights: usize, params: usize, reference: Option<ReferenceSpec>) -> FrameLayout {
+    FrameLayout { lights, params, orbit: reference.map_or(0, |r| r.entries()) }
 }
 
 fn finite3(v: [f64; 3]) -> bool {
@@ -181,7 +177,7 @@ impl Frame {
         params.check_matches(&scene_params)?;
         let lights = scene.effective_lights();
         let reference = fractal_dsl::analyse::scene_reference(scene);
-        let layout = layout(scene, reference);
+        let layout = layout(lights.len(), scene_params.len(), reference);
 
         let fov = pose.fov_degrees;
         if !(fov.is_finite() && fov > 0.0 && fov < 180.0) {
@@ -257,7 +253,7 @@ impl Frame {
 
     /// The frame layout of `scene`: the slots [`Frame::new`] packs for it.
     pub fn layout_of(scene: &Scene) -> FrameLayout {
-        layout(scene, fractal_dsl::analyse::scene_reference(scene))
+        layout(scene.effective_lights().len(), scene.params().len(), fractal_dsl::analyse::scene_reference(scene))
     }
 
     /// A frame from slots packed elsewhere (hand-written kernels, replays); the slot count must match `layout`.

@@ -41,8 +41,8 @@ fn export_camera(args: &ExportArgs, loaded: &LoadedScene) -> Result<(), CliError
     let scene = &loaded.scene;
     let (fps, duration) = (args.fps.unwrap_or(30.0), args.duration.unwrap_or(10.0));
     let (width, height) = args.size.unwrap_or((1920, 1080));
-    let times = crate::output::gltf_camera::sample_times(scene, 1.0, duration);
-    let span = times.last().copied().unwrap_or(0.0) - times.first().copied().unwrap_or(0.0);
+    let (start, end) = crate::output::gltf_camera::time_span(scene, duration);
+    let span = end - start;
     if span * fps > MAX_CAMERA_SAMPLES {
         return Err(CliError::usage(format!(
             "{fps} fps over {span} s is more than {MAX_CAMERA_SAMPLES} camera samples: lower --fps"

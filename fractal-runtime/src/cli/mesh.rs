@@ -83,11 +83,7 @@ fn mesh_one(
         false => "closure not checked at this size",
     };
     let (vertices, triangles) = (mesh.positions.len(), mesh.triangles.len());
-    let mut mesh = Some(mesh);
-    write_atomic_with(path, &mut |out| match mesh.take() {
-        Some(mesh) => write_mesh(mesh, format, out),
-        None => Ok(()),
-    })?;
+    write_atomic_with(path, |out| write_mesh(mesh, format, out))?;
     let memory = peak_memory_mib().map_or(String::new(), |m| format!(", peak memory {m:.0} MiB"));
     eprintln!(
         "wrote {} ({vertices} vertices, {triangles} triangles, {closed}; {} cells along the longest side; {:.1} s\

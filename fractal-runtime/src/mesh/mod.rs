@@ -17,10 +17,12 @@
 pub mod surface_nets;
 pub mod write;
 
+use std::collections::HashMap;
+
 use fractal_dsl::analyse::{bound, fold::fold_node, Aabb};
 use fractal_dsl::Scene;
 
-pub use surface_nets::{extract, field_distance};
+pub use surface_nets::{extract, field};
 pub use write::{write_mesh, MeshFormat};
 
 /// The box meshed when a scene has no finite bound (a floor, repetition): this cube around the origin.
@@ -41,29 +43,29 @@ impl Mesh {
     /// Edges used by triangles other than in matched pairs: each directed edge a→b must be met by as many b→a for the
     /// mesh to be closed and consistently oriented. Returns the number of directed edges left unmatched (0: closed).
     pub fn unmatched_edges(&self) -> usize {
-        let mut count: std::collections::HashMap<(u32, u32), i64> = std::collections::HashMap::new();
-        for t in &self.triangles {
-            for (a, b) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
-                if a < b {
-                    *count.entry((a, b)).or_default() += 1;
-                } else {
-                    *count.entry((b, a)).or_default() -= 1;
-                }
-            }
-        }
-        count.values().map(|c| c.unsigned_abs() as usize).sum()
+        self.edge_uses().values().map(|&(forward, backward)| forward.abs_diff(backward) as usize).sum()
     }
 
     /// Undirected edges shared by more than two triangles (where surface nets meets an ambiguous cell face: two
     /// sheets touch in one edge; the mesh is still closed).
     pub fn non_manifold_edges(&self) -> usize {
-        let mut count: std::collections::HashMap<(u32, u32), u32> = std::collections::HashMap::new();
+        self.edge_uses().values().filter(|&&(forward, backward)| forward + backward > 2).count()
+    }
+
+    /// Per undirected edge (low index, high index): how many triangles run it low → high and high → low.
+    fn edge_uses(&self) -> HashMap<(u32, u32), (u32, u32)> {
+        let mut uses: HashMap<(u32, u32), (u32, u32)> = HashMap::new();
         for t in &self.triangles {
             for (a, b) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
-                *count.entry((a.min(b), a.max(b))).or_default() += 1;
+                let entry = uses.entry((a.min(b), a.max(b))).or_default();
+                if a < b {
+                    entry.0 += 1;
+                } else {
+                    entry.1 += 1;
+                }
             }
         }
-        count.values().filter(|&&c| c > 2).count()
+        uses
     }
 }
 

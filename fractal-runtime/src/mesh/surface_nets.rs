@@ -1,8 +1,8 @@
 //! Surface nets over a scene's distance function, streamed through the grid one layer of cells at a time.
 //!
 //! The field meshed is max(scene distance, distance to the meshing box) − level: the scene cut to the box, so every
-//! mesh is closed, at the level its settings give. The grid has one empty cell of padding around the box. Corner samples are taken a layer at a time
-//! (rows in parallel); a tile of 8×8 corners whose centre is outside and farther from the surface than the tile's half
+//! mesh is closed, at the level its settings give. The grid has one empty cell of padding around the box. Corner
+//! samples are taken a layer at a time (rows in parallel); a tile of 8×8 corners whose centre is outside and farther from the surface than the tile's half
 //! diagonal plus 1.5 cells is filled from that one sample — outside, the field is a distance bound, so no surface
 //! passes through the tile and none of its corners sits on an edge the surface crosses. Inside, a fractal's estimate
 //! is no distance (the Juliabulb's reads −0.5 a hair from its surface), so tiles inside are always sampled.
@@ -65,14 +65,17 @@ impl Grid {
     }
 }
 
-/// The field meshed: the scene's distance cut to the box.
+/// The field meshed: the scene's distance cut to the box, less the level.
 struct Field<'a> {
     evaluator: &'a dyn Evaluator<f32>,
     env: Env<'a, f32>,
-    grid: &'a Grid,
+    grid: Grid,
 }
 
-impl Field<'_> {
+impl<'a> Field<'a> {
+    fn new(evaluator: &'a dyn Evaluator<f32>, settings: &'a MeshSettings) -> Field<'a> {
+        Field { evaluator, env: Env::new(settings.time, &settings.params), grid: Grid::new(settings) }
+    }
     fn at(&self, p: [f64; 3]) -> f32 {
         let q = v3(p[0] as f32, p[1] as f32, p[2] as f32);
         let mut scene = self.evaluator.distance(q, &self.env);
@@ -86,7 +89,7 @@ impl Field<'_> {
     }
     /// Exact distance to the meshing box (negative inside).
     fn box_distance(&self, p: [f64; 3]) -> f32 {
-        let g = self.grid;
+        let g = &self.grid;
         let d = [0, 1, 2].map(|a| {
             let centre = 0.5 * (g.box_min[a] + g.box_max[a]);
             (p[a] - centre).abs() - 0.5 * (g.box_max[a] - g.box_min[a])
@@ -136,7 +139,7 @@ impl Field<'_> {
 
     /// Samples corner layer `k` into `out`, culling tiles far from the surface.
     fn sample_layer(&self, k: usize, out: &mut [f32]) {
-        let g = self.grid;
+        let g = &self.grid;
         let (row, rows) = (g.row(), g.cells[1] + 1);
         let reach = g.h * std::f64::consts::SQRT_2 * (TILE - 1) as f64 / 2.0 + 1.5 * g.h;
         out.par_chunks_mut(TILE * row).enumerate().for_each(|(tj, band)| {
@@ -166,19 +169,18 @@ impl Field<'_> {
     }
 }
 
-/// The field a mesh of `settings` follows at `p` (in the renderer's coordinates): the scene's distance cut to the
+/// The field a mesh of `settings` follows, at a point in the renderer's coordinates: the scene's distance cut to the
 /// meshing box, less the level. A mesh vertex lies within half a cell of where it is 0.
-pub fn field_distance(evaluator: &dyn Evaluator<f32>, settings: &MeshSettings, p: [f64; 3]) -> f32 {
-    let grid = Grid::new(settings);
-    Field { evaluator, env: Env::new(settings.time, &settings.params), grid: &grid }.at(p)
+pub fn field<'a>(evaluator: &'a dyn Evaluator<f32>, settings: &'a MeshSettings) -> impl Fn([f64; 3]) -> f32 + 'a {
+    let field = Field::new(evaluator, settings);
+    move |p| field.at(p)
 }
 
 /// Meshes the scene `evaluator` computes, as `settings` say; `progress(done, total)` after each layer of cells.
 pub fn extract(evaluator: &dyn Evaluator<f32>, settings: &MeshSettings, progress: &dyn Fn(usize, usize)) -> Mesh {
-    let grid = Grid::new(settings);
-    let field = Field { evaluator, env: Env::new(settings.time, &settings.params), grid: &grid };
-    let [nx, ny, nz] = grid.cells;
-    let row = grid.row();
+    let field = Field::new(evaluator, settings);
+    let [nx, ny, nz] = field.grid.cells;
+    let row = field.grid.row();
     let layer_len = row * (ny + 1);
     let (mut below, mut above) = (vec![0.0f32; layer_len], vec![0.0f32; layer_len]);
     let (mut previous, mut current) = (vec![NONE; nx * ny], vec![NONE; nx * ny]);
@@ -244,7 +246,7 @@ pub fn extract(evaluator: &dyn Evaluator<f32>, settings: &MeshSettings, progress
 /// The vertices of cell layer `k` (between corner layers `below` and `above`), appended to `mesh`, their indices
 /// written into `index`.
 fn cell_vertices(field: &Field, k: usize, below: &[f32], above: &[f32], index: &mut [u32], mesh: &mut Mesh) {
-    let g = field.grid;
+    let g = &field.grid;
     let [nx, ny, _] = g.cells;
     let row = g.row();
     let corner_value = |i: usize, j: usize, dk: usize| if dk == 0 { below[j * row + i] } else { above[j * row + i] };

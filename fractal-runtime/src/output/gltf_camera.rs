@@ -24,22 +24,26 @@ use crate::error::CameraError;
 /// Near and far clip distances written into the camera (glTF requires znear; a zfar makes it a finite frustum).
 const ZNEAR: f64 = 0.001;
 
-/// The times the camera is sampled at, in order, and whether it moves at all.
-pub fn sample_times(scene: &Scene, fps: f64, duration: f64) -> Vec<f64> {
-    let (start, end, keys): (f64, f64, Vec<f64>) = match &scene.camera.placement {
+/// The span of scene time the camera export covers: a path's first to last key, 0 to `duration` for a look-at
+/// camera that reads `t`, and the single moment 0 for a still camera.
+pub fn time_span(scene: &Scene, duration: f64) -> (f64, f64) {
+    match &scene.camera.placement {
         CameraPlacement::Path { keys, .. } => {
-            let times: Vec<f64> = keys.iter().map(|k| k.time).collect();
-            let (lo, hi) = times.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &t| (a.min(t), b.max(t)));
-            (lo, hi, times)
+            keys.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), k| (lo.min(k.time), hi.max(k.time)))
         }
         CameraPlacement::LookAt { position, target } => {
             let moves = position.0.iter().chain(target.0.iter()).any(|e| e.uses_time());
-            if moves {
-                (0.0, duration, Vec::new())
-            } else {
-                (0.0, 0.0, Vec::new())
-            }
+            (0.0, if moves { duration } else { 0.0 })
         }
+    }
+}
+
+/// The times the camera is sampled at, in order: every 1/fps second over [`time_span`], and every key of a path.
+pub fn sample_times(scene: &Scene, fps: f64, duration: f64) -> Vec<f64> {
+    let (start, end) = time_span(scene, duration);
+    let keys = match &scene.camera.placement {
+        CameraPlacement::Path { keys, .. } => keys.iter().map(|k| k.time).collect(),
+        CameraPlacement::LookAt { .. } => Vec::new(),
     };
     let steps = ((end - start) * fps).floor().max(0.0) as u64;
     let mut times: Vec<f64> = (0..=steps).map(|i| start + i as f64 / fps).chain(keys).collect();

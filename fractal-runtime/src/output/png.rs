@@ -52,14 +52,11 @@ pub fn read_png(path: &Path) -> Result<Image, OutputError> {
 /// Writes `bytes` to `path` through its [`partial_path`]: create (or truncate) the partial file, write, sync, rename.
 /// On failure the partial file is removed.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), OutputError> {
-    write_atomic_with(path, &mut |w| w.write_all(bytes))
+    write_atomic_with(path, |w| w.write_all(bytes))
 }
 
 /// Writes to `path` atomically what `write` streams into a buffered writer (large files never held in memory).
-pub fn write_atomic_with(
-    path: &Path,
-    write: &mut dyn FnMut(&mut dyn Write) -> io::Result<()>,
-) -> Result<(), OutputError> {
+pub fn write_atomic_with(path: &Path, write: impl FnOnce(&mut dyn Write) -> io::Result<()>) -> Result<(), OutputError> {
     let partial = partial_path(path);
     let written = (|| -> io::Result<()> {
         let mut file = io::BufWriter::new(File::create(&partial)?);
