@@ -334,7 +334,7 @@ fn video_goes_through_ffmpeg() {
 #[test]
 fn export_writes_every_target() {
     let dir = scratch("export");
-    for target in ["opencl", "wgsl", "glsl", "hlsl", "msl", "spirv"] {
+    for target in ["opencl", "wgsl-kernel", "glsl-kernel", "hlsl-kernel", "msl", "spirv"] {
         let file = format!("kernel.{target}");
         assert_ok(&run_in(&dir, &["export", "sphere_box", "--target", target, "-o", &file]));
         let bytes = fs::read(dir.join(&file)).unwrap();
@@ -347,9 +347,35 @@ fn export_writes_every_target() {
         }
     }
     // Text to standard output when there is no -o; file scenes export too.
-    let out = run_in(&dir, &["export", &fixture("sphere_param.fractal"), "--target", "wgsl"]);
+    let out = run_in(&dir, &["export", &fixture("sphere_param.fractal"), "--target", "wgsl-kernel"]);
     assert_ok(&out);
     assert!(stdout(&out).contains("fn render"), "{}", stdout(&out));
+}
+
+/// Engine packages go into the directory -o names; a one-file package (Shadertoy) goes to standard output without
+/// it. The packages' contents are checked by `fractal-runtime/tests/engines.rs`.
+#[test]
+fn export_writes_engine_packages() {
+    let dir = scratch("export_engines");
+    let expected: [(&str, &[&str]); 8] = [
+        ("bevy", &["README.md", "sphere_box.wgsl", "sphere_box_material.wgsl"]),
+        ("godot", &["README.md", "sphere_box.gdshader", "sphere_box.gdshaderinc"]),
+        ("unity", &["README.md", "sphere_box.hlsl", "sphere_box.shader"]),
+        ("unreal", &["README.md", "sphere_box.ush", "sphere_box_custom_node.hlsl"]),
+        ("shadertoy", &["sphere_box.glsl"]),
+        ("glsl", &["README.md", "sphere_box.glsl"]),
+        ("hlsl", &["README.md", "sphere_box.hlsl"]),
+        ("wgsl", &["README.md", "sphere_box.wgsl"]),
+    ];
+    for (engine, files) in expected {
+        let out = run_in(&dir, &["export", "sphere_box", "--target", engine, "-o", engine]);
+        assert_ok(&out);
+        let written: Vec<String> = files_in(&dir.join(engine)).into_iter().collect();
+        assert_eq!(written, files.iter().map(|f| f.to_string()).collect::<Vec<_>>(), "{engine}");
+    }
+    let out = run_in(&dir, &["export", "sphere_box", "--target", "shadertoy"]);
+    assert_ok(&out);
+    assert!(stdout(&out).contains("void mainImage("), "{}", stdout(&out));
 }
 
 /// `--camera-path` writes a glTF 2.0 file that the `gltf` crate imports (buffers included): one perspective camera
@@ -569,6 +595,7 @@ fn bad_input_is_one_clear_line_and_the_right_exit_status() {
         (vec!["export", "hello_world", "--target", "dxil"], 2, "unknown export target `dxil`".into()),
         (vec!["export", "mandelbrot_zoom", "--camera-path", "--fps", "1e9"], 2, "lower --fps".into()),
         (vec!["export", "hello_world", "--target", "wgsl", "--fps", "24"], 2, "go with --camera-path".into()),
+        (vec!["export", "hello_world", "--target", "godot"], 2, "name a directory for them with -o DIR".into()),
         (vec!["mesh", "hello_world", "-o", "out.fbx"], 2, "meshes are written as .glb, .ply, .stl or .obj".into()),
         (vec!["mesh", "hello_world", "-o", "a.ply", "--resolution", "4"], 2, "invalid value '4'".into()),
         (vec!["mesh", "hello_world", "-o", "a.ply", "--bounds", "1,1,1,0,0,0"], 2, "each minimum must be below".into()),

@@ -1,6 +1,6 @@
 //! The generated kernel text: snapshots of the OpenCL C, WGSL and native Rust of every built-in scene (one file per
-//! scene per language; the agreement suite pins every row's code the same way), naga validation of every WGSL module,
-//! and checks that a kernel holds only what its scene needs.
+//! scene per language; the agreement suite pins every row's code the same way) and of its engine libraries (GLSL,
+//! HLSL, WGSL), naga validation of every WGSL module, and checks that a kernel holds only what its scene needs.
 
 use fractal::dsl::back::{opencl, rust, wgsl, Entry};
 use fractal::dsl::{compile, lower::lower, parse::parse_str};
@@ -18,6 +18,29 @@ fn every_built_in_scene_has_pinned_kernels() {
         snapshot("opencl", name, scene.opencl());
         snapshot("wgsl", name, scene.wgsl());
         snapshot("rust", name, &rust::write(&lower(scene.scene()), "fractal_dsl"));
+    }
+}
+
+/// The function libraries of the engine packages, one file per scene per language, and every file of each engine's
+/// package for one scene with a parameter (the engine glue around the libraries).
+#[test]
+fn every_built_in_scene_has_pinned_engine_libraries() {
+    use fractal::runtime::package::{package, Engine};
+    for (name, scene) in scenes::ALL {
+        for (engine, language) in
+            [(Engine::Glsl, "library_glsl"), (Engine::Hlsl, "library_hlsl"), (Engine::Wgsl, "library_wgsl")]
+        {
+            let files = package(scene.scene(), name, engine).unwrap_or_else(|e| panic!("{name} for {engine}: {e}"));
+            snapshot(language, name, &files.files[0].contents);
+        }
+    }
+    let name = "amazing_box";
+    let scene = scenes::ALL.iter().find(|(n, _)| *n == name).expect("the amazing box").1;
+    assert!(!scene.scene().params().is_empty(), "{name} has no parameter to show");
+    for engine in Engine::ALL {
+        let files = package(scene.scene(), name, engine).unwrap_or_else(|e| panic!("{name} for {engine}: {e}"));
+        let all: String = files.files.iter().map(|f| format!("===== {} =====\n{}\n", f.name, f.contents)).collect();
+        snapshot("packages", &format!("{name}_{engine}"), &all);
     }
 }
 

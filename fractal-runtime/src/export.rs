@@ -65,13 +65,14 @@ impl Target {
     /// Every target, in the order `--help` lists them.
     pub const ALL: [Target; 6] = [Target::OpenCl, Target::Wgsl, Target::Glsl, Target::Hlsl, Target::Msl, Target::SpirV];
 
-    /// The name the command line and [`FromStr`] use.
+    /// The name the command line and [`FromStr`] use. WGSL, GLSL and HLSL carry `-kernel`: the plain language
+    /// names are the function libraries of [`crate::package`].
     pub fn name(self) -> &'static str {
         match self {
             Target::OpenCl => "opencl",
-            Target::Wgsl => "wgsl",
-            Target::Glsl => "glsl",
-            Target::Hlsl => "hlsl",
+            Target::Wgsl => "wgsl-kernel",
+            Target::Glsl => "glsl-kernel",
+            Target::Hlsl => "hlsl-kernel",
             Target::Msl => "msl",
             Target::SpirV => "spirv",
         }
@@ -104,7 +105,7 @@ impl fmt::Display for Target {
 
 /// A target name that is not one of [`Target::ALL`].
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("unknown export target `{0}`: expected one of opencl, wgsl, glsl, hlsl, msl, spirv")]
+#[error("unknown export target `{0}`: expected one of opencl, wgsl-kernel, glsl-kernel, hlsl-kernel, msl, spirv")]
 pub struct UnknownTarget(pub String);
 
 impl FromStr for Target {

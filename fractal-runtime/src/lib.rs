@@ -58,6 +58,7 @@ pub mod frame;
 pub mod image;
 pub mod mesh;
 pub mod output;
+pub mod package;
 pub mod quality;
 pub mod renderer;
 pub mod select;

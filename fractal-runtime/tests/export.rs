@@ -7,8 +7,11 @@
 //!
 //! The built-in scenes and their kernels change as the compiler does, so nothing here pins kernel text.
 
+mod common;
+
 use std::path::{Path, PathBuf};
-use std::process::Command;
+
+use common::{run_validator, tool_available};
 
 use fractal_dsl::builder::{scene, sphere};
 use fractal_dsl::eval::{Env, Sample};
@@ -16,45 +19,15 @@ use fractal_dsl::math::{v3, Real, V3};
 use fractal_dsl::{compile, CompiledScene, DefaultParams, Kernels, NativeFns, Scene};
 use fractal_runtime::export::{export, export_compiled, export_scene, ExportError, Exported, Target, ENTRY_POINT};
 
-/// Every built-in scene's file name (without extension) and compiled kernels.
+/// Every built-in scene's file name (without extension), scene and compiled kernels.
 fn builtin_scenes() -> Vec<(String, Scene, Kernels)> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/fractal");
-    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
-        .unwrap_or_else(|e| panic!("cannot list {}: {e}", dir.display()))
-        .map(|entry| entry.expect("directory entry").path())
-        .filter(|p| p.extension().is_some_and(|e| e == "fractal"))
-        .collect();
-    files.sort();
-    assert!(!files.is_empty(), "no .fractal files in {}", dir.display());
-    files
+    common::builtin_scenes()
         .into_iter()
-        .map(|path| {
-            let name = path.file_stem().expect("file name").to_string_lossy().into_owned();
-            let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-            let scene = fractal_dsl::parse::parse_str(&text).unwrap_or_else(|e| panic!("{}:{e}", path.display()));
+        .map(|(name, scene)| {
             let kernels = compile(&scene).unwrap();
             (name, scene, kernels)
         })
         .collect()
-}
-
-fn validators_required() -> bool {
-    std::env::var("FRACTAL_REQUIRE_GPU_BACKENDS").is_ok_and(|v| v == "1")
-}
-
-/// Whether the external validator `tool` can be run; a missing one fails the test only when it is required.
-fn tool_available(tool: &str) -> bool {
-    let package = if tool == "spirv-val" { "spirv-tools" } else { "glslang-tools" };
-    match Command::new(tool).arg("--version").output() {
-        Ok(_) => true,
-        Err(e) if validators_required() => {
-            panic!("{tool} is required (FRACTAL_REQUIRE_GPU_BACKENDS=1) but cannot be run ({e}): install {package}")
-        }
-        Err(e) => {
-            eprintln!("note: skipping the {tool} check, {tool} cannot be run ({e}): install {package}");
-            false
-        }
-    }
 }
 
 /// Writes an export to a file of its own (per process, so concurrent runs cannot overwrite each other's files).
@@ -64,20 +37,6 @@ fn write_export(scene: &str, target: Target, exported: &Exported) -> PathBuf {
     let path = dir.join(format!("{scene}.{}", target.extension()));
     std::fs::write(&path, exported.as_bytes()).expect("write the export");
     path
-}
-
-/// Runs a validator on `file`; its output is the failure message.
-fn run_validator(tool: &str, args: &[&str], file: &Path) {
-    let output = Command::new(tool).args(args).arg(file).output().expect("run the validator");
-    assert!(
-        output.status.success(),
-        "{tool} {} rejected {} ({}):\n{}{}",
-        args.join(" "),
-        file.display(),
-        output.status,
-        String::from_utf8_lossy(&output.stdout),
-        String::from_utf8_lossy(&output.stderr)
-    );
 }
 
 /// Removes the files of a check that passed (one that failed leaves them for inspection).
@@ -290,7 +249,7 @@ fn target_names_round_trip_and_extensions_are_distinct() {
         assert_eq!(target.name().to_uppercase().parse::<Target>(), Ok(target));
     }
     let names: Vec<&str> = Target::ALL.iter().map(|t| t.name()).collect();
-    assert_eq!(names, ["opencl", "wgsl", "glsl", "hlsl", "msl", "spirv"]);
+    assert_eq!(names, ["opencl", "wgsl-kernel", "glsl-kernel", "hlsl-kernel", "msl", "spirv"]);
     let extensions: Vec<&str> = Target::ALL.iter().map(|t| t.extension()).collect();
     assert_eq!(extensions, ["cl", "wgsl", "comp", "hlsl", "metal", "spv"]);
     let err = "vulkan".parse::<Target>().expect_err("unknown target");

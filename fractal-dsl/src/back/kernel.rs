@@ -1,8 +1,10 @@
 //! The GPU program, written once for every GPU language: the order of its sections, the framing of the lowered scene
 //! functions, the functions built on them (normal, ambient occlusion, shadow) and the `render` and `probe` kernels
-//! ([`super::Entry`]) that implement [`super::render`]. What differs between the languages is a [`Dialect`]; each GPU
-//! writer (`back/opencl/writer.rs`, `back/wgsl/writer.rs`) is one `Dialect` impl, and the [`Syntax`] the shared body
-//! walker needs follows from it.
+//! ([`super::Entry`]) that implement [`super::render`], or, for another engine, the same functions as a library
+//! ([`write_library`]: `sdf`, `sdf_normal`, `sdf_material`, the bound as constants and `sdf_raymarch`, whose march
+//! and shading are the `render` kernel's statements). What differs between the languages is a [`Dialect`] (and,
+//! for the kernels, a [`KernelDialect`]); each GPU writer (`back/<lang>/writer.rs`) is one impl, and the [`Syntax`]
+//! the shared body walker needs follows from it.
 
 use std::fmt::Write;
 
@@ -21,8 +23,8 @@ const COMPONENTS: [&str; 4] = ["x", "y", "z", "w"];
 pub trait Dialect {
     /// The language's name in the generated file's first line.
     fn language(&self) -> &'static str;
-    /// Type definitions and resource bindings, written before the helpers.
-    fn declarations(&self, out: &mut String, layout: FrameLayout, entry: Entry);
+    /// The definition of the `Sample` struct (the sample function's result), with a blank line after it.
+    fn sample_struct(&self) -> String;
 
     fn type_name(&self, ty: Ty) -> &'static str;
     fn vec4_type(&self) -> &'static str;
@@ -37,6 +39,16 @@ pub trait Dialect {
     fn construct(&self, ty: &str, components: &str) -> String;
     /// A scalar passed where a built-in takes a vector of the other operand's size (`clamp`'s bounds).
     fn vector_operand(&self, scalar: &str) -> String;
+    /// Per component of the 3-vector `v`: `if_nonnegative` where it is ≥ 0 (−0 included), else `if_negative`.
+    fn select_nonnegative(&self, v: &str, if_nonnegative: &str, if_negative: &str) -> String {
+        // OpenCL's and WGSL's vector `select` take (if false, if true, condition).
+        let zero = self.construct(self.type_name(Ty::V3), &self.lit(0.0));
+        format!("select({if_negative}, {if_nonnegative}, {v} >= {zero})")
+    }
+    /// The name of linear interpolation, `mix(a, b, t)`.
+    fn mix_name(&self) -> &'static str {
+        "mix"
+    }
     /// The name of a math built-in.
     fn math_name(&self, f: MathFn) -> &'static str;
     /// A call of a math function in lowered code: the built-in, or the language's polyfill for it.
@@ -58,7 +70,7 @@ pub trait Dialect {
     fn local(&self, name: &str, ty: &str, value: &str, mutable: bool) -> String {
         self.declare(name, ty, value, mutable)
     }
-    /// A mutable declaration without a value.
+    /// A mutable declaration whose value every path assigns later.
     fn uninitialised(&self, name: &str, ty: &str) -> String;
     /// The opening line of `for` over `i` from 0 while `i < {bound}` (the bound may carry `&& …`).
     fn counted_loop(&self, bound: &str) -> String;
@@ -72,6 +84,14 @@ pub trait Dialect {
     fn function_open(&self, ret: &str, name: &str, params: &[(&str, &str)]) -> String;
     /// The statements ending `scene_sample`: return a `Sample` of the named fields' values, in `Sample`'s order.
     fn sample_return(&self, fields: &[(&str, String)]) -> Vec<String>;
+    /// A module-scope constant.
+    fn global_constant(&self, name: &str, ty: &str, value: &str) -> String;
+}
+
+/// What a language's compute kernels spell their own way ([`write`]): resources, entry points and pixel output.
+pub trait KernelDialect: Dialect {
+    /// Type definitions and resource bindings, written before the helpers.
+    fn declarations(&self, out: &mut String, layout: FrameLayout, entry: Entry);
     /// Writes the `render` entry point's first lines, through its `{` and the statements naming the invocation's
     /// pixel; returns the pixel's x and y, whose type is [`Self::pixel_index_type`].
     fn render_open(&self, out: &mut String) -> [&'static str; 2];
@@ -85,8 +105,9 @@ pub trait Dialect {
     fn probe_output(&self) -> &'static str;
 }
 
-/// The [`Syntax`] of the lowered bodies in a GPU language.
-struct GpuSyntax<'a, D>(&'a D);
+/// The [`Syntax`] of the lowered bodies in a GPU language; time and parameters come from the frame, or from the
+/// host's globals in a library.
+struct GpuSyntax<'a, D>(&'a D, Option<&'a Library>);
 
 impl<D: Dialect> Syntax for GpuSyntax<'_, D> {
     fn type_name(&self, ty: Ty) -> &'static str {
@@ -105,10 +126,16 @@ impl<D: Dialect> Syntax for GpuSyntax<'_, D> {
         self.0.index_lit(v)
     }
     fn time(&self) -> String {
-        self.0.frame_field("origin.w")
+        match self.1 {
+            Some(lib) => lib.time.clone(),
+            None => self.0.frame_field("origin.w"),
+        }
     }
     fn param(&self, slot: usize) -> String {
-        self.0.frame_field(&format!("params[{}].{}", slot / 4, COMPONENTS[slot % 4]))
+        match self.1 {
+            Some(lib) => lib.params[slot].clone(),
+            None => self.0.frame_field(&format!("params[{}].{}", slot / 4, COMPONENTS[slot % 4])),
+        }
     }
     fn orbit(&self) -> Option<String> {
         self.0.frame_parameter().map(|_| "frame".to_string())
@@ -159,7 +186,7 @@ impl<D: Dialect> Syntax for GpuSyntax<'_, D> {
 
 /// Writes traced leaf functions in `dialect`, each followed by a blank line.
 pub fn write_functions<D: Dialect>(functions: &[Function], dialect: &D) -> String {
-    let syn = GpuSyntax(dialect);
+    let syn = GpuSyntax(dialect, None);
     let mut out = String::new();
     for f in functions {
         // An orbit parameter is the frame, where the language passes it (see `Syntax::orbit`).
@@ -181,8 +208,8 @@ pub fn write_functions<D: Dialect>(functions: &[Function], dialect: &D) -> Strin
 }
 
 /// Writes the complete GPU program for `entry` in `dialect`.
-pub fn write<D: Dialect>(program: &Program, entry: Entry, dialect: &D) -> String {
-    let mut k = Kernel { p: program, d: dialect, out: String::new() };
+pub fn write<D: KernelDialect>(program: &Program, entry: Entry, dialect: &D) -> String {
+    let mut k = Kernel { p: program, d: dialect, lib: None, out: String::new() };
     let what = match entry {
         Entry::Render => "render kernel",
         Entry::Probe => "probe kernel",
@@ -204,10 +231,89 @@ pub fn write<D: Dialect>(program: &Program, entry: Entry, dialect: &D) -> String
             if program.settings.shadows != Shadows::None {
                 k.shadow();
             }
-            k.render();
+            k.render(dialect);
         }
-        Entry::Probe => k.probe(),
+        Entry::Probe => k.probe(dialect),
     }
+    k.out
+}
+
+/// What a library's host provides in place of the frame: the expressions reading its time and parameters (globals
+/// the host sets) and the lights' values, constant in a library.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Library {
+    /// The time in seconds.
+    pub time: String,
+    /// Each parameter, in slot order.
+    pub params: Vec<String>,
+    /// The value of each of the program's lights, in order.
+    pub lights: Vec<LightValue>,
+    /// Text written after the first comment line and before the `Sample` struct: the host's declarations.
+    pub prologue: String,
+}
+
+/// A light's value in a library, as the frame would hold it ([`FrameLayout`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LightValue {
+    /// Unit direction towards a directional light, or a point light's position.
+    pub position: [f64; 3],
+    /// Colour · intensity.
+    pub radiance: [f64; 3],
+}
+
+/// The functions of a library ([`write_library`]) an engine calls, by name.
+pub mod library {
+    /// `float sdf(vec3 p)`: the scene's distance estimate.
+    pub const SDF: &str = "sdf";
+    /// `vec3 sdf_normal(vec3 p)`: the unit surface normal (tetrahedral central differences of [`SDF`] at
+    /// [`NORMAL_EPSILON`]).
+    pub const NORMAL: &str = "sdf_normal";
+    /// `vec3 sdf_material(vec3 p)`: the albedo of the surface at p.
+    pub const MATERIAL: &str = "sdf_material";
+    /// `vec4 sdf_raymarch(vec3 ro, vec3 rd, float footprint)`: the viewer's march and shading along the unit ray
+    /// (ro, rd) whose pixel spans `footprint` radians (2·tan(fov/2)/height); xyz = the linear colour before clamping
+    /// and gamma, w = the hit's ray distance t, or −1 for a miss.
+    pub const RAYMARCH: &str = "sdf_raymarch";
+    /// `vec3 sdf_display(vec3 col)`: clamps a linear colour and encodes it with the scene's gamma, as the viewer
+    /// does before writing a pixel (for targets that are not sRGB).
+    pub const DISPLAY: &str = "sdf_display";
+    /// Constant: the scene's bound, min corner (a box of ±max distance for an unbounded scene).
+    pub const BOUND_MIN: &str = "SDF_BOUND_MIN";
+    /// Constant: the bound's max corner.
+    pub const BOUND_MAX: &str = "SDF_BOUND_MAX";
+    /// Constant: the centre of the bounding sphere (the box's centre).
+    pub const BOUND_CENTER: &str = "SDF_BOUND_CENTER";
+    /// Constant: the radius of the bounding sphere (half the box's diagonal).
+    pub const BOUND_RADIUS: &str = "SDF_BOUND_RADIUS";
+    /// Constant: the offset [`NORMAL`] differences over.
+    pub const NORMAL_EPSILON: &str = "SDF_NORMAL_EPSILON";
+    /// Constant: the largest ray distance [`RAYMARCH`] marches.
+    pub const MAX_DISTANCE: &str = "SDF_MAX_DISTANCE";
+}
+
+/// Writes `program` as a function library in `dialect` ([`library`] names its functions and constants), with the
+/// host values `lib` names. The program should be lowered without a perturbation reference (a library has no frame
+/// to hold its orbit).
+pub fn write_library<D: Dialect>(program: &Program, lib: &Library, dialect: &D) -> String {
+    let mut k = Kernel { p: program, d: dialect, lib: Some(lib), out: String::new() };
+    let _ = writeln!(
+        k.out,
+        "// fractal: {} SDF library, generated from a scene description. Edit the scene, not this file.\n",
+        dialect.language()
+    );
+    k.out.push_str(&lib.prologue);
+    k.out.push_str(&dialect.sample_struct());
+    k.library_constants();
+    k.leaf_functions();
+    k.scene_functions();
+    k.normal();
+    if let Some(strength) = program.settings.ambient_occlusion {
+        k.ambient_occlusion(strength);
+    }
+    if program.settings.shadows != Shadows::None {
+        k.shadow();
+    }
+    k.library_functions();
     k.out
 }
 
@@ -239,6 +345,8 @@ fn builtin(name: &str, args: &[&str]) -> String {
 struct Kernel<'a, D> {
     p: &'a Program,
     d: &'a D,
+    /// Where the program's host values come from in a library; `None` in a kernel (the frame).
+    lib: Option<&'a Library>,
     out: String,
 }
 
@@ -269,9 +377,14 @@ impl<D: Dialect> Kernel<'_, D> {
         self.d.local(name, ty, value, true)
     }
 
+    /// Whether a function that reads the frame when `reads_frame` takes it as an argument (never in a library,
+    /// which reads the host's globals instead).
+    fn passes_frame(&self, reads_frame: bool) -> bool {
+        reads_frame && self.lib.is_none() && self.d.frame_parameter().is_some()
+    }
     /// A call of a function that reads the frame when `reads_frame`.
     fn call(&self, name: &str, args: &str, reads_frame: bool) -> String {
-        let frame = if reads_frame && self.d.frame_parameter().is_some() { ", frame" } else { "" };
+        let frame = if self.passes_frame(reads_frame) { ", frame" } else { "" };
         format!("{name}({args}{frame})")
     }
     fn de(&self, p: &str) -> String {
@@ -280,7 +393,7 @@ impl<D: Dialect> Kernel<'_, D> {
     /// Writes the first line of a function that reads the frame when `reads_frame`.
     fn function_open(&mut self, ret: &str, name: &str, params: &[(&str, &str)], reads_frame: bool) {
         let mut params = params.to_vec();
-        if let Some(frame) = self.d.frame_parameter().filter(|_| reads_frame) {
+        if let Some(frame) = self.d.frame_parameter().filter(|_| self.passes_frame(reads_frame)) {
             params.push(("frame", frame));
         }
         let open = self.d.function_open(ret, name, &params);
@@ -296,7 +409,7 @@ impl<D: Dialect> Kernel<'_, D> {
     }
 
     fn scene_functions(&mut self) {
-        let (p, syn) = (self.p, GpuSyntax(self.d));
+        let (p, syn) = (self.p, GpuSyntax(self.d, self.lib));
         let (float, vec3) = (self.float(), self.vec3());
         self.function_open(float, "scene_de", &[("p", vec3)], p.distance_reads_frame);
         let spelling = Spelling::new(&p.distance, &syn, &[p.distance_result]);
@@ -395,34 +508,72 @@ impl<D: Dialect> Kernel<'_, D> {
         self.function_close();
     }
 
-    fn render(&mut self) {
-        let (d, p) = (self.d, self.p);
-        let s = &p.settings;
-        let (float, vec3) = (self.float(), self.vec3());
-        let (l1, l2, l3) = (Level(1), Level(2), Level(3));
-        let (zero, one, two) = (self.lit(0.0), self.lit(1.0), self.lit(2.0));
+    /// Pixel footprint per unit distance: the frame's, or a library function's argument `footprint`.
+    fn footprint(&self) -> String {
+        match self.lib {
+            Some(_) => "footprint".to_string(),
+            None => self.d.frame_field("forward.w"),
+        }
+    }
+    /// Light i's direction or position, and its colour · intensity: the frame's, or a library's constants.
+    fn light(&self, i: usize) -> (String, String) {
+        match self.lib {
+            Some(lib) => (self.vec3_lit(lib.lights[i].position), self.vec3_lit(lib.lights[i].radiance)),
+            None => (
+                self.d.frame_field(&format!("lights[{}].xyz", 2 * i)),
+                self.d.frame_field(&format!("lights[{}].xyz", 2 * i + 1)),
+            ),
+        }
+    }
+
+    fn render<K: KernelDialect>(&mut self, kernel: &K) {
+        let d = self.d;
+        let float = self.float();
+        let (l1, l2) = (Level(1), Level(2));
+        let (two, half) = (self.lit(2.0), self.lit(0.5));
 
         // 1. The ray through the pixel's centre.
-        let [px, py] = d.render_open(&mut self.out);
-        let index = d.pixel_index_type();
+        let [px, py] = kernel.render_open(&mut self.out);
+        let index = kernel.pixel_index_type();
         self.line(l1, &self.constant("w", index, &d.cast(index, &d.frame_field("right.w"))));
         self.line(l1, &self.constant("h", index, &d.cast(index, &d.frame_field("up.w"))));
         self.line(l1, &format!("if ({px} >= w || {py} >= h) {{"));
         self.line(l2, "return;");
         self.line(l1, "}");
-        let (half, w, h) = (self.lit(0.5), d.cast(float, "w"), d.cast(float, "h"));
+        let (w, h) = (d.cast(float, "w"), d.cast(float, "h"));
         let u = format!("({two} * ({} + {half}) - {w}) / {h}", d.cast(float, px));
         let v = format!("-({two} * ({} + {half}) - {h}) / {h}", d.cast(float, py));
         self.line(l1, &self.constant("u", float, &u));
         self.line(l1, &self.constant("v", float, &v));
-        self.line(l1, &self.constant("ro", vec3, &d.frame_field("origin.xyz")));
+        self.line(l1, &self.constant("ro", self.vec3(), &d.frame_field("origin.xyz")));
         let rd = format!(
             "normalize({} + u * {} + v * {})",
             d.frame_field("forward.xyz"),
             d.frame_field("right.xyz"),
             d.frame_field("up.xyz")
         );
-        self.line(l1, &self.constant("rd", vec3, &rd));
+        self.line(l1, &self.constant("rd", self.vec3(), &rd));
+
+        // 2.–6. March and shade.
+        self.march();
+        self.shade();
+
+        // 7. Output.
+        self.display();
+        for statement in kernel.pack_pixel() {
+            self.line(l1, statement);
+        }
+        self.out.push_str("}\n");
+    }
+
+    /// Steps 2 and 3 of [`super::render`] from `ro` along the unit `rd`: declares and sets `t`, `t_far`, `hit`,
+    /// `eps` and (with glow) `glow`.
+    fn march(&mut self) {
+        let (d, p) = (self.d, self.p);
+        let s = &p.settings;
+        let (float, vec3) = (self.float(), self.vec3());
+        let (l1, l2, l3) = (Level(1), Level(2), Level(3));
+        let (zero, one) = (self.lit(0.0), self.lit(1.0));
 
         // 2. Clip to the scene's bound.
         self.line(l1, &self.variable("t", float, &zero));
@@ -433,9 +584,7 @@ impl<D: Dialect> Kernel<'_, D> {
             let min_direction = d.construct(vec3, &self.lit(MIN_DIRECTION));
             let m = self.math(MathFn::Max, &[&self.math(MathFn::Abs, &["rd"]), &min_direction]);
             self.line(l2, &self.constant("m", vec3, &m));
-            // Both languages' vector `select` takes (if false, if true, condition).
-            let safe = format!("select(-m, m, rd >= {})", d.construct(vec3, &zero));
-            self.line(l2, &self.constant("safe", vec3, &safe));
+            self.line(l2, &self.constant("safe", vec3, &d.select_nonnegative("rd", "m", "-m")));
             self.line(l2, &self.constant("t0", vec3, &format!("({} - ro) / safe", self.vec3_lit(b.min))));
             self.line(l2, &self.constant("t1", vec3, &format!("({} - ro) / safe", self.vec3_lit(b.max))));
             self.line(l2, &self.constant("tn", vec3, &self.math(MathFn::Min, &["t0", "t1"])));
@@ -459,7 +608,7 @@ impl<D: Dialect> Kernel<'_, D> {
         }
         let eps = match s.epsilon {
             HitEpsilon::Fixed(e) => self.lit(e),
-            HitEpsilon::Pixel(k) => format!("{} * {} * t", self.lit(k), d.frame_field("forward.w")),
+            HitEpsilon::Pixel(k) => format!("{} * {} * t", self.lit(k), self.footprint()),
         };
         self.line(l1, &d.counted_loop(&format!("{} && t <= t_far", s.max_steps)));
         self.line(l2, &self.constant("d", float, &self.de("ro + rd * t")));
@@ -474,25 +623,35 @@ impl<D: Dialect> Kernel<'_, D> {
         }
         self.line(l2, "t += d;");
         self.line(l1, "}");
+    }
+
+    /// Steps 4 to 6 of [`super::render`] after [`Self::march`]: declares and sets `col`, the linear colour.
+    fn shade(&mut self) {
+        let (d, p) = (self.d, self.p);
+        let s = &p.settings;
+        let (float, vec3) = (self.float(), self.vec3());
+        let (l1, l2, l3) = (Level(1), Level(2), Level(3));
+        let (zero, one, two) = (self.lit(0.0), self.lit(1.0), self.lit(2.0));
 
         // 4. Hit shading.
         self.line(l1, &d.uninitialised("col", vec3));
         self.line(l1, "if (hit) {");
         self.line(l2, &self.constant("p", vec3, "ro + rd * t"));
-        let n = self.call("scene_normal", "p, eps", p.distance_reads_frame);
+        let distance_frame = p.distance_reads_frame;
+        let n = self.call("scene_normal", "p, eps", distance_frame);
         self.line(l2, &self.constant("n", vec3, &n));
         // A perturbed pattern reads the hit relative to the camera, rd·t: exact to t's precision at any zoom.
         let sample_args = if p.reference.is_some() { "p, rd * t" } else { "p" };
-        self.line(l2, &self.constant("m", "Sample", &self.call("scene_sample", sample_args, p.sample_reads_frame)));
+        let sample = self.call("scene_sample", sample_args, p.sample_reads_frame);
+        self.line(l2, &self.constant("m", "Sample", &sample));
         if s.ambient_occlusion.is_some() {
-            let ao = self.call("scene_ao", "p, n", p.distance_reads_frame);
+            let ao = self.call("scene_ao", "p, n", distance_frame);
             self.line(l2, &format!("col = m.albedo * (m.ambient * {ao});"));
         } else {
             self.line(l2, "col = m.albedo * m.ambient;");
         }
         for (i, shape) in p.lights.iter().enumerate() {
-            let position = d.frame_field(&format!("lights[{}].xyz", 2 * i));
-            let color = d.frame_field(&format!("lights[{}].xyz", 2 * i + 1));
+            let (position, color) = self.light(i);
             self.line(l2, "{");
             match shape {
                 LightShape::Directional => {
@@ -512,7 +671,7 @@ impl<D: Dialect> Kernel<'_, D> {
                 self.line(l3, &self.variable("shadow", float, &one));
                 self.line(l3, &format!("if (ndl > {zero}) {{"));
                 let shadow =
-                    self.call("scene_shadow", &format!("p + n * ({two} * eps), l, limit, eps"), p.distance_reads_frame);
+                    self.call("scene_shadow", &format!("p + n * ({two} * eps), l, limit, eps"), distance_frame);
                 self.line(Level(4), &format!("shadow = {shadow};"));
                 self.line(l3, "}");
                 " * shadow"
@@ -530,7 +689,7 @@ impl<D: Dialect> Kernel<'_, D> {
         }
         if let Some(fog) = &s.fog {
             let attenuation = format!("{one} - exp({} * t)", self.lit(-fog.density));
-            let fogged = builtin("mix", &["col", &self.vec3_lit(fog.color), &attenuation]);
+            let fogged = format!("{}(col, {}, {attenuation})", d.mix_name(), self.vec3_lit(fog.color));
             self.line(l2, &format!("col = {fogged};"));
         }
 
@@ -544,26 +703,85 @@ impl<D: Dialect> Kernel<'_, D> {
             let saturation = self.math(MathFn::Min, &[&format!("glow / {}", self.lit(GLOW_NORM)), &one]);
             self.line(l1, &format!("col += {} * {saturation};", self.vec3_lit(g)));
         }
-
-        // 7. Output.
-        let clamped = builtin("clamp", &["col", &d.vector_operand(&zero), &d.vector_operand(&one)]);
-        self.line(l1, &format!("col = {clamped};"));
-        if s.gamma == 2.0 {
-            self.line(l1, &format!("col = {};", self.math(MathFn::Sqrt, &["col"])));
-        } else if s.gamma != 1.0 {
-            let exponent = d.construct(vec3, &self.lit(1.0 / s.gamma));
-            self.line(l1, &format!("col = {};", self.math(MathFn::Pow, &["col", &exponent])));
-        }
-        for statement in d.pack_pixel() {
-            self.line(l1, statement);
-        }
-        self.out.push_str("}\n");
     }
 
-    fn probe(&mut self) {
+    /// Step 7 of [`super::render`] up to packing: `col` clamped to [0, 1] and gamma-encoded in place.
+    fn display(&mut self) {
+        let d = self.d;
+        let s = &self.p.settings;
+        let (zero, one) = (self.lit(0.0), self.lit(1.0));
+        let clamped = builtin("clamp", &["col", &d.vector_operand(&zero), &d.vector_operand(&one)]);
+        self.line(Level(1), &format!("col = {clamped};"));
+        if s.gamma == 2.0 {
+            self.line(Level(1), &format!("col = {};", self.math(MathFn::Sqrt, &["col"])));
+        } else if s.gamma != 1.0 {
+            let exponent = self.d.construct(self.vec3(), &self.lit(1.0 / s.gamma));
+            self.line(Level(1), &format!("col = {};", self.math(MathFn::Pow, &["col", &exponent])));
+        }
+    }
+
+    /// The bound and the constants the library's functions use ([`library`]).
+    fn library_constants(&mut self) {
+        let (p, d) = (self.p, self.d);
+        let (float, vec3) = (self.float(), self.vec3());
+        let reach = p.settings.max_distance;
+        let (min, max) = p.bound.map_or(([-reach; 3], [reach; 3]), |b| (b.min, b.max));
+        let center: [f64; 3] = std::array::from_fn(|i| 0.5 * (min[i] + max[i]));
+        let radius = (0..3).map(|i| 0.5 * (max[i] - min[i])).map(|h| h * h).sum::<f64>().sqrt();
+        let normal_epsilon = match p.settings.epsilon {
+            HitEpsilon::Fixed(e) => e,
+            // A pixel epsilon has no fixed size: a thousandth of the bound's radius resolves the surface's shape.
+            HitEpsilon::Pixel(_) => 1e-3 * radius.min(reach),
+        };
+        for (name, ty, value) in [
+            (library::BOUND_MIN, vec3, self.vec3_lit(min)),
+            (library::BOUND_MAX, vec3, self.vec3_lit(max)),
+            (library::BOUND_CENTER, vec3, self.vec3_lit(center)),
+            (library::BOUND_RADIUS, float, self.lit(radius)),
+            (library::NORMAL_EPSILON, float, self.lit(normal_epsilon)),
+            (library::MAX_DISTANCE, float, self.lit(reach)),
+        ] {
+            self.line(Level(0), &d.global_constant(name, ty, &value));
+        }
+        self.out.push('\n');
+    }
+
+    /// The functions an engine calls ([`library`]), on the scene functions.
+    fn library_functions(&mut self) {
+        let (float, vec3, vec4) = (self.float(), self.vec3(), self.d.vec4_type());
+        let l1 = Level(1);
+        self.function_open(float, library::SDF, &[("p", vec3)], false);
+        self.line(l1, &format!("return {};", self.de("p")));
+        self.function_close();
+
+        self.function_open(vec3, library::NORMAL, &[("p", vec3)], false);
+        let normal = self.call("scene_normal", &format!("p, {}", library::NORMAL_EPSILON), false);
+        self.line(l1, &format!("return {normal};"));
+        self.function_close();
+
+        self.function_open(vec3, library::MATERIAL, &[("p", vec3)], false);
+        self.line(l1, &format!("return {}.albedo;", self.call("scene_sample", "p", false)));
+        self.function_close();
+
+        self.function_open(vec4, library::RAYMARCH, &[("ro", vec3), ("rd", vec3), ("footprint", float)], false);
+        self.march();
+        self.shade();
+        let t = self.d.select("hit", "t", &self.lit(-1.0));
+        let t = if self.d.select_prec() == Prec::Atom { t } else { format!("({t})") };
+        self.line(l1, &format!("return {};", self.d.construct(vec4, &format!("col, {t}"))));
+        self.function_close();
+
+        self.function_open(vec3, library::DISPLAY, &[("colour", vec3)], false);
+        self.line(l1, &self.variable("col", vec3, "colour"));
+        self.display();
+        self.line(l1, "return col;");
+        self.function_close();
+    }
+
+    fn probe<K: KernelDialect>(&mut self, kernel: &K) {
         let (d, p) = (self.d, self.p);
         let (l1, l2) = (Level(1), Level(2));
-        let count = d.probe_open(&mut self.out);
+        let count = kernel.probe_open(&mut self.out);
         self.line(l1, &format!("if (i >= {count}) {{"));
         self.line(l2, "return;");
         self.line(l1, "}");
@@ -571,7 +789,7 @@ impl<D: Dialect> Kernel<'_, D> {
         let sample_args =
             if p.reference.is_some() { format!("p, p - {}", d.frame_field("origin.xyz")) } else { "p".to_string() };
         self.line(l1, &self.constant("s", "Sample", &self.call("scene_sample", &sample_args, p.sample_reads_frame)));
-        let (out, two, one, vec4) = (d.probe_output(), d.index_lit(2), d.index_lit(1), d.vec4_type());
+        let (out, two, one, vec4) = (kernel.probe_output(), d.index_lit(2), d.index_lit(1), d.vec4_type());
         let lighting = d.construct(vec4, &format!("{}, s.ambient, s.diffuse, s.specular", self.de("p")));
         self.line(l1, &format!("{out}[{two} * i] = {lighting};"));
         let albedo = d.construct(vec4, "s.albedo, s.shininess");

@@ -3,9 +3,12 @@
 //! functions alike; no formula is written here. What is shared lives here and in sibling modules: the uniform layout
 //! both GPU languages read, indentation and number formatting (this file); the statement walker over lowered bodies
 //! ([`syntax`]); the whole GPU program — function framing, normal, ambient occlusion, shadows and the `render` /
-//! `probe` kernels — written once against a per-language [`kernel::Dialect`], which is all the OpenCL C and WGSL
-//! writers implement ([`kernel`]); the render algorithm and its constants ([`render`]).
+//! `probe` kernels, or the same functions as a library for other engines — written once against a per-language
+//! [`kernel::Dialect`], which is all the OpenCL C, WGSL, GLSL and HLSL writers implement ([`kernel`]); the render
+//! algorithm and its constants ([`render`]).
 
+pub mod glsl;
+pub mod hlsl;
 pub mod kernel;
 pub mod opencl;
 pub mod render;

@@ -301,7 +301,13 @@ impl Plan {
     /// Prepares a scene already folded, whose parameter slots (taken before folding, which may drop a parameter's
     /// only use) are `params`.
     pub fn folded(folded: &Scene, params: Vec<ParamDecl>) -> Plan {
-        let reference = crate::analyse::reference(&folded.root);
+        Plan::folded_with(folded, params, true)
+    }
+
+    /// [`Plan::folded`], with the Mandelbrot patterns perturbed around a reference only when `perturb` (a
+    /// function library has no frame to hold the reference's orbit, so it iterates them plainly).
+    pub fn folded_with(folded: &Scene, params: Vec<ParamDecl>, perturb: bool) -> Plan {
+        let reference = crate::analyse::reference(&folded.root).filter(|_| perturb);
         let compiler = Compiler { params: &params, perturbed: reference.map(|r| r.axes) };
         Plan {
             root: compiler.node(&folded.root, true),

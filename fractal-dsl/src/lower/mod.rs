@@ -77,8 +77,18 @@ pub const REFERENCE_OFFSET: &str = "dp";
 
 /// Lowers a scene (folding it first).
 pub fn lower(scene: &Scene) -> Program {
+    lower_with(scene, true)
+}
+
+/// Lowers a scene for a function library ([`crate::back::kernel::write_library`]): like [`lower`], but its
+/// Mandelbrot patterns iterate plainly, with no perturbation reference.
+pub fn lower_library(scene: &Scene) -> Program {
+    lower_with(scene, false)
+}
+
+fn lower_with(scene: &Scene, perturb: bool) -> Program {
     let folded = fold::fold_scene(scene);
-    let plan = Plan::folded(&folded, scene.params());
+    let plan = Plan::folded_with(&folded, scene.params(), perturb);
     let walk = Walk { plan: &plan, guards: true };
     let params = plan.params.clone();
 

@@ -9,6 +9,7 @@ use clap::{Args, Parser, Subcommand};
 use crate::export::Target;
 use crate::frame::check_image_size;
 use crate::output::{Aov, FrameRange, Shard};
+use crate::package::Engine;
 use crate::select::BackendChoice;
 
 /// Most frames `bench --frames` times.
@@ -267,14 +268,17 @@ fn parse_truth_step(text: &str) -> Result<f64, String> {
 
 #[derive(Debug, Args)]
 #[command(after_help = "\
-Text targets go to standard output without -o. SPIR-V is binary: it needs -o, or a standard output that is not a
+Engine packages: -o DIR gets the package's files (a library, a ready material, a README); a one-file package
+(shadertoy) goes to standard output without -o.
+Kernels: text goes to standard output without -o. SPIR-V is binary: it needs -o, or a standard output that is not a
 terminal (a pipe or a file).")]
 pub struct ExportArgs {
     /// Built-in scene name or .fractal file
     pub scene: String,
-    /// Target language of the render kernel
-    #[arg(long, value_name = "TARGET", value_parser = parse_target, required_unless_present = "camera_path")]
-    pub target: Option<Target>,
+    /// An engine package (bevy, godot, unity, unreal, shadertoy, or the glsl, hlsl, wgsl function libraries; -o
+    /// names a directory) or a render kernel (opencl, wgsl-kernel, glsl-kernel, hlsl-kernel, msl, spirv)
+    #[arg(long, value_name = "TARGET", value_parser = parse_export_target, required_unless_present = "camera_path")]
+    pub target: Option<ExportTarget>,
     /// Export the scene's camera as a glTF 2.0 camera animation instead of a kernel (z mirrored: glTF is
     /// right-handed)
     #[arg(long, conflicts_with = "target")]
@@ -395,8 +399,25 @@ pub fn parse_backend(text: &str) -> Result<BackendChoice, String> {
     text.parse::<BackendChoice>().map_err(|e| e.to_string())
 }
 
-pub fn parse_target(text: &str) -> Result<Target, String> {
-    text.parse::<Target>().map_err(|e| e.to_string())
+/// What `fractal export --target` writes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ExportTarget {
+    /// A render kernel ([`crate::export`]).
+    Kernel(Target),
+    /// An engine package ([`crate::package`]).
+    Package(Engine),
+}
+
+pub fn parse_export_target(text: &str) -> Result<ExportTarget, String> {
+    if let Ok(engine) = text.parse::<Engine>() {
+        return Ok(ExportTarget::Package(engine));
+    }
+    text.parse::<Target>().map(ExportTarget::Kernel).map_err(|_| {
+        format!(
+            "unknown export target `{text}`: expected an engine package (bevy, godot, unity, unreal, shadertoy, \
+             glsl, hlsl, wgsl) or a kernel (opencl, wgsl-kernel, glsl-kernel, hlsl-kernel, msl, spirv)"
+        )
+    })
 }
 
 pub fn parse_frames(text: &str) -> Result<FrameRange, String> {

@@ -1,14 +1,16 @@
-//! `fractal export`: a scene's render kernel for another engine ([`crate::export`]) or its camera as a glTF animation
-//! ([`crate::output::gltf_camera`]), to a file (written atomically) or to standard output. SPIR-V is binary, so it
-//! goes to standard output only when that is not a terminal.
+//! `fractal export`: a scene as an engine package ([`crate::package`]: files into a directory), its render kernel
+//! ([`crate::export`]) or its camera as a glTF animation ([`crate::output::gltf_camera`]), to files (written
+//! atomically) or to standard output. SPIR-V is binary, so it goes to standard output only when that is not a
+//! terminal.
 
 use std::io::{IsTerminal, Write};
 
-use crate::cli::args::ExportArgs;
+use crate::cli::args::{ExportArgs, ExportTarget};
 use crate::cli::error::CliError;
 use crate::cli::scene::LoadedScene;
 use crate::cli::SceneLibrary;
 use crate::output::png::{prepare_output, write_atomic};
+use crate::package::Engine;
 
 /// Most samples a camera export writes (fps × seconds).
 const MAX_CAMERA_SAMPLES: f64 = 1e6;
@@ -21,6 +23,10 @@ pub fn export(args: &ExportArgs, library: &SceneLibrary) -> Result<(), CliError>
     if args.fps.is_some() || args.duration.is_some() || args.size.is_some() {
         return Err(CliError::usage("--fps, --duration and --size go with --camera-path, not --target"));
     }
+    let target = match target {
+        ExportTarget::Package(engine) => return export_package(args, &loaded, engine),
+        ExportTarget::Kernel(target) => target,
+    };
     let stdout = std::io::stdout();
     if args.output.is_none() && target.is_binary() && stdout.is_terminal() {
         return Err(CliError::usage(format!(
@@ -34,6 +40,35 @@ pub fn export(args: &ExportArgs, library: &SceneLibrary) -> Result<(), CliError>
     }
     let exported = loaded.export(target).map_err(|e| CliError::failure(format!("export to {target}: {e}")))?;
     write(args, exported.as_bytes(), &target.to_string())
+}
+
+/// An engine package: its files into the directory `-o` names (a one-file package may go to standard output).
+fn export_package(args: &ExportArgs, loaded: &LoadedScene, engine: Engine) -> Result<(), CliError> {
+    let package = crate::package::package(&loaded.scene, &loaded.name, engine)
+        .map_err(|e| CliError::failure(format!("package {} for {engine}: {e}", loaded.name)))?;
+    let Some(dir) = &args.output else {
+        return match package.files.as_slice() {
+            [only] => write(args, only.contents.as_bytes(), &format!("{engine} package")),
+            _ => Err(CliError::usage(format!(
+                "the {engine} package is {} files: name a directory for them with -o DIR",
+                package.files.len()
+            ))),
+        };
+    };
+    if dir.is_file() {
+        return Err(CliError::usage(format!(
+            "{} is a file: -o names a directory for the {engine} package",
+            dir.display()
+        )));
+    }
+    std::fs::create_dir_all(dir)
+        .map_err(|e| CliError::failure(format!("cannot create the directory {}: {e}", dir.display())))?;
+    for file in &package.files {
+        write_atomic(&dir.join(&file.name), file.contents.as_bytes())?;
+    }
+    let names: Vec<&str> = package.files.iter().map(|f| f.name.as_str()).collect();
+    eprintln!("wrote the {engine} package of {} to {}: {}", loaded.name, dir.display(), names.join(", "));
+    Ok(())
 }
 
 /// `--camera-path`: the scene's camera as glTF.

@@ -4,7 +4,7 @@
 
 use std::fmt::Write;
 
-use crate::back::kernel::{self, Dialect};
+use crate::back::kernel::{self, Dialect, KernelDialect};
 use crate::back::syntax::{common_math_name, Prec};
 use crate::back::{f32_literal, Entry, FrameLayout, Level};
 use crate::lower::code::{MathFn, Ty};
@@ -27,20 +27,8 @@ impl Dialect for OpenCl {
     fn language(&self) -> &'static str {
         "OpenCL C"
     }
-    fn declarations(&self, out: &mut String, layout: FrameLayout, _entry: Entry) {
-        out.push_str("typedef struct {\n    float4 origin;\n    float4 right;\n    float4 up;\n    float4 forward;\n");
-        let _ = writeln!(out, "    float4 lights[{}];", 2 * layout.lights);
-        if layout.params > 0 {
-            let _ = writeln!(out, "    float4 params[{}];", layout.param_slots());
-        }
-        if layout.orbit > 0 {
-            out.push_str("    float4 reference;\n");
-            let _ = writeln!(out, "    float4 orbit[{}];", layout.orbit_slots());
-        }
-        out.push_str("} Frame;\n\n");
-        out.push_str(
-            "typedef struct {\n    float distance;\n    float3 albedo;\n    float ambient;\n    float diffuse;\n    float specular;\n    float shininess;\n} Sample;\n\n",
-        );
+    fn sample_struct(&self) -> String {
+        "typedef struct {\n    float distance;\n    float3 albedo;\n    float ambient;\n    float diffuse;\n    float specular;\n    float shininess;\n} Sample;\n\n".to_string()
     }
 
     fn type_name(&self, ty: Ty) -> &'static str {
@@ -121,6 +109,25 @@ impl Dialect for OpenCl {
     fn sample_return(&self, fields: &[(&str, String)]) -> Vec<String> {
         let assignments = fields.iter().map(|(field, value)| format!("s.{field} = {value};"));
         std::iter::once("Sample s;".to_string()).chain(assignments).chain(["return s;".to_string()]).collect()
+    }
+    fn global_constant(&self, name: &str, ty: &str, value: &str) -> String {
+        format!("__constant {ty} {name} = {value};")
+    }
+}
+
+impl KernelDialect for OpenCl {
+    fn declarations(&self, out: &mut String, layout: FrameLayout, _entry: Entry) {
+        out.push_str("typedef struct {\n    float4 origin;\n    float4 right;\n    float4 up;\n    float4 forward;\n");
+        let _ = writeln!(out, "    float4 lights[{}];", 2 * layout.lights);
+        if layout.params > 0 {
+            let _ = writeln!(out, "    float4 params[{}];", layout.param_slots());
+        }
+        if layout.orbit > 0 {
+            out.push_str("    float4 reference;\n");
+            let _ = writeln!(out, "    float4 orbit[{}];", layout.orbit_slots());
+        }
+        out.push_str("} Frame;\n\n");
+        out.push_str(&self.sample_struct());
     }
     fn render_open(&self, out: &mut String) -> [&'static str; 2] {
         out.push_str("__kernel void render(__global uint* out, __constant const Frame* frame) {\n");

@@ -1,5 +1,5 @@
-//! The WGSL backend: [`write`] spells a lowered scene as a complete WGSL module.
+//! The WGSL backend: [`write`] spells a lowered scene as a complete WGSL module, [`library`] as a function library.
 
 mod writer;
 
-pub use writer::{functions, write};
+pub use writer::{functions, library, write};

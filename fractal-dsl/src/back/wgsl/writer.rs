@@ -4,7 +4,7 @@
 
 use std::fmt::Write;
 
-use crate::back::kernel::{self, Dialect};
+use crate::back::kernel::{self, Dialect, KernelDialect};
 use crate::back::syntax::common_math_name;
 use crate::back::{f32_literal, Entry, FrameLayout, Level};
 use crate::lower::code::{MathFn, Ty};
@@ -18,6 +18,11 @@ pub fn functions(functions: &[Function]) -> String {
     kernel::write_functions(functions, &Wgsl)
 }
 
+/// Writes `program` as a function library ([`kernel::write_library`]).
+pub fn library(program: &Program, lib: &kernel::Library) -> String {
+    kernel::write_library(program, lib, &Wgsl)
+}
+
 /// Writes the complete WGSL module for `entry`.
 pub fn write(program: &Program, entry: Entry) -> String {
     kernel::write(program, entry, &Wgsl)
@@ -27,33 +32,8 @@ impl Dialect for Wgsl {
     fn language(&self) -> &'static str {
         "WGSL"
     }
-    fn declarations(&self, out: &mut String, layout: FrameLayout, entry: Entry) {
-        out.push_str(
-            "struct Frame {\n    origin: vec4<f32>,\n    right: vec4<f32>,\n    up: vec4<f32>,\n    forward: vec4<f32>,\n",
-        );
-        let _ = writeln!(out, "    lights: array<vec4<f32>, {}>,", 2 * layout.lights);
-        if layout.params > 0 {
-            let _ = writeln!(out, "    params: array<vec4<f32>, {}>,", layout.param_slots());
-        }
-        if layout.orbit > 0 {
-            out.push_str("    reference: vec4<f32>,\n");
-            let _ = writeln!(out, "    orbit: array<vec4<f32>, {}>,", layout.orbit_slots());
-        }
-        out.push_str("}\n\n");
-        out.push_str(
-            "struct Sample {\n    distance: f32,\n    albedo: vec3<f32>,\n    ambient: f32,\n    diffuse: f32,\n    specular: f32,\n    shininess: f32,\n}\n\n",
-        );
-        match entry {
-            Entry::Render => {
-                out.push_str("@group(0) @binding(0) var<storage, read_write> out_px: array<u32>;\n");
-                out.push_str("@group(0) @binding(1) var<uniform> frame: Frame;\n\n");
-            }
-            Entry::Probe => {
-                out.push_str("@group(0) @binding(0) var<storage, read_write> probe_out: array<vec4<f32>>;\n");
-                out.push_str("@group(0) @binding(1) var<uniform> frame: Frame;\n");
-                out.push_str("@group(0) @binding(2) var<storage, read> points: array<vec4<f32>>;\n\n");
-            }
-        }
+    fn sample_struct(&self) -> String {
+        "struct Sample {\n    distance: f32,\n    albedo: vec3<f32>,\n    ambient: f32,\n    diffuse: f32,\n    specular: f32,\n    shininess: f32,\n}\n\n".to_string()
     }
 
     fn type_name(&self, ty: Ty) -> &'static str {
@@ -141,6 +121,38 @@ impl Dialect for Wgsl {
     fn sample_return(&self, fields: &[(&str, String)]) -> Vec<String> {
         let values: Vec<&str> = fields.iter().map(|(_, value)| value.as_str()).collect();
         vec![format!("return Sample({});", values.join(", "))]
+    }
+    fn global_constant(&self, name: &str, ty: &str, value: &str) -> String {
+        format!("const {name}: {ty} = {value};")
+    }
+}
+
+impl KernelDialect for Wgsl {
+    fn declarations(&self, out: &mut String, layout: FrameLayout, entry: Entry) {
+        out.push_str(
+            "struct Frame {\n    origin: vec4<f32>,\n    right: vec4<f32>,\n    up: vec4<f32>,\n    forward: vec4<f32>,\n",
+        );
+        let _ = writeln!(out, "    lights: array<vec4<f32>, {}>,", 2 * layout.lights);
+        if layout.params > 0 {
+            let _ = writeln!(out, "    params: array<vec4<f32>, {}>,", layout.param_slots());
+        }
+        if layout.orbit > 0 {
+            out.push_str("    reference: vec4<f32>,\n");
+            let _ = writeln!(out, "    orbit: array<vec4<f32>, {}>,", layout.orbit_slots());
+        }
+        out.push_str("}\n\n");
+        out.push_str(&self.sample_struct());
+        match entry {
+            Entry::Render => {
+                out.push_str("@group(0) @binding(0) var<storage, read_write> out_px: array<u32>;\n");
+                out.push_str("@group(0) @binding(1) var<uniform> frame: Frame;\n\n");
+            }
+            Entry::Probe => {
+                out.push_str("@group(0) @binding(0) var<storage, read_write> probe_out: array<vec4<f32>>;\n");
+                out.push_str("@group(0) @binding(1) var<uniform> frame: Frame;\n");
+                out.push_str("@group(0) @binding(2) var<storage, read> points: array<vec4<f32>>;\n\n");
+            }
+        }
     }
     fn render_open(&self, out: &mut String) -> [&'static str; 2] {
         out.push_str("@compute @workgroup_size(8, 8, 1)\n");
