@@ -1,5 +1,6 @@
 //! Agreement: one meaning, many evaluators. The same points of every vocabulary item (and of the evaluation hard
-//! cases) go through the interpreter in f32, the native evaluator in f64 and f32, the WGSL probe kernel (wgpu;
+//! cases) go through the interpreter in f32, a point at a time and in packets of eight, the native evaluator in f64,
+//! f32 and packets of eight (`distance_slice`, `sample_slice`: the f32 tolerances), the WGSL probe kernel (wgpu;
 //! lavapipe without a GPU) and the OpenCL probe kernel (pocl without a GPU; precise, and fast-math as a separate,
 //! looser comparison), and each must agree with the f64 interpreter within the tolerances of `agreement/tolerance.rs`.
 //!
@@ -115,6 +116,46 @@ impl Subject for NativeF32 {
     }
 }
 
+/// The interpreter on packets of eight points (what runs a `.fractal` file on the CPU without rustc).
+struct InterpreterX8;
+impl Subject for InterpreterX8 {
+    fn name(&self) -> &'static str {
+        "interp x8"
+    }
+    fn class(&self) -> Class {
+        Class::CpuF32
+    }
+    fn answers(&mut self, row: &Row, points: &[V3<f32>]) -> Result<Vec<Answer>, String> {
+        let interp = Interpreter::new(row.scene()).unwrap();
+        harness::packet_answers(
+            |t, params, x, y, z, out| interp.sample_slice(t, params, x, y, z, out),
+            |t, params, x, y, z, out| interp.distance_slice(t, params, x, y, z, out),
+            row,
+            points,
+        )
+    }
+}
+
+/// The native evaluator's packet instance (`distance_slice`, `sample_slice`).
+struct NativeX8;
+impl Subject for NativeX8 {
+    fn name(&self) -> &'static str {
+        "native x8"
+    }
+    fn class(&self) -> Class {
+        Class::CpuF32
+    }
+    fn answers(&mut self, row: &Row, points: &[V3<f32>]) -> Result<Vec<Answer>, String> {
+        let native = row.compiled.native();
+        harness::packet_answers(
+            |t, params, x, y, z, out| native.sample_slice(t, params, x, y, z, out),
+            |t, params, x, y, z, out| native.distance_slice(t, params, x, y, z, out),
+            row,
+            points,
+        )
+    }
+}
+
 /// The frame a probe kernel reads its time and parameters from (the pose and size do not matter to a probe).
 fn probe_frame(row: &Row) -> Result<Frame, String> {
     let scene = row.scene();
@@ -176,7 +217,7 @@ impl Subject for OpenClProbe {
 // ---- the suite, instantiated per evaluator --------------------------------------------------------------------------
 
 /// How many columns the summary waits for: one per test below.
-const SUBJECTS: usize = if cfg!(feature = "opencl") { 6 } else { 4 };
+const SUBJECTS: usize = if cfg!(feature = "opencl") { 8 } else { 6 };
 
 static COLUMNS: Mutex<Vec<Column>> = Mutex::new(Vec::new());
 
@@ -219,6 +260,8 @@ agreement_tests! {
     interpreter_f32_agrees_with_the_f64_interpreter => Ok(Box::new(InterpreterF32));
     native_f64_agrees_with_the_f64_interpreter => Ok(Box::new(NativeF64));
     native_f32_agrees_with_the_f64_interpreter => Ok(Box::new(NativeF32));
+    interpreter_packets_agree_with_the_f64_interpreter => Ok(Box::new(InterpreterX8));
+    native_packets_agree_with_the_f64_interpreter => Ok(Box::new(NativeX8));
     wgsl_probe_agrees_with_the_f64_interpreter => WgpuRenderer::new()
         .map(|r| Box::new(WgslProbe(r)) as Box<dyn Subject>)
         .map_err(|e| ("wgsl", e.to_string()));

@@ -5,6 +5,7 @@ use std::sync::OnceLock;
 
 use crate::eval::{Env, Evaluator, Sample};
 use crate::ir::Scene;
+use crate::lanes::F32x8;
 use crate::math::{Real, V3};
 
 /// The native evaluator functions emitted by the Rust writer and compiled by rustc with the user's crate.
@@ -14,6 +15,9 @@ pub struct NativeFns {
     pub distance_f64: fn(V3<f64>, &Env<f64>) -> f64,
     pub sample_f32: fn(V3<f32>, &Env<f32>) -> Sample<f32>,
     pub sample_f64: fn(V3<f64>, &Env<f64>) -> Sample<f64>,
+    /// Eight points at a time ([`F32x8`] lanes): the f32 code on packets, lane for lane the same arithmetic.
+    pub distance_x8: fn(V3<F32x8>, &Env<F32x8>) -> F32x8,
+    pub sample_x8: fn(V3<F32x8>, &Env<F32x8>) -> Sample<F32x8>,
 }
 
 /// The defaults of a scene's parameters in [`Scene::params`] order, in both precisions the native evaluator runs in:
@@ -105,6 +109,49 @@ impl CompiledScene {
     /// Parameter defaults in uniform order ([`Scene::params`] order), in precision `F`.
     pub fn default_params<F: CompiledReal>(&self) -> &'static [F] {
         F::defaults(&self.defaults)
+    }
+
+    /// Distances at many points by the native evaluator, eight at a time on the calling thread, at time 0 with the
+    /// parameters at their defaults: `out[i]` is the distance at (x[i], y[i], z[i]), the same as
+    /// [`CompiledScene::distance`] gives. Panics if the four slices' lengths differ.
+    pub fn distance_slice(&self, x: &[f32], y: &[f32], z: &[f32], out: &mut [f32]) {
+        self.native.distance_slice(0.0, self.defaults.f32, x, y, z, out)
+    }
+
+    /// [`CompiledScene::distance_slice`] by the f64 evaluator, a point at a time. Panics if the lengths differ.
+    pub fn distance_slice_f64(&self, x: &[f64], y: &[f64], z: &[f64], out: &mut [f64]) {
+        assert!(
+            x.len() == y.len() && y.len() == z.len() && z.len() == out.len(),
+            "slices of unequal length: x {}, y {}, z {}, out {}",
+            x.len(),
+            y.len(),
+            z.len(),
+            out.len()
+        );
+        let env = Env::new(0.0, self.defaults.f64);
+        for (i, d) in out.iter_mut().enumerate() {
+            *d = (self.native.distance_f64)(V3 { x: x[i], y: y[i], z: z[i] }, &env);
+        }
+    }
+
+    /// Distances and materials at many points, eight at a time; see [`CompiledScene::distance_slice`].
+    pub fn sample_slice(&self, x: &[f32], y: &[f32], z: &[f32], out: &mut [Sample<f32>]) {
+        self.native.sample_slice(0.0, self.defaults.f32, x, y, z, out)
+    }
+}
+
+impl NativeFns {
+    /// Distances at many points at `time` with parameter values `params` ([`Scene::params`] order), eight at a
+    /// time on the calling thread ([`crate::eval::packet`]). Panics if the lengths differ.
+    #[allow(clippy::too_many_arguments)]
+    pub fn distance_slice(&self, time: f32, params: &[f32], x: &[f32], y: &[f32], z: &[f32], out: &mut [f32]) {
+        crate::eval::packet::distance_slice(&self.distance_x8, time, params, x, y, z, out)
+    }
+
+    /// Distances and materials at many points; see [`NativeFns::distance_slice`].
+    #[allow(clippy::too_many_arguments)]
+    pub fn sample_slice(&self, time: f32, params: &[f32], x: &[f32], y: &[f32], z: &[f32], out: &mut [Sample<f32>]) {
+        crate::eval::packet::sample_slice(&self.sample_x8, time, params, x, y, z, out)
     }
 }
 

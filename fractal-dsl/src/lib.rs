@@ -35,6 +35,7 @@ pub mod eval;
 pub mod fractals;
 pub mod geom;
 pub mod ir;
+pub mod lanes;
 pub mod leaf;
 pub mod lower;
 pub mod mandelbrot;

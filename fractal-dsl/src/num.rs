@@ -29,6 +29,25 @@ impl Mask for bool {
     }
 }
 
+/// A mask whose lanes the host can inspect (not a traced one): code that runs on the host skips work no lane needs.
+pub trait AnyLane: Mask {
+    /// Whether any lane is true.
+    fn any(self) -> bool;
+}
+
+impl AnyLane for bool {
+    #[inline(always)]
+    fn any(self) -> bool {
+        self
+    }
+}
+
+/// Whether any lane of `m` is true.
+#[inline(always)]
+pub fn any<M: AnyLane>(m: M) -> bool {
+    m.any()
+}
+
 /// Values a [`Num::iterate`] loop or a [`Num::when`] block carries from one step to the next: a number, a vector, or
 /// tuples and arrays of them. Tracing turns each number into a variable; lanes select each number by the mask.
 pub trait Carry<F>: Copy {

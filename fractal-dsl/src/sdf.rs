@@ -63,6 +63,13 @@ pub trait CallLeaf: Num {
 impl CallLeaf for f32 {}
 impl CallLeaf for f64 {}
 
+/// A number type the host evaluates in — f32, f64 and the packet [`crate::lanes::F32x8`] — whose masks it can
+/// inspect: the native evaluator the `scene!` macro compiles is generic over it.
+pub trait HostNum: CallLeaf + Num<Mask: AnyLane, Count = u32> + Send + Sync {}
+
+impl HostNum for f32 {}
+impl HostNum for f64 {}
+
 /// Smallest divisor used where a formula divides by a user value that may be zero (smooth blend k, capsule length).
 pub const TINY: f64 = 1e-30;
 /// Derivative cap for escape-time fractals: past it the estimate is 0 to within float precision anyway, and stopping

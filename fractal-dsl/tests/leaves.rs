@@ -1,168 +1,16 @@
-//! The leaf functions are written once and run everywhere: over a 4-lane type with lane-wise operations (the shape
-//! an 8-lane SIMD packet will have) they give, lane by lane, exactly the scalar results; traced, each becomes one
+//! The leaf functions are written once and run everywhere: over the 8-lane packet type [`F32x8`] they give, lane by
+//! lane, exactly the scalar results; traced, each becomes one
 //! named function whose lowered code — run here by a small evaluator of the lowered form — gives exactly the direct
 //! f64 results, and whose WGSL validates with naga.
 
 mod common;
 
-use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
-
+use fractal_dsl::lanes::{F32x8, LANES};
 use fractal_dsl::leaf::{ArgKind, LeafArg, LeafOut};
 use fractal_dsl::lower::code::{Body, CmpOp, LogicOp, MathFn, Op, Stmt, Ty, Val};
 use fractal_dsl::lower::trace::trace_leaf;
-use fractal_dsl::math::{v3, Carry, Mask, Num, V3};
+use fractal_dsl::math::{v3, Num, V3};
 use fractal_dsl::sdf::Leaf;
-
-// ---- a trivial lane type: four f32 lanes, every operation lane-wise -------------------------------------------------
-
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct L4([f32; 4]);
-
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct M4([bool; 4]);
-
-impl M4 {
-    fn any(self) -> bool {
-        self.0.iter().any(|&b| b)
-    }
-}
-
-fn lanes(f: impl Fn(usize) -> f32) -> L4 {
-    L4(std::array::from_fn(f))
-}
-
-macro_rules! lane_ops {
-    ($($tr:ident $f:ident $op:tt),*) => {$(
-        impl $tr for L4 {
-            type Output = L4;
-            fn $f(self, o: L4) -> L4 {
-                lanes(|i| self.0[i] $op o.0[i])
-            }
-        }
-    )*};
-}
-lane_ops!(Add add +, Sub sub -, Mul mul *, Div div /);
-
-impl Neg for L4 {
-    type Output = L4;
-    fn neg(self) -> L4 {
-        lanes(|i| -self.0[i])
-    }
-}
-impl BitAnd for M4 {
-    type Output = M4;
-    fn bitand(self, o: M4) -> M4 {
-        M4(std::array::from_fn(|i| self.0[i] & o.0[i]))
-    }
-}
-impl BitOr for M4 {
-    type Output = M4;
-    fn bitor(self, o: M4) -> M4 {
-        M4(std::array::from_fn(|i| self.0[i] | o.0[i]))
-    }
-}
-impl Not for M4 {
-    type Output = M4;
-    fn not(self) -> M4 {
-        M4(self.0.map(|b| !b))
-    }
-}
-impl Mask for M4 {
-    fn splat(v: bool) -> Self {
-        M4([v; 4])
-    }
-}
-impl Carry<L4> for L4 {
-    fn map_nums(self, f: &mut impl FnMut(L4) -> L4) -> Self {
-        f(self)
-    }
-    fn zip_nums(self, other: Self, f: &mut impl FnMut(L4, L4) -> L4) -> Self {
-        f(self, other)
-    }
-}
-
-fn unary(x: L4, f: impl Fn(f32) -> f32) -> L4 {
-    lanes(|i| f(x.0[i]))
-}
-fn binary(a: L4, b: L4, f: impl Fn(f32, f32) -> f32) -> L4 {
-    lanes(|i| f(a.0[i], b.0[i]))
-}
-
-impl Num for L4 {
-    type Mask = M4;
-    type Count = u32;
-    fn lit(v: f64) -> Self {
-        L4([v as f32; 4])
-    }
-    fn count(n: u32) -> u32 {
-        n
-    }
-    fn abs(x: Self) -> Self {
-        unary(x, f32::abs)
-    }
-    fn sqrt(x: Self) -> Self {
-        unary(x, f32::sqrt)
-    }
-    fn floor(x: Self) -> Self {
-        unary(x, f32::floor)
-    }
-    fn sin(x: Self) -> Self {
-        unary(x, f32::sin)
-    }
-    fn cos(x: Self) -> Self {
-        unary(x, f32::cos)
-    }
-    fn acos(x: Self) -> Self {
-        unary(x, f32::acos)
-    }
-    fn atan2(y: Self, x: Self) -> Self {
-        binary(y, x, f32::atan2)
-    }
-    fn exp2(x: Self) -> Self {
-        unary(x, f32::exp2)
-    }
-    fn ln(x: Self) -> Self {
-        unary(x, f32::ln)
-    }
-    fn pow(x: Self, y: Self) -> Self {
-        binary(x, y, f32::powf)
-    }
-    fn min(a: Self, b: Self) -> Self {
-        binary(a, b, f32::min)
-    }
-    fn max(a: Self, b: Self) -> Self {
-        binary(a, b, f32::max)
-    }
-    fn lt(a: Self, b: Self) -> M4 {
-        M4(std::array::from_fn(|i| a.0[i] < b.0[i]))
-    }
-    fn le(a: Self, b: Self) -> M4 {
-        M4(std::array::from_fn(|i| a.0[i] <= b.0[i]))
-    }
-    fn select(m: M4, a: Self, b: Self) -> Self {
-        lanes(|i| if m.0[i] { a.0[i] } else { b.0[i] })
-    }
-    fn iterate<S: Carry<Self>>(n: u32, init: S, active: impl Fn(&S) -> M4, step: impl Fn(S) -> S) -> S {
-        // Every lane steps together; a lane that stopped keeps its state (the packet evaluator's masked loop).
-        let mut state = init;
-        let mut live = M4::splat(true);
-        for _ in 0..n {
-            live = live & active(&state);
-            if !live.any() {
-                break;
-            }
-            let next = step(state);
-            state = next.zip_nums(state, &mut |new, old| L4::select(live, new, old));
-        }
-        state
-    }
-    fn when<S: Carry<Self>>(cond: M4, state: S, body: impl FnOnce(S) -> S) -> S {
-        if !cond.any() {
-            return state;
-        }
-        body(state).zip_nums(state, &mut |new, old| L4::select(cond, new, old))
-    }
-}
 
 // ---- arguments for every leaf ---------------------------------------------------------------------------------------
 
@@ -226,14 +74,15 @@ fn points() -> Vec<[f64; 3]> {
 #[test]
 fn every_leaf_gives_the_scalar_results_lane_by_lane() {
     for &leaf in Leaf::ALL {
-        for chunk in points().chunks(4) {
-            let mut p4 = [[0.0f32; 3]; 4];
+        for chunk in points().chunks(LANES) {
+            let mut lanes = [[0.0f32; 3]; LANES];
             for (i, p) in chunk.iter().enumerate() {
-                p4[i] = p.map(|v| v as f32);
+                lanes[i] = p.map(|v| v as f32);
             }
-            let packet = v3(lanes(|i| p4[i][0]), lanes(|i| p4[i][1]), lanes(|i| p4[i][2]));
-            let got = outputs(leaf.eval::<L4>(&args(leaf, packet, L4::lit)));
-            for (lane, p) in p4.iter().enumerate().take(chunk.len()) {
+            let packet =
+                v3(F32x8::from_fn(|i| lanes[i][0]), F32x8::from_fn(|i| lanes[i][1]), F32x8::from_fn(|i| lanes[i][2]));
+            let got = outputs(leaf.eval::<F32x8>(&args(leaf, packet, F32x8::lit)));
+            for (lane, p) in lanes.iter().enumerate().take(chunk.len()) {
                 let want = outputs(leaf.eval::<f32>(&args(leaf, v3(p[0], p[1], p[2]), |v| v as f32)));
                 for (g, w) in got.iter().zip(&want) {
                     assert!(

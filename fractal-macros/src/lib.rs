@@ -112,8 +112,44 @@ fn expand(scene: &fractal_dsl::Scene, span: Span) -> TokenStream2 {
     let ir = fractal_dsl::back::rust::ir_tokens::scene(scene, &krate);
     let (defaults_f32, defaults_f64) = fractal_dsl::back::rust::ir_tokens::default_params(scene);
     let (source, opencl, wgsl) = (kernels.source, kernels.opencl, kernels.wgsl);
+    let lanes = quote! { #krate::lanes::F32x8 };
+    let point = quote! { #krate::math::V3<#lanes> };
+    let env = quote! { &#krate::eval::Env<#lanes> };
+    let sample_x8 = quote! { #krate::eval::Sample<#lanes> };
     quote! {{
         #native
+        // The packet instances, compiled twice on x86-64: for the build's baseline and for AVX2 (eight lanes in one
+        // instruction), chosen when the CPU has it. The arithmetic is the same; only the vector width differs.
+        #[allow(clippy::all)]
+        fn __fractal_distance_x8(p: #point, env: #env) -> #lanes {
+            #[cfg(target_arch = "x86_64")]
+            {
+                #[target_feature(enable = "avx2")]
+                unsafe fn wide(p: #point, env: #env) -> #lanes {
+                    #distance::<#lanes>(p, env)
+                }
+                if #krate::lanes::has_avx2() {
+                    // SAFETY: the CPU has AVX2, checked just above.
+                    return unsafe { wide(p, env) };
+                }
+            }
+            #distance::<#lanes>(p, env)
+        }
+        #[allow(clippy::all)]
+        fn __fractal_sample_x8(p: #point, env: #env) -> #sample_x8 {
+            #[cfg(target_arch = "x86_64")]
+            {
+                #[target_feature(enable = "avx2")]
+                unsafe fn wide(p: #point, env: #env) -> #sample_x8 {
+                    #sample::<#lanes>(p, env)
+                }
+                if #krate::lanes::has_avx2() {
+                    // SAFETY: the CPU has AVX2, checked just above.
+                    return unsafe { wide(p, env) };
+                }
+            }
+            #sample::<#lanes>(p, env)
+        }
         #[allow(clippy::all)]
         fn __fractal_scene() -> #krate::Scene {
             #ir
@@ -130,6 +166,8 @@ fn expand(scene: &fractal_dsl::Scene, span: Span) -> TokenStream2 {
                 distance_f64: #distance::<f64>,
                 sample_f32: #sample::<f32>,
                 sample_f64: #sample::<f64>,
+                distance_x8: __fractal_distance_x8,
+                sample_x8: __fractal_sample_x8,
             },
             __fractal_scene,
             __FRACTAL_DEFAULTS,

@@ -15,7 +15,8 @@ use common::{run_validator, tool_available};
 
 use fractal_dsl::builder::{scene, sphere};
 use fractal_dsl::eval::{Env, Sample};
-use fractal_dsl::math::{v3, Real, V3};
+use fractal_dsl::lanes::F32x8;
+use fractal_dsl::math::{v3, Num, V3};
 use fractal_dsl::{compile, CompiledScene, DefaultParams, Kernels, NativeFns, Scene};
 use fractal_runtime::export::{export, export_compiled, export_scene, ExportError, Exported, Target, ENTRY_POINT};
 
@@ -180,10 +181,10 @@ fn export_scene_compiles_and_exports() {
 }
 
 /// Stand-ins for the native evaluator and the IR constructor a `scene!` expansion carries: export calls neither.
-fn unused_distance<F: Real>(_: V3<F>, _: &Env<F>) -> F {
-    F::c(f64::NAN)
+fn unused_distance<F: Num>(_: V3<F>, _: &Env<F>) -> F {
+    F::lit(f64::NAN)
 }
-fn unused_sample<F: Real>(p: V3<F>, env: &Env<F>) -> Sample<F> {
+fn unused_sample<F: Num>(p: V3<F>, env: &Env<F>) -> Sample<F> {
     let nan = unused_distance(p, env);
     Sample { distance: nan, albedo: v3(nan, nan, nan), ambient: nan, diffuse: nan, specular: nan, shininess: nan }
 }
@@ -199,6 +200,8 @@ fn export_compiled_exports_the_build_time_kernels() {
         distance_f64: unused_distance::<f64>,
         sample_f32: unused_sample::<f32>,
         sample_f64: unused_sample::<f64>,
+        distance_x8: unused_distance::<F32x8>,
+        sample_x8: unused_sample::<F32x8>,
     };
     let leak = |s: &str| -> &'static str { Box::leak(s.to_owned().into_boxed_str()) };
     let compiled = CompiledScene::new(

@@ -8,7 +8,7 @@
 use std::fmt::Write as _;
 
 use fractal::dsl::eval::interp::Interpreter;
-use fractal::dsl::eval::{Env, Evaluator};
+use fractal::dsl::eval::{Env, Evaluator, Sample};
 use fractal::dsl::math::{v3, Real, V3};
 use fractal::dsl::{CompiledScene, Scene};
 
@@ -142,6 +142,38 @@ pub fn cpu_answers<F: Real>(e: &dyn Evaluator<F>, row: &Row, points: &[V3<f32>])
         );
     }
     Ok(out)
+}
+
+/// The answers of a packet evaluator ([`fractal::dsl::eval::packet`]: eight points at a time) at the row's time and
+/// parameters; `sample` is its sample slice, `distance` its distance slice, which must agree with each other.
+pub fn packet_answers(
+    sample: impl Fn(f32, &[f32], &[f32], &[f32], &[f32], &mut [Sample<f32>]),
+    distance: impl Fn(f32, &[f32], &[f32], &[f32], &[f32], &mut [f32]),
+    row: &Row,
+    points: &[V3<f32>],
+) -> Result<Vec<Answer>, String> {
+    let (time, params) = row.env_values::<f32>();
+    let x: Vec<f32> = points.iter().map(|p| p.x).collect();
+    let y: Vec<f32> = points.iter().map(|p| p.y).collect();
+    let z: Vec<f32> = points.iter().map(|p| p.z).collect();
+    let blank =
+        Sample { distance: 0.0, albedo: v3(0.0, 0.0, 0.0), ambient: 0.0, diffuse: 0.0, specular: 0.0, shininess: 0.0 };
+    let mut samples = vec![blank; points.len()];
+    sample(time, &params, &x, &y, &z, &mut samples);
+    let mut distances = vec![0.0f32; points.len()];
+    distance(time, &params, &x, &y, &z, &mut distances);
+    for ((s, d), p) in samples.iter().zip(&distances).zip(points) {
+        if s.distance.to_bits() != d.to_bits() && !(d.is_nan() && s.distance.is_nan()) {
+            return Err(format!("sample_slice distance {:e} but distance_slice {:e} at {p:?}", s.distance, d));
+        }
+    }
+    Ok(samples
+        .into_iter()
+        .map(|s| {
+            [s.distance, s.ambient, s.diffuse, s.specular, s.albedo.x, s.albedo.y, s.albedo.z, s.shininess]
+                .map(f64::from)
+        })
+        .collect())
 }
 
 /// The f64 interpreter of one row: the reference every evaluator is compared with.
@@ -522,7 +554,7 @@ pub fn skipped(subject: &'static str, rows: &[Row], why: &str) -> Column {
 
 /// Summary column order: CPU evaluators first, then the kernels.
 pub fn order_of(subject: &str) -> usize {
-    ["interp f32", "native f64", "native f32", "wgsl", "opencl", "opencl fast"]
+    ["interp f32", "interp x8", "native f64", "native f32", "native x8", "wgsl", "opencl", "opencl fast"]
         .iter()
         .position(|s| *s == subject)
         .unwrap_or(usize::MAX)

@@ -7,7 +7,7 @@ use std::fmt::Write;
 
 use super::Level;
 use crate::ir::BinOp;
-use crate::lower::code::{is_inline, operands, Body, LogicOp, MathFn, Op, Stmt, Ty, Val};
+use crate::lower::code::{is_inline, operands, Body, CmpOp, LogicOp, MathFn, Op, Stmt, Ty, Val};
 use crate::lower::SampleVals;
 use crate::sdf::Leaf;
 
@@ -55,6 +55,24 @@ pub trait Syntax {
     /// Leaves the innermost loop when `cond` holds.
     fn break_if(&self, cond: &str) -> String {
         format!("if {cond} {{ break; }}")
+    }
+    /// A comparison of two F values (operands spelled at additive precedence), giving a Bool.
+    fn cmp(&self, op: CmpOp, x: &str, y: &str) -> String {
+        format!("({x} {} {y})", op.symbol())
+    }
+    /// The symbol of a logical operator on Bools.
+    fn logic_symbol(&self, op: LogicOp) -> &'static str {
+        match op {
+            LogicOp::And => "&&",
+            LogicOp::Or => "||",
+        }
+    }
+    /// Whether the code runs on lanes of values (a packet) as well as on scalars: then a Bool is a mask, an `if`
+    /// runs its body when any lane's condition holds and its assignments take effect only in those lanes, and a loop
+    /// runs until every lane has left it ([`Spelling`] writes the masks). Such a language spells `any(mask)`, masked
+    /// assignments as `select` and masks combined with `&`, `|` and `!`.
+    fn per_lane(&self) -> bool {
+        false
     }
 }
 
@@ -195,10 +213,11 @@ impl<'a> Spelling<'a> {
                 (format!("{} {} {right}", self.operand(*x, p), op.symbol()), p)
             }
             Op::Logic(op, x, y) => {
-                let (symbol, p, tighter) = match op {
-                    LogicOp::And => ("&&", Prec::And, Prec::Add),
-                    LogicOp::Or => ("||", Prec::Or, Prec::And),
+                let (p, tighter) = match op {
+                    LogicOp::And => (Prec::And, Prec::Add),
+                    LogicOp::Or => (Prec::Or, Prec::And),
                 };
+                let symbol = syn.logic_symbol(*op);
                 (format!("{} {symbol} {}", self.operand(*x, p), self.operand(*y, tighter)), p)
             }
             Op::Math(f, args) => atom(syn.math(*f, &args.iter().map(any).collect::<Vec<_>>())),
@@ -207,9 +226,7 @@ impl<'a> Spelling<'a> {
                 let passed = |v: &&Val| syn.orbit().is_some() || self.body.op(**v) != Some(&Op::Orbit);
                 atom(syn.call(*leaf, &args.iter().filter(passed).map(any).collect::<Vec<_>>()))
             }
-            Op::Cmp(op, x, y) => {
-                atom(format!("({} {} {})", self.operand(*x, Prec::Add), op.symbol(), self.operand(*y, Prec::Add)))
-            }
+            Op::Cmp(op, x, y) => atom(syn.cmp(*op, &self.operand(*x, Prec::Add), &self.operand(*y, Prec::Add))),
             Op::Select(c, t, f) => {
                 let operand = |v: &Val| self.operand(*v, Prec::Or);
                 (syn.select(&operand(c), &operand(t), &operand(f)), syn.select_prec())
@@ -220,7 +237,70 @@ impl<'a> Spelling<'a> {
 
     /// Writes the statements of the body at `level`.
     pub fn write(&self, out: &mut String, level: Level) {
-        self.stmts(out, &self.body.stmts, level, 0);
+        if self.syn.per_lane() {
+            self.lane_stmts(out, &self.body.stmts, level, &Lanes::default(), &std::cell::Cell::new(0));
+        } else {
+            self.stmts(out, &self.body.stmts, level, 0);
+        }
+    }
+
+    /// The statements in a per-lane language ([`Syntax::per_lane`]): `lanes` names the masks in force.
+    fn lane_stmts(&self, out: &mut String, stmts: &[Stmt], level: Level, lanes: &Lanes, next: &std::cell::Cell<usize>) {
+        let syn = self.syn;
+        let fresh = |prefix: &str| {
+            let n = next.get();
+            next.set(n + 1);
+            format!("{prefix}{n}")
+        };
+        for s in stmts {
+            match s {
+                Stmt::Let { val, .. } if self.folded.contains(val) => {}
+                Stmt::Let { val, ty, op } => {
+                    let _ = writeln!(out, "{level}{}", syn.declare(&name(*val), *ty, &self.op(op).0, false));
+                }
+                Stmt::Var { var, ty, init } => {
+                    let _ = writeln!(out, "{level}{}", syn.declare(&name(*var), *ty, &self.value(*init), true));
+                }
+                Stmt::Assign { var, value } => {
+                    let (var, value) = (name(*var), self.value(*value));
+                    let assigned = match &lanes.mask {
+                        // Only F variables are assigned under a condition (the lowering's `when` and `iterate`).
+                        Some(mask) => format!("select({mask}, {value}, {var})"),
+                        None => value,
+                    };
+                    let _ = writeln!(out, "{level}{var} = {assigned};");
+                }
+                Stmt::If { cond, body } => {
+                    let mask = fresh("m");
+                    let cond = self.operand(*cond, Prec::Unary);
+                    let value = lanes.mask.as_ref().map_or(cond.clone(), |outer| format!("{outer} & {cond}"));
+                    let _ = writeln!(out, "{level}let {mask} = {value};");
+                    let _ = writeln!(out, "{level}if any({mask}) {{");
+                    let inner = Lanes { mask: Some(mask), live: lanes.live.clone() };
+                    self.lane_stmts(out, body, level.next(), &inner, next);
+                    let _ = writeln!(out, "{level}}}");
+                }
+                Stmt::Loop { count, body } => {
+                    let live = fresh("live");
+                    let all = format!("{}::splat(true)", syn.type_name(Ty::Bool));
+                    let init = lanes.mask.clone().unwrap_or(all);
+                    let _ = writeln!(out, "{level}let mut {live} = {init};");
+                    let _ = writeln!(out, "{level}for _ in 0..{} {{", self.value(*count));
+                    let inner = Lanes { mask: Some(live.clone()), live: Some(live) };
+                    self.lane_stmts(out, body, level.next(), &inner, next);
+                    let _ = writeln!(out, "{level}}}");
+                }
+                Stmt::BreakIf { cond } => {
+                    let live = lanes.live.as_ref().expect("a loop's exit is inside the loop");
+                    let mut leaving = self.operand(*cond, Prec::Unary);
+                    if let Some(mask) = lanes.mask.as_ref().filter(|m| *m != live) {
+                        leaving = format!("({mask} & {leaving})");
+                    }
+                    let _ = writeln!(out, "{level}{live} = {live} & !{leaving};");
+                    let _ = writeln!(out, "{level}if !any({live}) {{ break; }}");
+                }
+            }
+        }
     }
 
     fn stmts(&self, out: &mut String, stmts: &[Stmt], level: Level, loops: usize) {
@@ -253,6 +333,14 @@ impl<'a> Spelling<'a> {
             }
         }
     }
+}
+
+/// The masks in force where per-lane statements are written: the lanes an assignment takes effect in, and the
+/// innermost loop's lanes still running.
+#[derive(Clone, Debug, Default)]
+struct Lanes {
+    mask: Option<String>,
+    live: Option<String>,
 }
 
 /// Counts a use of `v` in `block`: (number of uses, block of the last use); a value spelled in place is used where

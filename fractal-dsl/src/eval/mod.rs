@@ -14,6 +14,7 @@
 //! - the innermost `.material(..)` wins; geometry under none gets [`crate::Material::default_surface`].
 
 pub mod interp;
+pub mod packet;
 pub mod plan;
 pub mod walk;
 

@@ -1,5 +1,6 @@
 //! The Rust writer: spells the lowered scene functions as two generic functions — distance and sample — that the
-//! `scene!` macro compiles into the user's crate as the native evaluator (f32 and f64 instances of the same code).
+//! `scene!` macro compiles into the user's crate as the native evaluator (f32, f64 and eight-lane packet instances of
+//! the same code: choices are masks, see [`Syntax::per_lane`]).
 //! Leaves call [`crate::sdf`] directly: the functions the interpreter runs and the kernels' leaf functions are traced
 //! from.
 
@@ -7,7 +8,7 @@ use std::fmt::Write;
 
 use crate::back::syntax::{self, common_math_name, Spelling, Syntax};
 use crate::back::Level;
-use crate::lower::code::{MathFn, Ty};
+use crate::lower::code::{CmpOp, LogicOp, MathFn, Ty};
 use crate::lower::Program;
 use crate::sdf::Leaf;
 
@@ -19,7 +20,7 @@ impl Syntax for RustSyntax {
             Ty::F => "F",
             Ty::V3 => "V3<F>",
             Ty::Pair => "[F; 2]",
-            Ty::Bool => "bool",
+            Ty::Bool => "F::Mask",
             Ty::Int => "u32",
             Ty::Orbit => "Orbit<'_>",
         }
@@ -33,7 +34,7 @@ impl Syntax for RustSyntax {
         format!("c::<F>({v:?})")
     }
     fn bool_lit(&self, v: bool) -> String {
-        v.to_string()
+        format!("<F::Mask as Mask>::splat({v})")
     }
     fn int(&self, v: u32) -> String {
         v.to_string()
@@ -80,21 +81,38 @@ impl Syntax for RustSyntax {
     fn loop_open(&self, count: &str, _depth: usize) -> String {
         format!("for _ in 0..{count} {{")
     }
+    fn cmp(&self, op: CmpOp, x: &str, y: &str) -> String {
+        match op {
+            CmpOp::Lt => format!("lt({x}, {y})"),
+            CmpOp::Le => format!("le({x}, {y})"),
+        }
+    }
+    fn logic_symbol(&self, op: LogicOp) -> &'static str {
+        match op {
+            LogicOp::And => "&",
+            LogicOp::Or => "|",
+        }
+    }
+    fn per_lane(&self) -> bool {
+        true
+    }
 }
 
 /// The names of the two functions [`write`] emits.
 pub const DISTANCE_FN: &str = "__fractal_distance";
 pub const SAMPLE_FN: &str = "__fractal_sample";
 
-/// Rust source of the native evaluator: `fn __fractal_distance<F: Real>(p, env) -> F` and
-/// `fn __fractal_sample<F: Real>(p, env) -> Sample<F>`. `krate` is the path of fractal-dsl in the user's crate.
+/// Rust source of the native evaluator: `fn __fractal_distance<F: HostNum>(p, env) -> F` and
+/// `fn __fractal_sample<F: HostNum>(p, env) -> Sample<F>`. `krate` is the path of fractal-dsl in the user's crate.
 pub fn write(program: &Program, krate: &str) -> String {
     let mut out = String::new();
     let header = |out: &mut String, name: &str, ret: &str| {
         let _ = writeln!(out, "#[allow(unused_parens, unused_variables, unused_imports, clippy::all)]");
+        // Inlined into the packet instances' AVX2 copies, so the whole evaluation is compiled for AVX2 there.
+        let _ = writeln!(out, "#[inline(always)]");
         let _ = writeln!(
             out,
-            "fn {name}<F: {krate}::math::Real>(p: {krate}::math::V3<F>, env: &{krate}::eval::Env<F>) -> {ret} {{"
+            "fn {name}<F: {krate}::sdf::HostNum>(p: {krate}::math::V3<F>, env: &{krate}::eval::Env<F>) -> {ret} {{"
         );
         let _ = writeln!(out, "    use {krate}::math::*;");
         let _ = writeln!(out, "    use {krate}::sdf;");

@@ -1,0 +1,94 @@
+//! Bulk evaluation on the calling thread, eight points at a time: an evaluator's packet instance (the native
+//! evaluator's, or the interpreter's [`crate::eval::walk::Walk`]er on [`F32x8`]) run over structure-of-arrays inputs.
+//! A slice whose length is not a multiple of eight ends with a packet padded by repeating its last point (the
+//! padding's results are dropped).
+
+use crate::eval::{Env, Sample};
+use crate::lanes::{F32x8, LANES};
+use crate::math::V3;
+
+/// Panics unless the four slices have one length; returns it.
+fn common_length(x: &[f32], y: &[f32], z: &[f32], out: usize) -> usize {
+    assert!(
+        x.len() == y.len() && y.len() == z.len() && z.len() == out,
+        "slices of unequal length: x {}, y {}, z {}, out {}",
+        x.len(),
+        y.len(),
+        z.len(),
+        out
+    );
+    x.len()
+}
+
+/// Eight points from `start` (the last point repeated past the end).
+#[inline(always)]
+fn packet(x: &[f32], y: &[f32], z: &[f32], start: usize) -> V3<F32x8> {
+    let lane = |s: &[f32]| match s.get(start..start + LANES) {
+        Some(full) => F32x8(full.try_into().expect("eight lanes")),
+        None => {
+            let last = s.len() - 1;
+            F32x8::from_fn(|i| s[(start + i).min(last)])
+        }
+    };
+    V3 { x: lane(x), y: lane(y), z: lane(z) }
+}
+
+/// The time and parameters in every lane.
+fn splat_params(params: &[f32]) -> Vec<F32x8> {
+    params.iter().map(|&v| F32x8::splat(v)).collect()
+}
+
+/// A packet evaluator of distances.
+pub type PacketDistance<'a> = &'a dyn Fn(V3<F32x8>, &Env<F32x8>) -> F32x8;
+/// A packet evaluator of distances and materials.
+pub type PacketSample<'a> = &'a dyn Fn(V3<F32x8>, &Env<F32x8>) -> Sample<F32x8>;
+
+/// `out[i]` = `distance` at (x[i], y[i], z[i]) at `time` with `params`. Panics if the lengths differ.
+#[allow(clippy::too_many_arguments)]
+pub fn distance_slice(
+    distance: PacketDistance<'_>,
+    time: f32,
+    params: &[f32],
+    x: &[f32],
+    y: &[f32],
+    z: &[f32],
+    out: &mut [f32],
+) {
+    let n = common_length(x, y, z, out.len());
+    let params = splat_params(params);
+    let env = Env::new(F32x8::splat(time), &params);
+    for (chunk, start) in out.chunks_mut(LANES).zip((0..n).step_by(LANES)) {
+        let d = distance(packet(x, y, z, start), &env);
+        chunk.copy_from_slice(&d.0[..chunk.len()]);
+    }
+}
+
+/// `out[i]` = `sample` (distance and material) at (x[i], y[i], z[i]) at `time` with `params`. Panics if the lengths
+/// differ.
+#[allow(clippy::too_many_arguments)]
+pub fn sample_slice(
+    sample: PacketSample<'_>,
+    time: f32,
+    params: &[f32],
+    x: &[f32],
+    y: &[f32],
+    z: &[f32],
+    out: &mut [Sample<f32>],
+) {
+    let n = common_length(x, y, z, out.len());
+    let params = splat_params(params);
+    let env = Env::new(F32x8::splat(time), &params);
+    for (chunk, start) in out.chunks_mut(LANES).zip((0..n).step_by(LANES)) {
+        let s = sample(packet(x, y, z, start), &env);
+        for (i, sample) in chunk.iter_mut().enumerate() {
+            *sample = Sample {
+                distance: s.distance.0[i],
+                albedo: V3 { x: s.albedo.x.0[i], y: s.albedo.y.0[i], z: s.albedo.z.0[i] },
+                ambient: s.ambient.0[i],
+                diffuse: s.diffuse.0[i],
+                specular: s.specular.0[i],
+                shininess: s.shininess.0[i],
+            };
+        }
+    }
+}
