@@ -3,7 +3,7 @@
 
 use std::sync::OnceLock;
 
-use crate::eval::{Env, Evaluator, Sample};
+use crate::eval::{Env, Evaluator, PacketEvaluator, Sample};
 use crate::ir::Scene;
 use crate::lanes::F32x8;
 use crate::math::{Real, V3};
@@ -161,6 +161,15 @@ impl Evaluator<f32> for NativeFns {
     }
     fn sample(&self, p: V3<f32>, env: &Env<f32>) -> Sample<f32> {
         (self.sample_f32)(p, env)
+    }
+    fn packets(&self) -> Option<&dyn PacketEvaluator> {
+        Some(self)
+    }
+}
+
+impl PacketEvaluator for NativeFns {
+    fn distance_x8(&self, p: V3<F32x8>, env: &Env<F32x8>) -> F32x8 {
+        (self.distance_x8)(p, env)
     }
 }
 

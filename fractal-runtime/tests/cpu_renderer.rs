@@ -226,3 +226,21 @@ fn jobs_without_an_evaluator_or_with_another_scenes_frame_are_errors() {
         r.render(&RenderJob::new(KernelSources::default().with_cpu(&UnitSphere, &two_lights), &frame)).unwrap_err();
     assert!(matches!(err, RenderError::Frame(_)), "{err}");
 }
+
+/// The CPU renderer marches primary rays in packets of eight where the evaluator has a packet instance; lane for
+/// lane that is the scalar march, so every built-in scene's image equals the one-ray-at-a-time render's (here with
+/// the interpreter, whose packet and scalar instances are the same walker).
+#[test]
+fn packet_marching_draws_the_scalar_renderers_image() {
+    use fractal_dsl::eval::interp::Interpreter;
+    for (name, scene) in common::builtin_scenes() {
+        let interp = Interpreter::new(&scene).expect("a valid scene");
+        // 61 columns: the last packet of each row is partly padding.
+        let frame = frame_for(&scene, 61, 20, &ParamValues::defaults(&scene));
+        let packets = Evaluator::<f32>::packets(&interp).expect("the interpreter has a packet instance");
+        let packed = fractal_runtime::backend::cpu::render_packets(&interp, packets, &scene, &frame).expect("render");
+        let scalar = render_scene::<f32, _>(&interp, &scene, &frame).expect("render");
+        let differing = packed.pixels.iter().zip(&scalar.pixels).filter(|(a, b)| a != b).count();
+        assert_eq!(differing, 0, "{name}: {differing} pixels differ between packet and scalar marching");
+    }
+}

@@ -5,8 +5,9 @@
 
 use crate::eval::plan::Plan;
 use crate::eval::walk::Walk;
-use crate::eval::{Env, Evaluator, Sample};
+use crate::eval::{Env, Evaluator, PacketEvaluator, Sample};
 use crate::ir::*;
+use crate::lanes::F32x8;
 use crate::math::{Real, V3};
 use crate::sdf::CallLeaf;
 
@@ -75,5 +76,14 @@ impl<F: Real + CallLeaf> Evaluator<F> for Interpreter {
     }
     fn sample(&self, p: V3<F>, env: &Env<F>) -> Sample<F> {
         self.sample_in(p, env)
+    }
+    fn packets(&self) -> Option<&dyn PacketEvaluator> {
+        Some(self)
+    }
+}
+
+impl PacketEvaluator for Interpreter {
+    fn distance_x8(&self, p: V3<F32x8>, env: &Env<F32x8>) -> F32x8 {
+        self.walk().distance(p, env)
     }
 }

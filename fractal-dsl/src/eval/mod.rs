@@ -82,4 +82,14 @@ pub trait Evaluator<F: Real>: Sync {
     fn distance(&self, p: V3<F>, env: &Env<F>) -> F;
     /// Distance and material at `p`; never called by the march loop, only where a ray has hit.
     fn sample(&self, p: V3<F>, env: &Env<F>) -> Sample<F>;
+    /// The same scene eight f32 points at a time, where the evaluator has a packet instance.
+    fn packets(&self) -> Option<&dyn PacketEvaluator> {
+        None
+    }
+}
+
+/// An evaluator of eight f32 points at a time ([`crate::lanes::F32x8`]), lane for lane the arithmetic of its f32
+/// [`Evaluator`].
+pub trait PacketEvaluator: Sync {
+    fn distance_x8(&self, p: V3<crate::lanes::F32x8>, env: &Env<crate::lanes::F32x8>) -> crate::lanes::F32x8;
 }

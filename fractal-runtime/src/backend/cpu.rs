@@ -1,12 +1,15 @@
 //! The CPU renderer: the render algorithm of [`fractal_dsl::back::render`] over a scene's [`Evaluator`], one rayon
 //! task per image row. Generic over the precision, so the f64 instance renders reference images for accuracy work.
+//! In f32, where the evaluator has a packet instance ([`Evaluator::packets`]), the primary rays of eight neighbouring
+//! pixels march together ([`render_packets`]); normals, shading and shadows stay a ray at a time.
 //!
 //! It reads the camera, lights, time and parameters from the same [`Frame`] uniforms the kernels read, so the three
 //! renderers draw the same pose from the same numbers.
 
 use fractal_dsl::analyse::{bound, fold::fold_node, has_specular, Aabb};
 use fractal_dsl::back::render::{AO_SAMPLES, AO_SPAN, AO_START, GLOW_FALLOFF, GLOW_NORM, MIN_DIRECTION, T_SPACING};
-use fractal_dsl::eval::{Env, Evaluator, Reference};
+use fractal_dsl::eval::{Env, Evaluator, PacketEvaluator, Reference};
+use fractal_dsl::lanes::{F32x8, LANES};
 use fractal_dsl::math::{dot, length, normalize, v3, Real, V3};
 use fractal_dsl::{HitEpsilon, RenderSettings, Scene, Shadows};
 use rayon::prelude::*;
@@ -34,7 +37,10 @@ impl Renderer for CpuRenderer {
     fn render(&mut self, job: &RenderJob) -> Result<Image, RenderError> {
         let kernel =
             job.kernels.cpu.ok_or(RenderError::MissingKernel { backend: Backend::Cpu, what: "CPU evaluator" })?;
-        render_scene::<f32, _>(kernel.evaluator, kernel.scene, job.frame)
+        match kernel.evaluator.packets() {
+            Some(packets) => render_packets(kernel.evaluator, packets, kernel.scene, job.frame),
+            None => render_scene::<f32, _>(kernel.evaluator, kernel.scene, job.frame),
+        }
     }
 
     fn device(&self) -> DeviceInfo {
@@ -42,7 +48,12 @@ impl Renderer for CpuRenderer {
             backend: Backend::Cpu,
             api: "rayon".to_string(),
             name: cpu_name(),
-            driver: format!("{} threads", rayon::current_num_threads()),
+            // The march runs packets where the evaluator has them (the native evaluator and the interpreter do).
+            driver: format!(
+                "{} threads, primary rays in packets of {LANES} f32 lanes, {}",
+                rayon::current_num_threads(),
+                fractal_dsl::lanes::instruction_set()
+            ),
             device_type: "Cpu".to_string(),
         }
     }
@@ -84,6 +95,38 @@ fn render_with_bound<F: Real, E: Evaluator<F> + ?Sized>(
         let env = Env::new(view.time, &view.params);
         for (x, px) in row.iter_mut().enumerate() {
             *px = pack(view.trace_pixel(evaluator, &env, x as u32, y as u32).colour, view.gamma);
+        }
+    });
+    Ok(Image { width: frame.width(), height: frame.height(), pixels })
+}
+
+/// [`render_scene`] in f32 with the primary rays marched eight at a time by `packets` (a row's pixels x..x+8), the
+/// rest of each pixel (normal, shading, shadows) by `evaluator`. The march is the render algorithm's, lane for lane,
+/// so the image is the scalar renderer's wherever the two evaluators agree (they do to the last bit but where LLVM
+/// folds a libm call in one instance and not the other).
+pub fn render_packets<E: Evaluator<f32> + ?Sized>(
+    evaluator: &E,
+    packets: &dyn PacketEvaluator,
+    scene: &Scene,
+    frame: &Frame,
+) -> Result<Image, RenderError> {
+    let view = View::<f32>::new(scene, frame, bound(&fold_node(&scene.root)))?;
+    let width = frame.width() as usize;
+    let mut pixels = vec![0u32; width * frame.height() as usize];
+    let params: Vec<F32x8> = view.params.iter().map(|&p| F32x8::splat(p)).collect();
+    pixels.par_chunks_mut(width).enumerate().for_each(|(y, row)| {
+        let env = Env::new(view.time, &view.params);
+        let env8 = Env::new(F32x8::splat(view.time), &params);
+        for (chunk, x0) in row.chunks_mut(LANES).zip((0..width).step_by(LANES)) {
+            let rays: [(V3<f32>, V3<f32>); LANES] = std::array::from_fn(|i| {
+                let x = (x0 + i).min(width - 1);
+                view.ray(x as f32 + 0.5, y as f32 + 0.5)
+            });
+            let marches = view.march_packet(packets, &env8, &rays, chunk.len());
+            for (i, px) in chunk.iter_mut().enumerate() {
+                let (ro, rd) = rays[i];
+                *px = pack(view.finish_pixel(evaluator, &env, ro, rd, marches[i]).colour, view.gamma);
+            }
         }
     });
     Ok(Image { width: frame.width(), height: frame.height(), pixels })
@@ -195,6 +238,72 @@ impl<F: Real, E: Evaluator<F> + ?Sized> Evaluator<F> for Counted<'_, E> {
     }
 }
 
+impl View<f32> {
+    /// The render algorithm's clip and march (steps 2–3) of eight rays at once, `valid` of them real (the rest
+    /// repeat a real one): each lane takes exactly the scalar march's steps; a lane that has stopped evaluates a
+    /// running lane's point, so it costs what that lane costs, and its result is not used.
+    fn march_packet(
+        &self,
+        packets: &dyn PacketEvaluator,
+        env: &Env<F32x8>,
+        rays: &[(V3<f32>, V3<f32>); LANES],
+        valid: usize,
+    ) -> [Option<March<f32>>; LANES] {
+        let clips: [Option<(f32, f32)>; LANES] =
+            std::array::from_fn(|i| if i < valid { self.clip(rays[i].0, rays[i].1) } else { None });
+        let mut marches: [Option<March<f32>>; LANES] = std::array::from_fn(|i| {
+            clips[i].map(|(t_near, _)| March {
+                hit: false,
+                t: t_near,
+                eps: 0.0,
+                steps: 0,
+                out_of_steps: false,
+                glow: 0.0,
+            })
+        });
+        loop {
+            let running: [bool; LANES] = std::array::from_fn(|i| match (&marches[i], clips[i]) {
+                (Some(m), Some((_, t_far))) => !m.hit && m.steps < self.max_steps && m.t <= t_far,
+                _ => false,
+            });
+            let Some(first) = running.iter().position(|&r| r) else { break };
+            let lane = |i: usize| if running[i] { i } else { first };
+            let at = |i: usize| {
+                let (ro, rd) = rays[lane(i)];
+                let t = marches[lane(i)].as_ref().map_or(0.0, |m| m.t);
+                ro + rd * t
+            };
+            let points: [V3<f32>; LANES] = std::array::from_fn(at);
+            let p = V3 {
+                x: F32x8::from_fn(|i| points[i].x),
+                y: F32x8::from_fn(|i| points[i].y),
+                z: F32x8::from_fn(|i| points[i].z),
+            };
+            let d = packets.distance_x8(p, env);
+            for (i, march) in marches.iter_mut().enumerate().filter(|(i, _)| running[*i]) {
+                let m = march.as_mut().expect("a running lane has a march");
+                let d = d.0[i];
+                m.steps += 1;
+                m.eps = self.hit_epsilon(m.t);
+                if d < m.eps {
+                    m.hit = true;
+                    continue;
+                }
+                if self.glow.is_some() {
+                    m.glow += 1.0 / (1.0 + GLOW_FALLOFF as f32 * d * d);
+                }
+                m.t += d;
+            }
+        }
+        for (march, clip) in marches.iter_mut().zip(clips) {
+            if let (Some(m), Some((_, t_far))) = (march.as_mut(), clip) {
+                m.out_of_steps = !m.hit && m.steps == self.max_steps && m.t <= t_far;
+            }
+        }
+        marches
+    }
+}
+
 /// One pixel in the renderer's precision.
 struct Pixel<F> {
     colour: V3<F>,
@@ -206,6 +315,7 @@ struct Pixel<F> {
 }
 
 /// The end of a march.
+#[derive(Clone, Copy)]
 struct March<F> {
     hit: bool,
     t: F,
@@ -356,7 +466,20 @@ impl<F: Real> View<F> {
     fn trace_pixel<E: Evaluator<F> + ?Sized>(&self, eval: &E, env: &Env<F>, x: u32, y: u32) -> Pixel<F> {
         let half = c::<F>(0.5);
         let (ro, rd) = self.ray(c::<F>(x as f64) + half, c::<F>(y as f64) + half);
-        let Some(march) = self.march(eval, env, ro, rd) else {
+        let march = self.march(eval, env, ro, rd);
+        self.finish_pixel(eval, env, ro, rd, march)
+    }
+
+    /// Steps 4–6 for the ray (ro, rd) after its march (`None`: the ray misses the bound).
+    fn finish_pixel<E: Evaluator<F> + ?Sized>(
+        &self,
+        eval: &E,
+        env: &Env<F>,
+        ro: V3<F>,
+        rd: V3<F>,
+        march: Option<March<F>>,
+    ) -> Pixel<F> {
+        let Some(march) = march else {
             let background = self.background;
             return Pixel { colour: background, hit: false, t: F::nan(), steps: 0, out_of_steps: false, normal: None };
         };
