@@ -1,7 +1,8 @@
 //! The CPU renderer: the render algorithm of [`fractal_dsl::back::render`] over a scene's [`Evaluator`], one rayon
 //! task per image row. Generic over the precision, so the f64 instance renders reference images for accuracy work.
-//! In f32, where the evaluator has a packet instance ([`Evaluator::packets`]), the primary rays of eight neighbouring
-//! pixels march together ([`render_packets`]); normals, shading and shadows stay a ray at a time.
+//! In f32, where the evaluator has a packet instance ([`Evaluator::packets`]), eight neighbouring pixels are traced
+//! together ([`render_packets`]): primary rays, normals, occlusion and shadow rays in packets, the material and the
+//! lighting sums a pixel at a time.
 //!
 //! It reads the camera, lights, time and parameters from the same [`Frame`] uniforms the kernels read, so the three
 //! renderers draw the same pose from the same numbers.
@@ -50,7 +51,7 @@ impl Renderer for CpuRenderer {
             name: cpu_name(),
             // The march runs packets where the evaluator has them (the native evaluator and the interpreter do).
             driver: format!(
-                "{} threads, primary rays in packets of {LANES} f32 lanes, {}",
+                "{} threads, rays in packets of {LANES} f32 lanes, {}",
                 rayon::current_num_threads(),
                 fractal_dsl::lanes::instruction_set()
             ),
@@ -100,8 +101,9 @@ fn render_with_bound<F: Real, E: Evaluator<F> + ?Sized>(
     Ok(Image { width: frame.width(), height: frame.height(), pixels })
 }
 
-/// [`render_scene`] in f32 with the primary rays marched eight at a time by `packets` (a row's pixels x..x+8), the
-/// rest of each pixel (normal, shading, shadows) by `evaluator`. The march is the render algorithm's, lane for lane,
+/// [`render_scene`] in f32 with eight neighbouring pixels of a row traced together: their primary rays, normals,
+/// occlusion and shadow rays evaluated by `packets`, their materials and lighting by `evaluator` a pixel at a time.
+/// Every step is the render algorithm's, lane for lane,
 /// so the image is the scalar renderer's wherever the two evaluators agree (they do to the last bit but where LLVM
 /// folds a libm call in one instance and not the other).
 pub fn render_packets<E: Evaluator<f32> + ?Sized>(
@@ -123,9 +125,9 @@ pub fn render_packets<E: Evaluator<f32> + ?Sized>(
                 view.ray(x as f32 + 0.5, y as f32 + 0.5)
             });
             let marches = view.march_packet(packets, &env8, &rays, chunk.len());
-            for (i, px) in chunk.iter_mut().enumerate() {
-                let (ro, rd) = rays[i];
-                *px = pack(view.finish_pixel(evaluator, &env, ro, rd, marches[i]).colour, view.gamma);
+            let finished = view.finish_packet(evaluator, &env, packets, &env8, &rays, &marches);
+            for (px, pixel) in chunk.iter_mut().zip(finished) {
+                *px = pack(pixel.colour, view.gamma);
             }
         }
     });
@@ -239,9 +241,8 @@ impl<F: Real, E: Evaluator<F> + ?Sized> Evaluator<F> for Counted<'_, E> {
 }
 
 impl View<f32> {
-    /// The render algorithm's clip and march (steps 2–3) of eight rays at once, `valid` of them real (the rest
-    /// repeat a real one): each lane takes exactly the scalar march's steps; a lane that has stopped evaluates a
-    /// running lane's point, so it costs what that lane costs, and its result is not used.
+    /// The render algorithm's clip and march (steps 2–3) of eight rays at once, `valid` of them real: each lane
+    /// takes exactly the scalar march's steps.
     fn march_packet(
         &self,
         packets: &dyn PacketEvaluator,
@@ -261,46 +262,143 @@ impl View<f32> {
                 glow: 0.0,
             })
         });
-        loop {
-            let running: [bool; LANES] = std::array::from_fn(|i| match (&marches[i], clips[i]) {
+        run_lanes(
+            packets,
+            env,
+            &mut marches,
+            |i, march| match (march, clips[i]) {
                 (Some(m), Some((_, t_far))) => !m.hit && m.steps < self.max_steps && m.t <= t_far,
                 _ => false,
-            });
-            let Some(first) = running.iter().position(|&r| r) else { break };
-            let lane = |i: usize| if running[i] { i } else { first };
-            let at = |i: usize| {
-                let (ro, rd) = rays[lane(i)];
-                let t = marches[lane(i)].as_ref().map_or(0.0, |m| m.t);
-                ro + rd * t
-            };
-            let points: [V3<f32>; LANES] = std::array::from_fn(at);
-            let p = V3 {
-                x: F32x8::from_fn(|i| points[i].x),
-                y: F32x8::from_fn(|i| points[i].y),
-                z: F32x8::from_fn(|i| points[i].z),
-            };
-            let d = packets.distance_x8(p, env);
-            for (i, march) in marches.iter_mut().enumerate().filter(|(i, _)| running[*i]) {
+            },
+            |i, march| rays[i].0 + rays[i].1 * march.as_ref().map_or(0.0, |m| m.t),
+            |_, march, d| {
                 let m = march.as_mut().expect("a running lane has a march");
-                let d = d.0[i];
                 m.steps += 1;
                 m.eps = self.hit_epsilon(m.t);
                 if d < m.eps {
                     m.hit = true;
-                    continue;
+                    return;
                 }
                 if self.glow.is_some() {
                     m.glow += 1.0 / (1.0 + GLOW_FALLOFF as f32 * d * d);
                 }
                 m.t += d;
-            }
-        }
+            },
+        );
         for (march, clip) in marches.iter_mut().zip(clips) {
             if let (Some(m), Some((_, t_far))) = (march.as_mut(), clip) {
                 m.out_of_steps = !m.hit && m.steps == self.max_steps && m.t <= t_far;
             }
         }
         marches
+    }
+
+    /// Steps 4–6 of eight marched rays: normals, occlusion and shadow rays evaluated in packets (lane for lane the
+    /// scalar formulas), the material and lighting a pixel at a time.
+    fn finish_packet<E: Evaluator<f32> + ?Sized>(
+        &self,
+        eval: &E,
+        env: &Env<f32>,
+        packets: &dyn PacketEvaluator,
+        env8: &Env<F32x8>,
+        rays: &[(V3<f32>, V3<f32>); LANES],
+        marches: &[Option<March<f32>>; LANES],
+    ) -> [Pixel<f32>; LANES] {
+        let hit: [bool; LANES] = std::array::from_fn(|i| marches[i].is_some_and(|m| m.hit));
+        let Some(first) = hit.iter().position(|&h| h) else {
+            return std::array::from_fn(|i| self.finish_pixel(eval, env, rays[i].0, rays[i].1, marches[i]));
+        };
+        // Lanes without a hit stand in for the first hit (their values are computed and not used).
+        let lane = |i: usize| if hit[i] { i } else { first };
+        let at = |i: usize| {
+            let (ro, rd) = rays[lane(i)];
+            let m = marches[lane(i)].expect("a hit lane has a march");
+            (ro + rd * m.t, m.eps)
+        };
+        let points: [(V3<f32>, f32); LANES] = std::array::from_fn(at);
+
+        let taps: [[V3<f32>; 4]; LANES] = std::array::from_fn(|i| normal_taps(points[i].0, points[i].1));
+        let tap_distances: [[f32; LANES]; 4] =
+            std::array::from_fn(|k| distances_x8(packets, env8, std::array::from_fn(|i| taps[i][k])));
+        let normals: [V3<f32>; LANES] =
+            std::array::from_fn(|i| normal_from(std::array::from_fn(|k| tap_distances[k][i])));
+
+        let occlusion: [f32; LANES] = match self.ambient_occlusion {
+            None => [1.0; LANES],
+            Some(strength) => {
+                let samples: [[V3<f32>; AO_SAMPLES as usize]; LANES] =
+                    std::array::from_fn(|i| occlusion_points(points[i].0, normals[i]));
+                let distances: [[f32; LANES]; AO_SAMPLES as usize] =
+                    std::array::from_fn(|h| distances_x8(packets, env8, std::array::from_fn(|i| samples[i][h])));
+                std::array::from_fn(|i| occlusion_from(strength, std::array::from_fn(|h| distances[h][i])))
+            }
+        };
+
+        // shadows[light][lane]: the light reaching each hit, for lanes whose surface faces the light.
+        let mut shadows = vec![[1.0f32; LANES]; self.lights.len()];
+        if self.shadows != Shadows::None {
+            for (light, lit) in self.lights.iter().zip(shadows.iter_mut()) {
+                let rays: [(V3<f32>, V3<f32>, f32, bool); LANES] = std::array::from_fn(|i| {
+                    let (p, eps) = points[i];
+                    let (l, _, limit) = self.light_at(light, p);
+                    let faces = hit[i] && dot(normals[i], l).max(0.0) > 0.0;
+                    (self.shadow_origin(p, normals[i], eps), l, limit, faces)
+                });
+                let mut states: [ShadowMarch<f32>; LANES] = std::array::from_fn(|i| self.shadow_start(points[i].1));
+                run_lanes(
+                    packets,
+                    env8,
+                    &mut states,
+                    |i, march| rays[i].3 && self.shadow_running(march, rays[i].2),
+                    |i, march| rays[i].0 + rays[i].1 * march.t,
+                    |i, march, d| self.shadow_step(march, d, points[i].1),
+                );
+                for (i, value) in lit.iter_mut().enumerate().filter(|(i, _)| rays[*i].3) {
+                    *value = self.shadow_result(&states[i]);
+                }
+            }
+        }
+
+        std::array::from_fn(|i| {
+            let (ro, rd) = rays[i];
+            self.finish_with(ro, rd, marches[i], |p, t, eps| {
+                let n = normals[i];
+                let shadow = |light: usize, _: V3<f32>, _: V3<f32>, _: f32| shadows[light][i];
+                (self.shade_lit(eval, env, p, n, rd, t, eps, occlusion[i], &shadow), n)
+            })
+        })
+    }
+}
+
+/// The distances at eight points, in one packet.
+fn distances_x8(packets: &dyn PacketEvaluator, env: &Env<F32x8>, points: [V3<f32>; LANES]) -> [f32; LANES] {
+    let p = V3 {
+        x: F32x8::from_fn(|i| points[i].x),
+        y: F32x8::from_fn(|i| points[i].y),
+        z: F32x8::from_fn(|i| points[i].z),
+    };
+    packets.distance_x8(p, env).0
+}
+
+/// Marches eight lanes together: while any lane is `running`, evaluates the distance at every running lane's `point`
+/// in one packet (an idle lane repeats a running lane's point, so it costs what that lane costs) and hands it to
+/// that lane's `step`.
+fn run_lanes<S>(
+    packets: &dyn PacketEvaluator,
+    env: &Env<F32x8>,
+    states: &mut [S; LANES],
+    running: impl Fn(usize, &S) -> bool,
+    point: impl Fn(usize, &S) -> V3<f32>,
+    mut step: impl FnMut(usize, &mut S, f32),
+) {
+    loop {
+        let live: [bool; LANES] = std::array::from_fn(|i| running(i, &states[i]));
+        let Some(first) = live.iter().position(|&r| r) else { break };
+        let points = std::array::from_fn(|i| if live[i] { point(i, &states[i]) } else { point(first, &states[first]) });
+        let d = distances_x8(packets, env, points);
+        for (i, state) in states.iter_mut().enumerate().filter(|(i, _)| live[*i]) {
+            step(i, state, d[i]);
+        }
     }
 }
 
@@ -479,15 +577,28 @@ impl<F: Real> View<F> {
         rd: V3<F>,
         march: Option<March<F>>,
     ) -> Pixel<F> {
+        self.finish_with(ro, rd, march, |p, t, eps| {
+            let n = self.normal(eval, env, p, eps);
+            (self.shade_hit(eval, env, p, n, rd, t, eps), n)
+        })
+    }
+
+    /// Steps 4–6 with the hit's colour and normal from `shade(p, t, eps)`.
+    fn finish_with(
+        &self,
+        ro: V3<F>,
+        rd: V3<F>,
+        march: Option<March<F>>,
+        shade: impl FnOnce(V3<F>, F, F) -> (V3<F>, V3<F>),
+    ) -> Pixel<F> {
         let Some(march) = march else {
             let background = self.background;
             return Pixel { colour: background, hit: false, t: F::nan(), steps: 0, out_of_steps: false, normal: None };
         };
         let (t, eps) = (march.t, march.eps);
         let (mut colour, normal) = if march.hit {
-            let p = ro + rd * t;
-            let n = self.normal(eval, env, p, eps);
-            (self.shade_hit(eval, env, p, n, rd, t, eps), Some(n))
+            let (colour, n) = shade(ro + rd * t, t, eps);
+            (colour, Some(n))
         } else {
             (self.background, None)
         };
@@ -569,19 +680,7 @@ impl<F: Real> View<F> {
 
     /// Step 4's normal: the tetrahedral gradient of the distance at `p` with taps `eps` apart.
     fn normal<E: Evaluator<F> + ?Sized>(&self, eval: &E, env: &Env<F>, p: V3<F>, eps: F) -> V3<F> {
-        let (one, neg) = (F::one(), -F::one());
-        let taps = [v3(one, neg, neg), v3(neg, neg, one), v3(neg, one, neg), v3(one, one, one)];
-        let mut gradient = V3::splat(F::zero());
-        for k in taps {
-            gradient = gradient + k * eval.distance(p + k * eps, env);
-        }
-        let len = length(gradient);
-        // A flat gradient (all four taps equal) has no direction; the kernels then take +y.
-        if len > F::zero() {
-            gradient / len
-        } else {
-            v3(F::zero(), one, F::zero())
-        }
+        normal_from(normal_taps(p, eps).map(|q| eval.distance(q, env)))
     }
 
     /// Step 4 after the normal: the colour of the hit at `p` (distance `t` along `rd`) with normal `n`.
@@ -597,6 +696,45 @@ impl<F: Real> View<F> {
         eps: F,
     ) -> V3<F> {
         let de = |q: V3<F>| eval.distance(q, env);
+        let ao = match self.ambient_occlusion {
+            None => F::one(),
+            Some(strength) => occlusion_from(strength, occlusion_points(p, n).map(de)),
+        };
+        let shadow = |_: usize, origin: V3<F>, l: V3<F>, limit: F| self.shadow(&de, origin, l, limit, eps);
+        self.shade_lit(eval, env, p, n, rd, t, eps, ao, &shadow)
+    }
+
+    /// Light i's direction from `p`, its radiance there and how far a shadow ray goes towards it.
+    fn light_at(&self, light: &Light<F>, p: V3<F>) -> (V3<F>, V3<F>, F) {
+        match *light {
+            Light::Directional { direction, radiance } => (direction, radiance, self.max_distance),
+            Light::Point { position, radiance } => {
+                let to_light = position - p;
+                let distance = length(to_light);
+                (to_light / distance, radiance / (distance * distance), distance)
+            }
+        }
+    }
+
+    /// The shadow ray of a lit hit: from `p` off the surface along the normal, towards light direction `l`.
+    fn shadow_origin(&self, p: V3<F>, n: V3<F>, eps: F) -> V3<F> {
+        p + n * (c::<F>(2.0) * eps)
+    }
+
+    /// Step 4 with the occlusion `ao` and, for each light i that faces the surface, `shadow(i, origin, l, limit)`.
+    #[allow(clippy::too_many_arguments)]
+    fn shade_lit<E: Evaluator<F> + ?Sized>(
+        &self,
+        eval: &E,
+        env: &Env<F>,
+        p: V3<F>,
+        n: V3<F>,
+        rd: V3<F>,
+        t: F,
+        eps: F,
+        ao: F,
+        shadow: &dyn Fn(usize, V3<F>, V3<F>, F) -> F,
+    ) -> V3<F> {
         let one = F::one();
         // A perturbed pattern reads the hit relative to the camera, rd·t, as the kernels pass it.
         let at_hit = Env {
@@ -604,34 +742,11 @@ impl<F: Real> View<F> {
             ..*env
         };
         let m = eval.sample(p, &at_hit);
-
-        let ao = match self.ambient_occlusion {
-            None => F::one(),
-            Some(strength) => {
-                let mut occ = F::zero();
-                let mut weight = F::one();
-                for i in 0..AO_SAMPLES {
-                    let h = c::<F>(AO_START) + c::<F>(AO_SPAN) * c::<F>(i as f64) / c::<F>((AO_SAMPLES - 1) as f64);
-                    occ = occ + (h - de(p + n * h)) * weight;
-                    weight = weight * c::<F>(0.95);
-                }
-                (one - strength * occ).max(F::zero()).min(one)
-            }
-        };
-
         let mut colour = m.albedo * (m.ambient * ao);
-        for light in &self.lights {
-            let (l, radiance, limit) = match *light {
-                Light::Directional { direction, radiance } => (direction, radiance, self.max_distance),
-                Light::Point { position, radiance } => {
-                    let to_light = position - p;
-                    let distance = length(to_light);
-                    (to_light / distance, radiance / (distance * distance), distance)
-                }
-            };
+        for (i, light) in self.lights.iter().enumerate() {
+            let (l, radiance, limit) = self.light_at(light, p);
             let ndl = dot(n, l).max(F::zero());
-            let shadow =
-                if ndl > F::zero() { self.shadow(&de, p + n * (c::<F>(2.0) * eps), l, limit, eps) } else { one };
+            let shadow = if ndl > F::zero() { shadow(i, self.shadow_origin(p, n, eps), l, limit) } else { one };
             colour = colour + m.albedo * (m.diffuse * ndl) * radiance * shadow;
             if self.specular {
                 let h = normalize(l - rd);
@@ -648,32 +763,112 @@ impl<F: Real> View<F> {
 
     /// Light reaching `origin` from direction `l` within `limit`: 1 lit, 0 blocked, soft shadows in between.
     fn shadow(&self, de: &impl Fn(V3<F>) -> F, origin: V3<F>, l: V3<F>, limit: F, eps: F) -> F {
-        let soft_k = match self.shadows {
-            Shadows::None => return F::one(),
-            Shadows::Hard => None,
-            Shadows::Soft(k) => Some(c::<F>(k)),
-        };
-        let mut res = F::one();
-        // Soft shadows divide by t, so they start one step out; the origin is already off the surface.
-        let mut t = if soft_k.is_some() { c::<F>(2.0) * eps } else { F::zero() };
-        let mut step = 0;
-        while step < self.max_steps && t < limit {
-            step += 1;
-            let d = de(origin + l * t);
-            if d < eps {
-                res = F::zero();
-                break;
-            }
-            if let Some(k) = soft_k {
-                res = res.min(k * d / t);
-            }
-            t = t + d;
+        if self.shadows == Shadows::None {
+            return F::one();
         }
-        match soft_k {
+        let mut march = self.shadow_start(eps);
+        while self.shadow_running(&march, limit) {
+            let d = de(origin + l * march.t);
+            self.shadow_step(&mut march, d, eps);
+        }
+        self.shadow_result(&march)
+    }
+
+    fn soft_k(&self) -> Option<F> {
+        match self.shadows {
+            Shadows::Soft(k) => Some(c::<F>(k)),
+            _ => None,
+        }
+    }
+
+    fn shadow_start(&self, eps: F) -> ShadowMarch<F> {
+        // Soft shadows divide by t, so they start one step out; the origin is already off the surface.
+        let t = if self.soft_k().is_some() { c::<F>(2.0) * eps } else { F::zero() };
+        ShadowMarch { t, res: F::one(), steps: 0, blocked: false }
+    }
+
+    fn shadow_running(&self, march: &ShadowMarch<F>, limit: F) -> bool {
+        !march.blocked && march.steps < self.max_steps && march.t < limit
+    }
+
+    /// One step of a shadow march that found distance `d` at its current point.
+    fn shadow_step(&self, march: &mut ShadowMarch<F>, d: F, eps: F) {
+        march.steps += 1;
+        if d < eps {
+            march.res = F::zero();
+            march.blocked = true;
+            return;
+        }
+        if let Some(k) = self.soft_k() {
+            march.res = march.res.min(k * d / march.t);
+        }
+        march.t = march.t + d;
+    }
+
+    fn shadow_result(&self, march: &ShadowMarch<F>) -> F {
+        let res = march.res;
+        match self.soft_k() {
             None => res,
             Some(_) => res * res * (c::<F>(3.0) - c::<F>(2.0) * res),
         }
     }
+}
+
+/// A shadow ray's march so far.
+#[derive(Clone, Copy)]
+struct ShadowMarch<F> {
+    t: F,
+    res: F,
+    steps: u32,
+    blocked: bool,
+}
+
+/// The tetrahedron of offsets the normal samples the distance at.
+fn tetrahedron<F: Real>() -> [V3<F>; 4] {
+    let (one, neg) = (F::one(), -F::one());
+    [v3(one, neg, neg), v3(neg, neg, one), v3(neg, one, neg), v3(one, one, one)]
+}
+
+/// Step 4's normal, sampled at these four points around `p`, `eps` apart.
+fn normal_taps<F: Real>(p: V3<F>, eps: F) -> [V3<F>; 4] {
+    tetrahedron::<F>().map(|k| p + k * eps)
+}
+
+/// The normal from the distances at [`normal_taps`]: the normalised tetrahedral gradient.
+fn normal_from<F: Real>(distances: [F; 4]) -> V3<F> {
+    let mut gradient = V3::splat(F::zero());
+    for (k, d) in tetrahedron::<F>().into_iter().zip(distances) {
+        gradient = gradient + k * d;
+    }
+    let len = length(gradient);
+    // A flat gradient (all four taps equal) has no direction; the kernels then take +y.
+    if len > F::zero() {
+        gradient / len
+    } else {
+        v3(F::zero(), F::one(), F::zero())
+    }
+}
+
+/// The distances of ambient occlusion's samples along the normal.
+fn occlusion_heights<F: Real>() -> [F; AO_SAMPLES as usize] {
+    std::array::from_fn(|i| c::<F>(AO_START) + c::<F>(AO_SPAN) * c::<F>(i as f64) / c::<F>((AO_SAMPLES - 1) as f64))
+}
+
+/// Ambient occlusion's sample points above `p`.
+fn occlusion_points<F: Real>(p: V3<F>, n: V3<F>) -> [V3<F>; AO_SAMPLES as usize] {
+    occlusion_heights::<F>().map(|h| p + n * h)
+}
+
+/// Ambient occlusion of `strength` (3 × the scene's) from the distances at [`occlusion_points`].
+fn occlusion_from<F: Real>(strength: F, distances: [F; AO_SAMPLES as usize]) -> F {
+    let one = F::one();
+    let mut occ = F::zero();
+    let mut weight = F::one();
+    for (h, d) in occlusion_heights::<F>().into_iter().zip(distances) {
+        occ = occ + (h - d) * weight;
+        weight = weight * c::<F>(0.95);
+    }
+    (one - strength * occ).max(F::zero()).min(one)
 }
 
 /// Step 7: clamp, gamma, pack RGBA8 with R in the low byte.
