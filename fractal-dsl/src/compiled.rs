@@ -145,13 +145,13 @@ impl NativeFns {
     /// time on the calling thread ([`crate::eval::packet`]). Panics if the lengths differ.
     #[allow(clippy::too_many_arguments)]
     pub fn distance_slice(&self, time: f32, params: &[f32], x: &[f32], y: &[f32], z: &[f32], out: &mut [f32]) {
-        crate::eval::packet::distance_slice(&self.distance_x8, time, params, x, y, z, out)
+        crate::eval::packet::distance_slice(self.distance_x8, time, params, x, y, z, out)
     }
 
     /// Distances and materials at many points; see [`NativeFns::distance_slice`].
     #[allow(clippy::too_many_arguments)]
     pub fn sample_slice(&self, time: f32, params: &[f32], x: &[f32], y: &[f32], z: &[f32], out: &mut [Sample<f32>]) {
-        crate::eval::packet::sample_slice(&self.sample_x8, time, params, x, y, z, out)
+        crate::eval::packet::sample_slice(self.sample_x8, time, params, x, y, z, out)
     }
 }
 

@@ -60,13 +60,13 @@ impl Interpreter {
     /// (x[i], y[i], z[i]) at `time` with parameter values `params` (slot order). Panics if the lengths differ.
     pub fn distance_slice(&self, time: f32, params: &[f32], x: &[f32], y: &[f32], z: &[f32], out: &mut [f32]) {
         let walk = self.walk();
-        crate::eval::packet::distance_slice(&|p, env| walk.distance(p, env), time, params, x, y, z, out)
+        crate::eval::packet::distance_slice(|p, env| walk.distance(p, env), time, params, x, y, z, out)
     }
 
     /// Distances and materials at many points, eight at a time; see [`Interpreter::distance_slice`].
     pub fn sample_slice(&self, time: f32, params: &[f32], x: &[f32], y: &[f32], z: &[f32], out: &mut [Sample<f32>]) {
         let walk = self.walk();
-        crate::eval::packet::sample_slice(&|p, env| walk.sample(p, env), time, params, x, y, z, out)
+        crate::eval::packet::sample_slice(|p, env| walk.sample(p, env), time, params, x, y, z, out)
     }
 }
 

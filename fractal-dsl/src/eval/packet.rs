@@ -38,15 +38,10 @@ fn splat_params(params: &[f32]) -> Vec<F32x8> {
     params.iter().map(|&v| F32x8::splat(v)).collect()
 }
 
-/// A packet evaluator of distances.
-pub type PacketDistance<'a> = &'a dyn Fn(V3<F32x8>, &Env<F32x8>) -> F32x8;
-/// A packet evaluator of distances and materials.
-pub type PacketSample<'a> = &'a dyn Fn(V3<F32x8>, &Env<F32x8>) -> Sample<F32x8>;
-
 /// `out[i]` = `distance` at (x[i], y[i], z[i]) at `time` with `params`. Panics if the lengths differ.
 #[allow(clippy::too_many_arguments)]
 pub fn distance_slice(
-    distance: PacketDistance<'_>,
+    distance: impl Fn(V3<F32x8>, &Env<F32x8>) -> F32x8,
     time: f32,
     params: &[f32],
     x: &[f32],
@@ -59,7 +54,11 @@ pub fn distance_slice(
     let env = Env::new(F32x8::splat(time), &params);
     for (chunk, start) in out.chunks_mut(LANES).zip((0..n).step_by(LANES)) {
         let d = distance(packet(x, y, z, start), &env);
-        chunk.copy_from_slice(&d.0[..chunk.len()]);
+        match <&mut [f32; LANES]>::try_from(&mut *chunk) {
+            // A whole packet: a fixed-size copy (no call to memcpy).
+            Ok(whole) => *whole = d.0,
+            Err(_) => chunk.copy_from_slice(&d.0[..chunk.len()]),
+        }
     }
 }
 
@@ -67,7 +66,7 @@ pub fn distance_slice(
 /// differ.
 #[allow(clippy::too_many_arguments)]
 pub fn sample_slice(
-    sample: PacketSample<'_>,
+    sample: impl Fn(V3<F32x8>, &Env<F32x8>) -> Sample<F32x8>,
     time: f32,
     params: &[f32],
     x: &[f32],
