@@ -119,12 +119,13 @@ pub fn render_packets<E: Evaluator<f32> + ?Sized>(
     pixels.par_chunks_mut(width).enumerate().for_each(|(y, row)| {
         let env = Env::new(view.time, &view.params);
         let env8 = Env::new(F32x8::splat(view.time), &params);
+        let row_rays: Vec<(V3<f32>, V3<f32>)> = (0..width).map(|x| view.ray(x as f32 + 0.5, y as f32 + 0.5)).collect();
+        let row_marches = view.march_row(packets, &env8, &row_rays);
         for (chunk, x0) in row.chunks_mut(LANES).zip((0..width).step_by(LANES)) {
-            let rays: [(V3<f32>, V3<f32>); LANES] = std::array::from_fn(|i| {
-                let x = (x0 + i).min(width - 1);
-                view.ray(x as f32 + 0.5, y as f32 + 0.5)
-            });
-            let marches = view.march_packet(packets, &env8, &rays, chunk.len());
+            // The last group of a row repeats its last pixel; the repeats are not written.
+            let rays: [(V3<f32>, V3<f32>); LANES] = std::array::from_fn(|i| row_rays[(x0 + i).min(width - 1)]);
+            let marches: [Option<March<f32>>; LANES] =
+                std::array::from_fn(|i| if x0 + i < width { row_marches[x0 + i] } else { None });
             let finished = view.finish_packet(evaluator, &env, packets, &env8, &rays, &marches);
             for (px, pixel) in chunk.iter_mut().zip(finished) {
                 *px = pack(pixel.colour, view.gamma);
@@ -241,56 +242,62 @@ impl<F: Real, E: Evaluator<F> + ?Sized> Evaluator<F> for Counted<'_, E> {
 }
 
 impl View<f32> {
-    /// The render algorithm's clip and march (steps 2–3) of eight rays at once, `valid` of them real: each lane
-    /// takes exactly the scalar march's steps.
-    fn march_packet(
+    /// The render algorithm's clip and march (steps 2–3) of a row of rays, eight lanes at a time: a lane whose
+    /// march ends takes the row's next ray at once, so no lane idles while rays remain. Each ray takes exactly the
+    /// scalar march's steps, whichever lane it runs in.
+    fn march_row(
         &self,
         packets: &dyn PacketEvaluator,
         env: &Env<F32x8>,
-        rays: &[(V3<f32>, V3<f32>); LANES],
-        valid: usize,
-    ) -> [Option<March<f32>>; LANES] {
-        let clips: [Option<(f32, f32)>; LANES] =
-            std::array::from_fn(|i| if i < valid { self.clip(rays[i].0, rays[i].1) } else { None });
-        let mut marches: [Option<March<f32>>; LANES] = std::array::from_fn(|i| {
-            clips[i].map(|(t_near, _)| March {
-                hit: false,
-                t: t_near,
-                eps: 0.0,
-                steps: 0,
-                out_of_steps: false,
-                glow: 0.0,
-            })
-        });
-        run_lanes(
-            packets,
-            env,
-            &mut marches,
-            |i, march| match (march, clips[i]) {
-                (Some(m), Some((_, t_far))) => !m.hit && m.steps < self.max_steps && m.t <= t_far,
-                _ => false,
-            },
-            |i, march| rays[i].0 + rays[i].1 * march.as_ref().map_or(0.0, |m| m.t),
-            |_, march, d| {
-                let m = march.as_mut().expect("a running lane has a march");
+        rays: &[(V3<f32>, V3<f32>)],
+    ) -> Vec<Option<March<f32>>> {
+        let mut out: Vec<Option<March<f32>>> = vec![None; rays.len()];
+        let running = |m: &March<f32>, t_far: f32| !m.hit && m.steps < self.max_steps && m.t <= t_far;
+        // Each lane: the ray it marches, its march so far and the end of its clipped span.
+        let mut lanes: [Option<(usize, March<f32>, f32)>; LANES] = [None; LANES];
+        let mut next = 0;
+        loop {
+            for lane in lanes.iter_mut() {
+                loop {
+                    if let Some((ray, mut march, t_far)) = *lane {
+                        if running(&march, t_far) {
+                            break;
+                        }
+                        march.out_of_steps = !march.hit && march.steps == self.max_steps && march.t <= t_far;
+                        out[ray] = Some(march);
+                        *lane = None;
+                    }
+                    let Some(&(ro, rd)) = rays.get(next) else { break };
+                    let ray = next;
+                    next += 1;
+                    // A ray that misses the bound has no march (`None` stays in `out`).
+                    if let Some((t_near, t_far)) = self.clip(ro, rd) {
+                        let march = March { hit: false, t: t_near, eps: 0.0, steps: 0, out_of_steps: false, glow: 0.0 };
+                        *lane = Some((ray, march, t_far));
+                    }
+                }
+            }
+            let Some(first) = lanes.iter().position(Option::is_some) else { break };
+            let point = |lane: &Option<(usize, March<f32>, f32)>| {
+                let (ray, march, _) = lane.or(lanes[first]).expect("a lane is marching");
+                rays[ray].0 + rays[ray].1 * march.t
+            };
+            let d = distances_x8(packets, env, std::array::from_fn(|i| point(&lanes[i])));
+            for (lane, d) in lanes.iter_mut().zip(d) {
+                let Some((_, m, _)) = lane.as_mut() else { continue };
                 m.steps += 1;
                 m.eps = self.hit_epsilon(m.t);
                 if d < m.eps {
                     m.hit = true;
-                    return;
+                    continue;
                 }
                 if self.glow.is_some() {
                     m.glow += 1.0 / (1.0 + GLOW_FALLOFF as f32 * d * d);
                 }
                 m.t += d;
-            },
-        );
-        for (march, clip) in marches.iter_mut().zip(clips) {
-            if let (Some(m), Some((_, t_far))) = (march.as_mut(), clip) {
-                m.out_of_steps = !m.hit && m.steps == self.max_steps && m.t <= t_far;
             }
         }
-        marches
+        out
     }
 
     /// Steps 4–6 of eight marched rays: normals, occlusion and shadow rays evaluated in packets (lane for lane the
