@@ -228,11 +228,10 @@ const GLSL_MAIN: &str = "\nout vec4 validator_out;\n\nvoid main() {\n\
     \x20   validator_out = vec4(sdf_display(hit.rgb), hit.w) + vec4(sdf_normal(SDF_BOUND_CENTER), sdf(vec3(0.5)))\n\
     \x20       + vec4(sdf_material(vec3(0.1)), 0.0);\n}\n";
 
-fn glslang(label: &str, file_name: &str, text: &str, args: &[&str]) {
+fn glslang(file_name: &str, text: &str, args: &[&str]) {
     let path = temp_file(file_name, text);
     run_validator("glslangValidator", args, &path);
     let _ = std::fs::remove_file(&path);
-    let _ = label;
 }
 
 #[test]
@@ -242,9 +241,9 @@ fn glsl_libraries_pass_glslang_as_glsl_450_and_es_300() {
     }
     for (name, scene) in builtin_scenes() {
         let library = packaged(&name, &scene, Engine::Glsl).files[0].contents.clone();
-        glslang(&name, &format!("{name}.450.frag"), &format!("#version 450\n{library}{GLSL_MAIN}"), &[]);
+        glslang(&format!("{name}.450.frag"), &format!("#version 450\n{library}{GLSL_MAIN}"), &[]);
         let es = format!("#version 300 es\nprecision highp float;\nprecision highp int;\n{library}{GLSL_MAIN}");
-        glslang(&name, &format!("{name}.es.frag"), &es, &[]);
+        glslang(&format!("{name}.es.frag"), &es, &[]);
     }
 }
 
@@ -262,7 +261,7 @@ fn shadertoy_packages_pass_glslang_with_the_shadertoy_prelude() {
              uniform vec3 iResolution;\nuniform float iTime;\nuniform vec4 iMouse;\nout vec4 shadertoy_out;\n\n{text}\n\
              void main() {{\n    mainImage(shadertoy_out, gl_FragCoord.xy);\n}}\n"
         );
-        glslang(&name, &format!("{name}.shadertoy.frag"), &wrapped, &[]);
+        glslang(&format!("{name}.shadertoy.frag"), &wrapped, &[]);
     }
 }
 
@@ -291,7 +290,7 @@ fn godot_packages_pass_glslang_after_a_thin_wrapper() {
         let p = packaged(&name, &scene, Engine::Godot);
         let include_name = format!("{name}.gdshaderinc");
         let include = godot_include_as_glsl(file(&p, &include_name));
-        glslang(&name, &format!("{name}.godot.frag"), &format!("#version 450\n{include}{GLSL_MAIN}"), &[]);
+        glslang(&format!("{name}.godot.frag"), &format!("#version 450\n{include}{GLSL_MAIN}"), &[]);
 
         // The spatial shader's fragment function, with Godot's built-ins as uniforms and outputs as globals.
         let shader = file(&p, &format!("{name}.gdshader"));
@@ -311,7 +310,7 @@ fn godot_packages_pass_glslang_after_a_thin_wrapper() {
         let wrapped = format!(
             "#version 450\n{include}{globals}{fragment}\nout vec4 godot_out;\n\nvoid main() {{\n    fragment();\n    godot_out = vec4(ALBEDO, DEPTH);\n}}\n"
         );
-        glslang(&name, &format!("{name}.gdshader.frag"), &wrapped, &[]);
+        glslang(&format!("{name}.gdshader.frag"), &wrapped, &[]);
     }
 }
 
@@ -321,11 +320,11 @@ const HLSL_MAIN: &str = "\nfloat4 main(float4 position : SV_Position) : SV_Targe
     \x20   return float4(sdf_display(hit.rgb), hit.w) + float4(sdf_normal(SDF_BOUND_CENTER), sdf(position.xyz))\n\
     \x20       + float4(sdf_material(position.xyz), 0.0);\n}\n";
 
-fn glslang_hlsl(name: &str, file_name: &str, text: &str, entry: &str) {
+fn glslang_hlsl(file_name: &str, text: &str, entry: &str) {
     let spirv =
         std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{file_name}.{}.spv", std::process::id()));
     let spirv_arg = spirv.to_str().expect("a UTF-8 temporary path").to_string();
-    glslang(name, file_name, text, &["-D", "-V", "-S", "frag", "-e", entry, "-o", &spirv_arg]);
+    glslang(file_name, text, &["-D", "-V", "-S", "frag", "-e", entry, "-o", &spirv_arg]);
     let _ = std::fs::remove_file(spirv);
 }
 
@@ -336,7 +335,7 @@ fn hlsl_libraries_pass_glslang_hlsl_front_end() {
     }
     for (name, scene) in builtin_scenes() {
         let library = packaged(&name, &scene, Engine::Hlsl).files[0].contents.clone();
-        glslang_hlsl(&name, &format!("{name}.hlsl"), &format!("{library}{HLSL_MAIN}"), "main");
+        glslang_hlsl(&format!("{name}.hlsl"), &format!("{library}{HLSL_MAIN}"), "main");
     }
 }
 
@@ -363,7 +362,7 @@ fn unity_packages_pass_glslang_hlsl_front_end() {
              \x20   FractalRaymarch_float(float3(0.0, 0.0, -3.0), float3(0.0, 0.0, 1.0), 0.001, 1.0{params}, c, t);\n\
              \x20   return float4(n + a + c, d + t);\n}}\n"
         );
-        glslang_hlsl(&name, &format!("{name}.graph.hlsl"), &graph, "main");
+        glslang_hlsl(&format!("{name}.graph.hlsl"), &graph, "main");
 
         let shader = file(&p, &format!("{name}.shader"));
         let start = shader.find("HLSLPROGRAM").expect("an HLSL program") + "HLSLPROGRAM".len();
@@ -372,7 +371,7 @@ fn unity_packages_pass_glslang_hlsl_front_end() {
             .replace("#include \"UnityCG.cginc\"", UNITY_CG)
             .replace(&format!("#include \"{include_name}\""), library);
         assert!(program.contains("SV_Depth"), "{name}: the Unity material writes no depth");
-        glslang_hlsl(&name, &format!("{name}.shader.hlsl"), &program, "frag");
+        glslang_hlsl(&format!("{name}.shader.hlsl"), &program, "frag");
     }
 }
 
@@ -398,7 +397,7 @@ fn unreal_packages_pass_glslang_hlsl_front_end() {
              \x20   float3 c = CustomExpression0(position.xyz, float3(0.0, 100.0, -300.0), float3(0.0, 0.0, 0.0), 100.0, 1.0{passed}, depth_offset);\n\
              \x20   return float4(c, depth_offset);\n}}\n"
         );
-        glslang_hlsl(&name, &format!("{name}.unreal.hlsl"), &wrapped, "main");
+        glslang_hlsl(&format!("{name}.unreal.hlsl"), &wrapped, "main");
     }
 }
 

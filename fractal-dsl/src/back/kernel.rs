@@ -10,7 +10,7 @@ use std::fmt::Write;
 
 use super::render::*;
 use super::syntax::{self, Prec, Spelling, Syntax};
-use super::{Entry, FrameLayout, Level};
+use super::{f32_literal, Entry, FrameLayout, Level};
 use crate::ir::{HitEpsilon, Shadows};
 use crate::lower::code::{MathFn, Ty};
 use crate::lower::trace::Function;
@@ -20,6 +20,7 @@ use crate::lower::{LightShape, Program};
 const COMPONENTS: [&str; 4] = ["x", "y", "z", "w"];
 
 /// What one GPU language spells its own way. Statements are returned without indentation and with their `;`.
+/// The provided spellings are the C family's (OpenCL C, GLSL, HLSL); a language overrides where it differs.
 pub trait Dialect {
     /// The language's name in the generated file's first line.
     fn language(&self) -> &'static str;
@@ -29,16 +30,32 @@ pub trait Dialect {
     fn type_name(&self, ty: Ty) -> &'static str;
     fn vec4_type(&self) -> &'static str;
     /// A float constant.
-    fn lit(&self, v: f64) -> String;
-    fn bool_lit(&self, v: bool) -> &'static str;
+    fn lit(&self, v: f64) -> String {
+        f32_literal(v)
+    }
+    fn bool_lit(&self, v: bool) -> &'static str {
+        if v {
+            "true"
+        } else {
+            "false"
+        }
+    }
     /// An integer constant in arithmetic on an unsigned index.
-    fn index_lit(&self, v: u32) -> String;
+    fn index_lit(&self, v: u32) -> String {
+        format!("{v}u")
+    }
     /// `v` (an atom) converted to the scalar type `ty`.
-    fn cast(&self, ty: &str, v: &str) -> String;
+    fn cast(&self, ty: &str, v: &str) -> String {
+        format!("{ty}({v})")
+    }
     /// A value of vector type `ty` from its comma-separated `components` (one of them fills every component).
-    fn construct(&self, ty: &str, components: &str) -> String;
+    fn construct(&self, ty: &str, components: &str) -> String {
+        format!("{ty}({components})")
+    }
     /// A scalar passed where a built-in takes a vector of the other operand's size (`clamp`'s bounds).
-    fn vector_operand(&self, scalar: &str) -> String;
+    fn vector_operand(&self, scalar: &str) -> String {
+        scalar.to_string()
+    }
     /// Per component of the 3-vector `v`: `if_nonnegative` where it is ≥ 0 (−0 included), else `if_negative`.
     fn select_nonnegative(&self, v: &str, if_nonnegative: &str, if_negative: &str) -> String {
         // OpenCL's and WGSL's vector `select` take (if false, if true, condition).
@@ -56,34 +73,55 @@ pub trait Dialect {
         format!("{}({})", self.math_name(f), args.join(", "))
     }
     /// The conditional expression on a scalar condition.
-    fn select(&self, cond: &str, if_true: &str, if_false: &str) -> String;
+    fn select(&self, cond: &str, if_true: &str, if_false: &str) -> String {
+        format!("{cond} ? {if_true} : {if_false}")
+    }
     /// How tightly [`Dialect::select`]'s spelling binds.
     fn select_prec(&self) -> Prec {
-        Prec::Atom
+        Prec::Ternary
     }
     /// A field of the frame uniform ([`FrameLayout`]), e.g. `origin.xyz` or `lights[2].xyz`.
-    fn frame_field(&self, field: &str) -> String;
+    fn frame_field(&self, field: &str) -> String {
+        format!("frame.{field}")
+    }
 
     /// A declaration with its type spelled out.
-    fn declare(&self, name: &str, ty: &str, value: &str, mutable: bool) -> String;
+    fn declare(&self, name: &str, ty: &str, value: &str, mutable: bool) -> String {
+        let konst = if mutable { "" } else { "const " };
+        format!("{konst}{ty} {name} = {value};")
+    }
     /// A declaration whose type the language may infer from `value`.
     fn local(&self, name: &str, ty: &str, value: &str, mutable: bool) -> String {
         self.declare(name, ty, value, mutable)
     }
     /// A mutable declaration whose value every path assigns later.
-    fn uninitialised(&self, name: &str, ty: &str) -> String;
+    fn uninitialised(&self, name: &str, ty: &str) -> String {
+        format!("{ty} {name};")
+    }
     /// The opening line of `for` over `i` from 0 while `i < {bound}` (the bound may carry `&& …`).
-    fn counted_loop(&self, bound: &str) -> String;
+    fn counted_loop(&self, bound: &str) -> String {
+        format!("for (int i = 0; i < {bound}; i++) {{")
+    }
     /// The opening line of `for` over the unsigned `index` from 0 while `index < count`.
-    fn counted_loop_over(&self, index: &str, count: &str) -> String;
+    fn counted_loop_over(&self, index: &str, count: &str) -> String {
+        format!("for (uint {index} = 0u; {index} < {count}; {index}++) {{")
+    }
 
     /// The type of the frame where functions take it as their last argument `frame`; `None` where they read the
     /// frame as a global.
-    fn frame_parameter(&self) -> Option<&'static str>;
+    fn frame_parameter(&self) -> Option<&'static str> {
+        None
+    }
     /// A function's first line, up to and including its `{`; `params` are (name, type) pairs.
-    fn function_open(&self, ret: &str, name: &str, params: &[(&str, &str)]) -> String;
+    fn function_open(&self, ret: &str, name: &str, params: &[(&str, &str)]) -> String {
+        let params: Vec<String> = params.iter().map(|(name, ty)| format!("{ty} {name}")).collect();
+        format!("{ret} {name}({}) {{", params.join(", "))
+    }
     /// The statements ending `scene_sample`: return a `Sample` of the named fields' values, in `Sample`'s order.
-    fn sample_return(&self, fields: &[(&str, String)]) -> Vec<String>;
+    fn sample_return(&self, fields: &[(&str, String)]) -> Vec<String> {
+        let assignments = fields.iter().map(|(field, value)| format!("s.{field} = {value};"));
+        std::iter::once("Sample s;".to_string()).chain(assignments).chain(["return s;".to_string()]).collect()
+    }
     /// A module-scope constant.
     fn global_constant(&self, name: &str, ty: &str, value: &str) -> String;
 }
@@ -289,6 +327,13 @@ pub mod library {
     pub const NORMAL_EPSILON: &str = "SDF_NORMAL_EPSILON";
     /// Constant: the largest ray distance [`RAYMARCH`] marches.
     pub const MAX_DISTANCE: &str = "SDF_MAX_DISTANCE";
+
+    /// The corners [`BOUND_MIN`] and [`BOUND_MAX`] hold: the program's bound, or ±max distance for an unbounded
+    /// scene.
+    pub fn bound(program: &crate::lower::Program) -> ([f64; 3], [f64; 3]) {
+        let reach = program.settings.max_distance;
+        program.bound.map_or(([-reach; 3], [reach; 3]), |b| (b.min, b.max))
+    }
 }
 
 /// Writes `program` as a function library in `dialect` ([`library`] names its functions and constants), with the
@@ -725,7 +770,7 @@ impl<D: Dialect> Kernel<'_, D> {
         let (p, d) = (self.p, self.d);
         let (float, vec3) = (self.float(), self.vec3());
         let reach = p.settings.max_distance;
-        let (min, max) = p.bound.map_or(([-reach; 3], [reach; 3]), |b| (b.min, b.max));
+        let (min, max) = library::bound(p);
         let center: [f64; 3] = std::array::from_fn(|i| 0.5 * (min[i] + max[i]));
         let radius = (0..3).map(|i| 0.5 * (max[i] - min[i])).map(|h| h * h).sum::<f64>().sqrt();
         let normal_epsilon = match p.settings.epsilon {

@@ -244,6 +244,17 @@ impl<'a> Spelling<'a> {
         }
     }
 
+    /// A `Let` (unless spelled at its use) or a `Var`: the same in every language and mode.
+    fn declaration(&self, out: &mut String, s: &Stmt, level: Level) {
+        let line = match s {
+            Stmt::Let { val, .. } if self.folded.contains(val) => return,
+            Stmt::Let { val, ty, op } => self.syn.declare(&name(*val), *ty, &self.op(op).0, false),
+            Stmt::Var { var, ty, init } => self.syn.declare(&name(*var), *ty, &self.value(*init), true),
+            _ => return,
+        };
+        let _ = writeln!(out, "{level}{line}");
+    }
+
     /// The statements in a per-lane language ([`Syntax::per_lane`]): `lanes` names the masks in force.
     fn lane_stmts(&self, out: &mut String, stmts: &[Stmt], level: Level, lanes: &Lanes, next: &std::cell::Cell<usize>) {
         let syn = self.syn;
@@ -254,13 +265,7 @@ impl<'a> Spelling<'a> {
         };
         for s in stmts {
             match s {
-                Stmt::Let { val, .. } if self.folded.contains(val) => {}
-                Stmt::Let { val, ty, op } => {
-                    let _ = writeln!(out, "{level}{}", syn.declare(&name(*val), *ty, &self.op(op).0, false));
-                }
-                Stmt::Var { var, ty, init } => {
-                    let _ = writeln!(out, "{level}{}", syn.declare(&name(*var), *ty, &self.value(*init), true));
-                }
+                Stmt::Let { .. } | Stmt::Var { .. } => self.declaration(out, s, level),
                 Stmt::Assign { var, value } => {
                     let (var, value) = (name(*var), self.value(*value));
                     let assigned = match &lanes.mask {
@@ -307,13 +312,7 @@ impl<'a> Spelling<'a> {
         let syn = self.syn;
         for s in stmts {
             match s {
-                Stmt::Let { val, .. } if self.folded.contains(val) => {}
-                Stmt::Let { val, ty, op } => {
-                    let _ = writeln!(out, "{level}{}", syn.declare(&name(*val), *ty, &self.op(op).0, false));
-                }
-                Stmt::Var { var, ty, init } => {
-                    let _ = writeln!(out, "{level}{}", syn.declare(&name(*var), *ty, &self.value(*init), true));
-                }
+                Stmt::Let { .. } | Stmt::Var { .. } => self.declaration(out, s, level),
                 Stmt::Assign { var, value } => {
                     let _ = writeln!(out, "{level}{} = {};", name(*var), self.value(*value));
                 }

@@ -121,12 +121,13 @@ pub fn render_packets<E: Evaluator<f32> + ?Sized>(
         let env8 = Env::new(F32x8::splat(view.time), &params);
         let row_rays: Vec<(V3<f32>, V3<f32>)> = (0..width).map(|x| view.ray(x as f32 + 0.5, y as f32 + 0.5)).collect();
         let row_marches = view.march_row(packets, &env8, &row_rays);
+        let mut shadows = Vec::with_capacity(view.lights.len());
         for (chunk, x0) in row.chunks_mut(LANES).zip((0..width).step_by(LANES)) {
             // The last group of a row repeats its last pixel; the repeats are not written.
             let rays: [(V3<f32>, V3<f32>); LANES] = std::array::from_fn(|i| row_rays[(x0 + i).min(width - 1)]);
             let marches: [Option<March<f32>>; LANES] =
                 std::array::from_fn(|i| if x0 + i < width { row_marches[x0 + i] } else { None });
-            let finished = view.finish_packet(evaluator, &env, packets, &env8, &rays, &marches);
+            let finished = view.finish_packet(evaluator, &env, packets, &env8, &rays, &marches, &mut shadows);
             for (px, pixel) in chunk.iter_mut().zip(finished) {
                 *px = pack(pixel.colour, view.gamma);
             }
@@ -301,7 +302,9 @@ impl View<f32> {
     }
 
     /// Steps 4–6 of eight marched rays: normals, occlusion and shadow rays evaluated in packets (lane for lane the
-    /// scalar formulas), the material and lighting a pixel at a time.
+    /// scalar formulas), the material and lighting a pixel at a time. `shadows` is scratch space the caller keeps
+    /// between calls (one entry per light, per lane).
+    #[allow(clippy::too_many_arguments)]
     fn finish_packet<E: Evaluator<f32> + ?Sized>(
         &self,
         eval: &E,
@@ -310,6 +313,7 @@ impl View<f32> {
         env8: &Env<F32x8>,
         rays: &[(V3<f32>, V3<f32>); LANES],
         marches: &[Option<March<f32>>; LANES],
+        shadows: &mut Vec<[f32; LANES]>,
     ) -> [Pixel<f32>; LANES] {
         let hit: [bool; LANES] = std::array::from_fn(|i| marches[i].is_some_and(|m| m.hit));
         let Some(first) = hit.iter().position(|&h| h) else {
@@ -342,7 +346,8 @@ impl View<f32> {
         };
 
         // shadows[light][lane]: the light reaching each hit, for lanes whose surface faces the light.
-        let mut shadows = vec![[1.0f32; LANES]; self.lights.len()];
+        shadows.clear();
+        shadows.resize(self.lights.len(), [1.0; LANES]);
         if self.shadows != Shadows::None {
             for (light, lit) in self.lights.iter().zip(shadows.iter_mut()) {
                 let rays: [(V3<f32>, V3<f32>, f32, bool); LANES] = std::array::from_fn(|i| {

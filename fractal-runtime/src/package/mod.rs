@@ -223,8 +223,7 @@ impl<'a> Source<'a> {
 
     /// The corners of the scene's bound (±max distance for an unbounded scene), as the library's constants.
     fn bound(&self) -> ([f64; 3], [f64; 3]) {
-        let reach = self.program.settings.max_distance;
-        self.program.bound.map_or(([-reach; 3], [reach; 3]), |b| (b.min, b.max))
+        fractal_dsl::back::kernel::library::bound(&self.program)
     }
 
     /// A Markdown table of the parameters: name, the uniform holding it, default and range.

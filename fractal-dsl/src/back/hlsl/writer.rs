@@ -2,9 +2,8 @@
 //! libraries. HLSL has no one-argument vector constructor (a scalar is cast to splat), calls `mix` `lerp`, and its
 //! compilers warn about reading a variable no path may have set, so `col` starts at zero.
 
-use crate::back::f32_literal;
 use crate::back::kernel::{self, Dialect};
-use crate::back::syntax::{common_math_name, Prec};
+use crate::back::syntax::common_math_name;
 use crate::lower::code::{MathFn, Ty};
 use crate::lower::Program;
 
@@ -37,31 +36,12 @@ impl Dialect for Hlsl {
     fn vec4_type(&self) -> &'static str {
         "float4"
     }
-    fn lit(&self, v: f64) -> String {
-        f32_literal(v)
-    }
-    fn bool_lit(&self, v: bool) -> &'static str {
-        if v {
-            "true"
-        } else {
-            "false"
-        }
-    }
-    fn index_lit(&self, v: u32) -> String {
-        format!("{v}u")
-    }
-    fn cast(&self, ty: &str, v: &str) -> String {
-        format!("{ty}({v})")
-    }
     fn construct(&self, ty: &str, components: &str) -> String {
         if components.contains(',') {
             format!("{ty}({components})")
         } else {
             format!("(({ty})({components}))")
         }
-    }
-    fn vector_operand(&self, scalar: &str) -> String {
-        scalar.to_string()
     }
     fn select_nonnegative(&self, v: &str, if_nonnegative: &str, if_negative: &str) -> String {
         // The conditional operator selects per component on vectors (HLSL 2021 spells it `select`; Unity's and
@@ -77,41 +57,11 @@ impl Dialect for Hlsl {
             _ => common_math_name(f),
         }
     }
-    fn select(&self, cond: &str, if_true: &str, if_false: &str) -> String {
-        format!("{cond} ? {if_true} : {if_false}")
-    }
-    fn select_prec(&self) -> Prec {
-        Prec::Ternary
-    }
-    fn frame_field(&self, field: &str) -> String {
-        format!("frame.{field}")
-    }
 
-    fn declare(&self, name: &str, ty: &str, value: &str, mutable: bool) -> String {
-        let konst = if mutable { "" } else { "const " };
-        format!("{konst}{ty} {name} = {value};")
-    }
     fn uninitialised(&self, name: &str, ty: &str) -> String {
         format!("{ty} {name} = {};", self.construct(ty, &self.lit(0.0)))
     }
-    fn counted_loop(&self, bound: &str) -> String {
-        format!("for (int i = 0; i < {bound}; i++) {{")
-    }
-    fn counted_loop_over(&self, index: &str, count: &str) -> String {
-        format!("for (uint {index} = 0u; {index} < {count}; {index}++) {{")
-    }
 
-    fn frame_parameter(&self) -> Option<&'static str> {
-        None
-    }
-    fn function_open(&self, ret: &str, name: &str, params: &[(&str, &str)]) -> String {
-        let params: Vec<String> = params.iter().map(|(name, ty)| format!("{ty} {name}")).collect();
-        format!("{ret} {name}({}) {{", params.join(", "))
-    }
-    fn sample_return(&self, fields: &[(&str, String)]) -> Vec<String> {
-        let assignments = fields.iter().map(|(field, value)| format!("s.{field} = {value};"));
-        std::iter::once("Sample s;".to_string()).chain(assignments).chain(["return s;".to_string()]).collect()
-    }
     fn global_constant(&self, name: &str, ty: &str, value: &str) -> String {
         format!("static const {ty} {name} = {value};")
     }

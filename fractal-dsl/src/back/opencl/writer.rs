@@ -5,7 +5,7 @@
 use std::fmt::Write;
 
 use crate::back::kernel::{self, Dialect, KernelDialect};
-use crate::back::syntax::{common_math_name, Prec};
+use crate::back::syntax::common_math_name;
 use crate::back::{f32_literal, Entry, FrameLayout, Level};
 use crate::lower::code::{MathFn, Ty};
 use crate::lower::trace::Function;
@@ -54,17 +54,11 @@ impl Dialect for OpenCl {
             "0"
         }
     }
-    fn index_lit(&self, v: u32) -> String {
-        format!("{v}u")
-    }
     fn cast(&self, ty: &str, v: &str) -> String {
         format!("({ty}){v}")
     }
     fn construct(&self, ty: &str, components: &str) -> String {
         format!("({ty})({components})")
-    }
-    fn vector_operand(&self, scalar: &str) -> String {
-        scalar.to_string()
     }
     fn math_name(&self, f: MathFn) -> &'static str {
         match f {
@@ -75,40 +69,12 @@ impl Dialect for OpenCl {
             _ => common_math_name(f),
         }
     }
-    fn select(&self, cond: &str, if_true: &str, if_false: &str) -> String {
-        format!("{cond} ? {if_true} : {if_false}")
-    }
-    fn select_prec(&self) -> Prec {
-        Prec::Ternary
-    }
     fn frame_field(&self, field: &str) -> String {
         format!("frame->{field}")
     }
 
-    fn declare(&self, name: &str, ty: &str, value: &str, mutable: bool) -> String {
-        let konst = if mutable { "" } else { "const " };
-        format!("{konst}{ty} {name} = {value};")
-    }
-    fn uninitialised(&self, name: &str, ty: &str) -> String {
-        format!("{ty} {name};")
-    }
-    fn counted_loop(&self, bound: &str) -> String {
-        format!("for (int i = 0; i < {bound}; i++) {{")
-    }
-    fn counted_loop_over(&self, index: &str, count: &str) -> String {
-        format!("for (uint {index} = 0u; {index} < {count}; {index}++) {{")
-    }
-
     fn frame_parameter(&self) -> Option<&'static str> {
         Some("__constant const Frame*")
-    }
-    fn function_open(&self, ret: &str, name: &str, params: &[(&str, &str)]) -> String {
-        let params: Vec<String> = params.iter().map(|(name, ty)| format!("{ty} {name}")).collect();
-        format!("{ret} {name}({}) {{", params.join(", "))
-    }
-    fn sample_return(&self, fields: &[(&str, String)]) -> Vec<String> {
-        let assignments = fields.iter().map(|(field, value)| format!("s.{field} = {value};"));
-        std::iter::once("Sample s;".to_string()).chain(assignments).chain(["return s;".to_string()]).collect()
     }
     fn global_constant(&self, name: &str, ty: &str, value: &str) -> String {
         format!("__constant {ty} {name} = {value};")

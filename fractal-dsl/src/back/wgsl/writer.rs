@@ -5,8 +5,8 @@
 use std::fmt::Write;
 
 use crate::back::kernel::{self, Dialect, KernelDialect};
-use crate::back::syntax::common_math_name;
-use crate::back::{f32_literal, Entry, FrameLayout, Level};
+use crate::back::syntax::{common_math_name, Prec};
+use crate::back::{Entry, FrameLayout, Level};
 use crate::lower::code::{MathFn, Ty};
 use crate::lower::trace::Function;
 use crate::lower::Program;
@@ -50,25 +50,6 @@ impl Dialect for Wgsl {
     fn vec4_type(&self) -> &'static str {
         "vec4<f32>"
     }
-    fn lit(&self, v: f64) -> String {
-        f32_literal(v)
-    }
-    fn bool_lit(&self, v: bool) -> &'static str {
-        if v {
-            "true"
-        } else {
-            "false"
-        }
-    }
-    fn index_lit(&self, v: u32) -> String {
-        format!("{v}u")
-    }
-    fn cast(&self, ty: &str, v: &str) -> String {
-        format!("{ty}({v})")
-    }
-    fn construct(&self, ty: &str, components: &str) -> String {
-        format!("{ty}({components})")
-    }
     fn vector_operand(&self, scalar: &str) -> String {
         self.construct(self.type_name(Ty::V3), scalar)
     }
@@ -89,8 +70,8 @@ impl Dialect for Wgsl {
     fn select(&self, cond: &str, if_true: &str, if_false: &str) -> String {
         format!("select({if_false}, {if_true}, {cond})")
     }
-    fn frame_field(&self, field: &str) -> String {
-        format!("frame.{field}")
+    fn select_prec(&self) -> Prec {
+        Prec::Atom
     }
 
     fn declare(&self, name: &str, ty: &str, value: &str, mutable: bool) -> String {
@@ -111,9 +92,6 @@ impl Dialect for Wgsl {
         format!("for (var {index} = 0u; {index} < {count}; {index}++) {{")
     }
 
-    fn frame_parameter(&self) -> Option<&'static str> {
-        None
-    }
     fn function_open(&self, ret: &str, name: &str, params: &[(&str, &str)]) -> String {
         let params: Vec<String> = params.iter().map(|(name, ty)| format!("{name}: {ty}")).collect();
         format!("fn {name}({}) -> {ret} {{", params.join(", "))
