@@ -171,6 +171,9 @@ impl PacketEvaluator for NativeFns {
     fn distance_x8(&self, p: V3<F32x8>, env: &Env<F32x8>) -> F32x8 {
         (self.distance_x8)(p, env)
     }
+    fn sample_x8(&self, p: V3<F32x8>, env: &Env<F32x8>) -> Sample<F32x8> {
+        (self.sample_x8)(p, env)
+    }
 }
 
 impl Evaluator<f64> for NativeFns {

@@ -4,11 +4,13 @@
 //!
 //! The lanes are plain arrays operated on lane by lane in `#[inline(always)]` loops that LLVM turns into vector
 //! instructions of whatever the build targets (two 4-wide SSE2 operations per packet on a baseline x86-64 build, one
-//! 8-wide AVX operation where AVX is enabled, NEON pairs on aarch64). Transcendentals (sin, cos, acos, atan2, exp2,
-//! ln, pow) call the scalar function per lane. Masks are lanes of 0 / −1 (all bits set), as vector compares produce.
+//! 8-wide AVX operation where AVX is enabled, NEON pairs on aarch64). The elementary functions are the branch-free
+//! ones of [`crate::elementary`], which f32 runs too, so they vectorise the same way and agree with the scalar
+//! results bit for bit. Masks are lanes of 0 / −1 (all bits set), as vector compares produce.
 
 use core::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
+use crate::elementary;
 use crate::num::{AnyLane, Carry, Mask, Num, Orbit};
 
 /// Lanes in a packet.
@@ -77,6 +79,16 @@ impl F32x8 {
         }
         F32x8(out)
     }
+    /// `reduced` on every lane where all are within the trigonometric reduction's range (one vector loop), else
+    /// `any` lane by lane: the same per-lane results as the scalar functions, which make the same choice per value.
+    #[inline(always)]
+    fn map_trig(self, reduced: impl Fn(f32) -> f32, any: impl Fn(f32) -> f32) -> F32x8 {
+        if self.0.iter().all(|v| v.abs() <= elementary::TRIG_REDUCTION_LIMIT) {
+            self.map(reduced)
+        } else {
+            self.map(any)
+        }
+    }
     #[inline(always)]
     fn compare(self, other: F32x8, f: impl Fn(f32, f32) -> bool) -> M32x8 {
         let mut out = [0i32; LANES];
@@ -116,14 +128,22 @@ impl BitAnd for M32x8 {
     type Output = M32x8;
     #[inline(always)]
     fn bitand(self, o: M32x8) -> M32x8 {
-        self.zip(o, |a, b| a & b)
+        self.zip(
+            o,
+            #[inline(always)]
+            |a, b| a & b,
+        )
     }
 }
 impl BitOr for M32x8 {
     type Output = M32x8;
     #[inline(always)]
     fn bitor(self, o: M32x8) -> M32x8 {
-        self.zip(o, |a, b| a | b)
+        self.zip(
+            o,
+            #[inline(always)]
+            |a, b| a | b,
+        )
     }
 }
 impl Not for M32x8 {
@@ -144,7 +164,7 @@ macro_rules! arithmetic {
             type Output = F32x8;
             #[inline(always)]
             fn $method(self, o: F32x8) -> F32x8 {
-                self.zip(o, |a, b| a $op b)
+                self.zip(o, #[inline(always)] |a, b| a $op b)
             }
         }
     };
@@ -158,7 +178,10 @@ impl Neg for F32x8 {
     type Output = F32x8;
     #[inline(always)]
     fn neg(self) -> F32x8 {
-        self.map(|a| -a)
+        self.map(
+            #[inline(always)]
+            |a| -a,
+        )
     }
 }
 
@@ -198,59 +221,111 @@ impl Num for F32x8 {
     }
     #[inline(always)]
     fn abs(x: Self) -> Self {
-        x.map(f32::abs)
+        x.map(
+            #[inline(always)]
+            |v| v.abs(),
+        )
     }
     #[inline(always)]
     fn sqrt(x: Self) -> Self {
-        x.map(f32::sqrt)
+        x.map(
+            #[inline(always)]
+            |v| v.sqrt(),
+        )
     }
     #[inline(always)]
     fn floor(x: Self) -> Self {
-        x.map(f32::floor)
+        x.map(
+            #[inline(always)]
+            |v| elementary::floor(v),
+        )
     }
     #[inline(always)]
     fn sin(x: Self) -> Self {
-        x.map(f32::sin)
+        x.map_trig(
+            #[inline(always)]
+            |v| elementary::sin_reduced(v),
+            #[inline(always)]
+            |v| elementary::sin(v),
+        )
     }
     #[inline(always)]
     fn cos(x: Self) -> Self {
-        x.map(f32::cos)
+        x.map_trig(
+            #[inline(always)]
+            |v| elementary::cos_reduced(v),
+            #[inline(always)]
+            |v| elementary::cos(v),
+        )
     }
     #[inline(always)]
     fn acos(x: Self) -> Self {
-        x.map(f32::acos)
+        x.map(
+            #[inline(always)]
+            |v| elementary::acos(v),
+        )
     }
     #[inline(always)]
     fn atan2(y: Self, x: Self) -> Self {
-        y.zip(x, f32::atan2)
+        y.zip(
+            x,
+            #[inline(always)]
+            |y, x| elementary::atan2(y, x),
+        )
     }
     #[inline(always)]
     fn exp2(x: Self) -> Self {
-        x.map(f32::exp2)
+        x.map(
+            #[inline(always)]
+            |v| elementary::exp2(v),
+        )
     }
     #[inline(always)]
     fn ln(x: Self) -> Self {
-        x.map(f32::ln)
+        x.map(
+            #[inline(always)]
+            |v| elementary::ln(v),
+        )
     }
     #[inline(always)]
     fn pow(x: Self, y: Self) -> Self {
-        x.zip(y, f32::powf)
+        x.zip(
+            y,
+            #[inline(always)]
+            |x, y| elementary::pow(x, y),
+        )
     }
     #[inline(always)]
     fn min(a: Self, b: Self) -> Self {
-        a.zip(b, f32::min)
+        a.zip(
+            b,
+            #[inline(always)]
+            |a, b| a.min(b),
+        )
     }
     #[inline(always)]
     fn max(a: Self, b: Self) -> Self {
-        a.zip(b, f32::max)
+        a.zip(
+            b,
+            #[inline(always)]
+            |a, b| a.max(b),
+        )
     }
     #[inline(always)]
     fn lt(a: Self, b: Self) -> M32x8 {
-        a.compare(b, |a, b| a < b)
+        a.compare(
+            b,
+            #[inline(always)]
+            |a, b| a < b,
+        )
     }
     #[inline(always)]
     fn le(a: Self, b: Self) -> M32x8 {
-        a.compare(b, |a, b| a <= b)
+        a.compare(
+            b,
+            #[inline(always)]
+            |a, b| a <= b,
+        )
     }
     #[inline(always)]
     fn select(m: M32x8, a: Self, b: Self) -> Self {

@@ -31,6 +31,7 @@ pub mod back;
 pub mod builder;
 pub mod compiled;
 pub mod echo;
+pub mod elementary;
 pub mod eval;
 pub mod fractals;
 pub mod geom;

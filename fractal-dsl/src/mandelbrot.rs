@@ -42,7 +42,9 @@ pub fn mandelbrot<F: Num>(cx: F, cy: F, iterations: F::Count, inverse: F) -> F {
     let (zx, zy, steps) = F::iterate(
         iterations,
         (zero, zero, zero),
+        #[inline(always)]
         |&(zx, zy, _)| le(zx * zx + zy * zy, escape2),
+        #[inline(always)]
         |(zx, zy, steps)| (zx * zx - zy * zy + cx, c::<F>(2.0) * zx * zy + cy, steps + c(1.0)),
     );
     smooth_count(zx, zy, steps, inverse)
@@ -59,7 +61,9 @@ pub fn mandelbrot_perturbed<F: Num>(dcx: F, dcy: F, iterations: F::Count, invers
     let (_, _, [zx, zy], steps) = F::iterate(
         iterations,
         ([zero, zero], zero, [zero, zero], zero),
+        #[inline(always)]
         |&(_, _, [zx, zy], _)| le(zx * zx + zy * zy, escape2),
+        #[inline(always)]
         |([dx, dy], index, _, steps)| {
             let [rx, ry] = F::orbit_entry(orbit, index);
             let (ax, ay) = (c::<F>(2.0) * rx + dx, c::<F>(2.0) * ry + dy);

@@ -99,7 +99,10 @@ pub fn noise3<F: Num>(p: V3<F>) -> F {
     let f = p - i;
     let one = c::<F>(1.0);
     let i0 = i.map(mod289);
-    let i1 = i.map(|v| mod289(v + one));
+    let i1 = i.map(
+        #[inline(always)]
+        |v| mod289(v + one),
+    );
     let (px0, px1) = (permute(i0.x), permute(i1.x));
     let (p00, p10) = (permute(mod289(px0 + i0.y)), permute(mod289(px1 + i0.y)));
     let (p01, p11) = (permute(mod289(px0 + i1.y)), permute(mod289(px1 + i1.y)));
@@ -127,7 +130,9 @@ pub fn fbm2<F: Num>(x: F, y: F, octaves: F::Count) -> F {
     let (_, _, sum, _) = F::iterate(
         octaves,
         (x, y, c::<F>(0.0), one),
+        #[inline(always)]
         |_| F::Mask::splat(true),
+        #[inline(always)]
         |(x, y, sum, amp)| {
             let sum = sum + amp * noise2(x, y);
             (x * c(2.0) + c(17.25), y * c(2.0) + c(-9.125), sum, amp * c(0.5))
@@ -143,7 +148,9 @@ pub fn fbm3<F: Num>(p: V3<F>, octaves: F::Count) -> F {
     let (_, sum, _) = F::iterate(
         octaves,
         (p, c::<F>(0.0), c::<F>(1.0)),
+        #[inline(always)]
         |_| F::Mask::splat(true),
+        #[inline(always)]
         |(p, sum, amp)| (p * c::<F>(2.0) + shift, sum + amp * noise3(p), amp * c(0.5)),
     );
     sum

@@ -139,7 +139,7 @@ pub type Orbit<'a> = &'a [[f32; 2]];
 pub const ORBIT_AT_ZERO: Orbit<'static> = &[[0.0, 0.0]];
 
 macro_rules! scalar_num {
-    ($t:ty) => {
+    ($t:ty, $math:ident) => {
         impl Carry<$t> for $t {
             #[inline(always)]
             fn map_nums(self, f: &mut impl FnMut($t) -> $t) -> Self {
@@ -172,35 +172,35 @@ macro_rules! scalar_num {
             }
             #[inline(always)]
             fn floor(x: Self) -> Self {
-                x.floor()
+                $math::floor(x)
             }
             #[inline(always)]
             fn sin(x: Self) -> Self {
-                x.sin()
+                $math::sin(x)
             }
             #[inline(always)]
             fn cos(x: Self) -> Self {
-                x.cos()
+                $math::cos(x)
             }
             #[inline(always)]
             fn acos(x: Self) -> Self {
-                x.acos()
+                $math::acos(x)
             }
             #[inline(always)]
             fn atan2(y: Self, x: Self) -> Self {
-                y.atan2(x)
+                $math::atan2(y, x)
             }
             #[inline(always)]
             fn exp2(x: Self) -> Self {
-                x.exp2()
+                $math::exp2(x)
             }
             #[inline(always)]
             fn ln(x: Self) -> Self {
-                x.ln()
+                $math::ln(x)
             }
             #[inline(always)]
             fn pow(x: Self, y: Self) -> Self {
-                x.powf(y)
+                $math::pow(x, y)
             }
             #[inline(always)]
             fn min(a: Self, b: Self) -> Self {
@@ -254,8 +254,47 @@ macro_rules! scalar_num {
         }
     };
 }
-scalar_num!(f32);
-scalar_num!(f64);
+// f32 computes its elementary functions without branches, as the packet type does lane by lane (so the two agree
+// bit for bit); f64, the reference, keeps the platform's libm.
+use crate::elementary as f32_math;
+scalar_num!(f32, f32_math);
+scalar_num!(f64, f64_math);
+
+/// The f64 elementary functions: the platform's libm.
+mod f64_math {
+    #[inline(always)]
+    pub fn floor(x: f64) -> f64 {
+        x.floor()
+    }
+    #[inline(always)]
+    pub fn sin(x: f64) -> f64 {
+        x.sin()
+    }
+    #[inline(always)]
+    pub fn cos(x: f64) -> f64 {
+        x.cos()
+    }
+    #[inline(always)]
+    pub fn acos(x: f64) -> f64 {
+        x.acos()
+    }
+    #[inline(always)]
+    pub fn atan2(y: f64, x: f64) -> f64 {
+        y.atan2(x)
+    }
+    #[inline(always)]
+    pub fn exp2(x: f64) -> f64 {
+        x.exp2()
+    }
+    #[inline(always)]
+    pub fn ln(x: f64) -> f64 {
+        x.ln()
+    }
+    #[inline(always)]
+    pub fn pow(x: f64, y: f64) -> f64 {
+        x.powf(y)
+    }
+}
 
 impl<F, A: Carry<F>, B: Carry<F>> Carry<F> for (A, B) {
     #[inline(always)]

@@ -91,7 +91,13 @@ fn select3<F: Num>(m: F::Mask, a: V3<F>, b: V3<F>) -> V3<F> {
 /// Runs `step` `n` times (a loop without an early exit).
 #[inline(always)]
 fn repeat<F: Num, S: Carry<F>>(n: F::Count, init: S, step: impl Fn(S) -> S) -> S {
-    F::iterate(n, init, |_| F::Mask::splat(true), step)
+    F::iterate(
+        n,
+        init,
+        #[inline(always)]
+        |_| F::Mask::splat(true),
+        step,
+    )
 }
 
 #[inline(always)]
@@ -234,7 +240,7 @@ fn escape_estimate<F: Num>(r: F, dr: F) -> F {
     c::<F>(0.5) * ln(max(r, c(TINY))) * r / dr
 }
 
-/// The orbit of an escape-time map from z = p: z ← map(z, |z|, dr) + offset with dr ← its derivative, while |z|
+/// The orbit of an escape-time map from z = p: z ← map(z, #[inline(always)] |z|, dr) + offset with dr ← its derivative, while |z|
 /// stays within `escape` and dr below [`DR_MAX`]; returns the distance estimate and the orbit trap (closest approach
 /// to the origin, at most 1). The offset is p for Mandelbrot-type sets, a constant for Julia-type ones.
 #[inline(always)]
@@ -249,7 +255,9 @@ fn escape_time<F: Num>(
     let (_, dr, r, trap) = F::iterate(
         iterations,
         (p, c::<F>(1.0), r0, r0),
+        #[inline(always)]
         |&(_, dr, r, _)| orbit_bounded(r, escape, dr),
+        #[inline(always)]
         |(z, dr, r, trap)| {
             let (z, dr) = map(z, r, dr);
             let z = z + offset;
@@ -263,10 +271,17 @@ fn escape_time<F: Num>(
 /// Mandelbulb of any power by the trigonometric form; the derivative uses the same `power` as the iteration.
 #[inline(always)]
 pub fn de_mandelbulb<F: Num>(p: V3<F>, power: F, iterations: F::Count, bailout: F) -> [F; 2] {
-    escape_time(p, p, iterations, mandelbulb_escape(power, bailout), |z, r, dr| {
-        let (z, dr) = bulb_power(z, r, dr, power);
-        (z, dr + c(1.0))
-    })
+    escape_time(
+        p,
+        p,
+        iterations,
+        mandelbulb_escape(power, bailout),
+        #[inline(always)]
+        |z, r, dr| {
+            let (z, dr) = bulb_power(z, r, dr, power);
+            (z, dr + c(1.0))
+        },
+    )
 }
 
 /// z ↦ z^power in spherical coordinates (r = |z|), the map of the Mandelbulb and the Juliabulb, with the chain rule's
@@ -290,7 +305,14 @@ fn bulb_power<F: Num>(z: V3<F>, r: F, dr: F, power: F) -> (V3<F>, F) {
 /// (z + iρ)^8 and ((x + iy)/ρ)^8 expanded as polynomials.
 #[inline(always)]
 pub fn de_mandelbulb8<F: Num>(p: V3<F>, iterations: F::Count, bailout: F) -> [F; 2] {
-    escape_time(p, p, iterations, mandelbulb_escape(c(8.0), bailout), mandelbulb8_step)
+    escape_time(
+        p,
+        p,
+        iterations,
+        mandelbulb_escape(c(8.0), bailout),
+        #[inline(always)]
+        |z, r, dr| mandelbulb8_step(z, r, dr),
+    )
 }
 
 /// One step of the power-8 Mandelbulb map without trigonometry, z ↦ z^8 (r = |z|), with the derivative
@@ -326,16 +348,21 @@ fn mandelbulb8_step<F: Num>(z: V3<F>, r: F, dr: F) -> (V3<F>, F) {
 #[inline(always)]
 pub fn de_menger<F: Num>(p: V3<F>, levels: F::Count) -> [F; 2] {
     let (two, three) = (c::<F>(2.0), c::<F>(3.0));
-    let (d, _, trap) = repeat(levels, (sd_box(p, V3::splat(c(1.0))), c::<F>(1.0), c::<F>(1.0)), |(d, s, trap)| {
-        let a = (p * s).map(|v| fmod_floor(v, two) - c(1.0));
-        let s = s * three;
-        let r = a.map(|v| abs(c::<F>(1.0) - three * abs(v)));
-        let da = max(r.x, r.y);
-        let db = max(r.y, r.z);
-        let dc = max(r.z, r.x);
-        let cut = (min(min(da, db), dc) - c(1.0)) / s;
-        (max(d, cut), s, min(trap, dot(a, a) * c(0.5)))
-    });
+    let (d, _, trap) = repeat(
+        levels,
+        (sd_box(p, V3::splat(c(1.0))), c::<F>(1.0), c::<F>(1.0)),
+        #[inline(always)]
+        |(d, s, trap)| {
+            let a = (p * s).map(|v| fmod_floor(v, two) - c(1.0));
+            let s = s * three;
+            let r = a.map(|v| abs(c::<F>(1.0) - three * abs(v)));
+            let da = max(r.x, r.y);
+            let db = max(r.y, r.z);
+            let dc = max(r.z, r.x);
+            let cut = (min(min(da, db), dc) - c(1.0)) / s;
+            (max(d, cut), s, min(trap, dot(a, a) * c(0.5)))
+        },
+    );
     [d, trap]
 }
 
@@ -343,13 +370,18 @@ pub fn de_menger<F: Num>(p: V3<F>, levels: F::Count) -> [F; 2] {
 #[inline(always)]
 pub fn de_sierpinski<F: Num>(p: V3<F>, levels: F::Count) -> [F; 2] {
     let zero = c::<F>(0.0);
-    let (z, scale, trap) = repeat(levels, (p, c::<F>(1.0), c::<F>(1.0)), |(z, scale, trap)| {
-        let z = select3(lt(z.x + z.y, zero), v3(-z.y, -z.x, z.z), z);
-        let z = select3(lt(z.x + z.z, zero), v3(-z.z, z.y, -z.x), z);
-        let z = select3(lt(z.y + z.z, zero), v3(z.x, -z.z, -z.y), z);
-        let z = z * c::<F>(2.0) - V3::splat(c(1.0));
-        (z, scale * c(0.5), min(trap, dot(z, z) * c(0.25)))
-    });
+    let (z, scale, trap) = repeat(
+        levels,
+        (p, c::<F>(1.0), c::<F>(1.0)),
+        #[inline(always)]
+        |(z, scale, trap)| {
+            let z = select3(lt(z.x + z.y, zero), v3(-z.y, -z.x, z.z), z);
+            let z = select3(lt(z.x + z.z, zero), v3(-z.z, z.y, -z.x), z);
+            let z = select3(lt(z.y + z.z, zero), v3(z.x, -z.z, -z.y), z);
+            let z = z * c::<F>(2.0) - V3::splat(c(1.0));
+            (z, scale * c(0.5), min(trap, dot(z, z) * c(0.25)))
+        },
+    );
     let face = max(max(-z.x - z.y - z.z, z.x + z.y - z.z), max(-z.x + z.y + z.z, z.x - z.y + z.z));
     [(face - c(1.0)) * c(INV_SQRT3) * scale, trap]
 }
@@ -365,7 +397,9 @@ pub fn de_julia<F: Num>(p: V3<F>, cx: F, cy: F, cz: F, cw: F, iterations: F::Cou
     let (_, dz, m, trap) = F::iterate(
         iterations,
         (z0, [c::<F>(1.0), c(0.0), c(0.0), c(0.0)], m0, m0),
+        #[inline(always)]
         |&(_, dz, m, _)| !(gt(m, escape2) | gt(dot4(dz), c(DR_MAX))),
+        #[inline(always)]
         |(z, dz, _, trap)| {
             // dz ← 2·z·dz (quaternion product), z ← z² + c.
             let dz = [
@@ -400,11 +434,16 @@ fn julia_step<F: Num>(z: [F; 4], c4: [F; 4]) -> [F; 4] {
 pub fn de_mandelbox<F: Num>(p: V3<F>, scale: F, iterations: F::Count, min_radius: F, fold_limit: F) -> [F; 2] {
     let min_r2 = min_radius * min_radius;
     let one = c::<F>(1.0);
-    let (z, dr, trap) = repeat(iterations, (p, one, one), |(z, dr, trap)| {
-        let (z, f, r2) = mandelbox_step(z, p, scale, min_r2, fold_limit);
-        let dr = dr * f * abs(scale) + one;
-        (z, dr, min(trap, r2))
-    });
+    let (z, dr, trap) = repeat(
+        iterations,
+        (p, one, one),
+        #[inline(always)]
+        |(z, dr, trap)| {
+            let (z, f, r2) = mandelbox_step(z, p, scale, min_r2, fold_limit);
+            let dr = dr * f * abs(scale) + one;
+            (z, dr, min(trap, r2))
+        },
+    );
     [length(z) / abs(dr), trap]
 }
 
@@ -413,7 +452,10 @@ pub fn de_mandelbox<F: Num>(p: V3<F>, scale: F, iterations: F::Count, min_radius
 #[inline(always)]
 fn mandelbox_step<F: Num>(z: V3<F>, p: V3<F>, scale: F, min_r2: F, fold_limit: F) -> (V3<F>, F, F) {
     let one = c::<F>(1.0);
-    let z = z.map(|v| clamp(v, -fold_limit, fold_limit) * c(2.0) - v);
+    let z = z.map(
+        #[inline(always)]
+        |v| clamp(v, -fold_limit, fold_limit) * c(2.0) - v,
+    );
     let r2 = dot(z, z);
     // Inside min_radius the fold scales by 1/min_r², between it and 1 by 1/r², outside not at all.
     let f = select(lt(r2, min_r2), one / min_r2, select(lt(r2, one), one / max(r2, c(TINY)), one));
@@ -425,10 +467,17 @@ fn mandelbox_step<F: Num>(z: V3<F>, p: V3<F>, scale: F, min_r2: F, fold_limit: F
 #[inline(always)]
 pub fn de_juliabulb<F: Num>(p: V3<F>, cx: F, cy: F, cz: F, power: F, iterations: F::Count, bailout: F) -> [F; 2] {
     // An orbit through 0 (p = 0 itself) has dr = 0 from then on; the floor keeps the estimate finite.
-    escape_time(p, v3(cx, cy, cz), iterations, mandelbulb_escape(power, bailout), |z, r, dr| {
-        let (z, dr) = bulb_power(z, r, dr, power);
-        (z, max(dr, c(TINY)))
-    })
+    escape_time(
+        p,
+        v3(cx, cy, cz),
+        iterations,
+        mandelbulb_escape(power, bailout),
+        #[inline(always)]
+        |z, r, dr| {
+            let (z, dr) = bulb_power(z, r, dr, power);
+            (z, max(dr, c(TINY)))
+        },
+    )
 }
 
 /// The golden ratio φ, rounded to f32 like every constant below that is not already an f32: the icosahedral fold
@@ -450,10 +499,15 @@ fn octahedral_fold<F: Num>(z: V3<F>) -> V3<F> {
 #[inline(always)]
 fn icosahedral_fold<F: Num>(z: V3<F>) -> V3<F> {
     let n = v3(c::<F>(-0.5 * PHI), c(-0.5), c(0.5 * (PHI - 1.0)));
-    repeat(F::count(3), z, |z| {
-        let a = abs3(z);
-        a - n * (c::<F>(2.0) * min(dot(a, n), c(0.0)))
-    })
+    repeat(
+        F::count(3),
+        z,
+        #[inline(always)]
+        |z| {
+            let a = abs3(z);
+            a - n * (c::<F>(2.0) * min(dot(a, n), c(0.0)))
+        },
+    )
 }
 
 /// The unit vertex the octahedral KIFS scales about.
@@ -490,7 +544,9 @@ fn kifs_orbit<F: Num>(
     F::iterate(
         iterations,
         (p, c::<F>(1.0), c::<F>(1.0)),
+        #[inline(always)]
         |&(z, _, _)| going_on(z),
+        #[inline(always)]
         |(z, trap, grown)| {
             let z = fold(z);
             let z = v3(co * z.x - si * z.y, si * z.x + co * z.y, z.z);
@@ -510,7 +566,16 @@ fn kifs_estimate<F: Num>(
     vertex: V3<F>,
     fold: impl Fn(V3<F>) -> V3<F>,
 ) -> [F; 2] {
-    let (z, trap, grown) = kifs_orbit(p, scale, angle, iterations, vertex, fold, |_| F::Mask::splat(true));
+    let (z, trap, grown) = kifs_orbit(
+        p,
+        scale,
+        angle,
+        iterations,
+        vertex,
+        fold,
+        #[inline(always)]
+        |_| F::Mask::splat(true),
+    );
     [(length(z) - c(1.0)) / grown, min(trap, c(1.0))]
 }
 
@@ -544,10 +609,15 @@ fn membership<F: Num>(inside: F::Mask, apart: F) -> F {
 #[inline(always)]
 fn first_step_radius<F: Num>(power: F, bailout: F) -> F {
     let r = bailout + c(1.0);
-    repeat(F::count(6), r, |r| pow(bailout + r, c::<F>(1.0) / power))
+    repeat(
+        F::count(6),
+        r,
+        #[inline(always)]
+        |r| pow(bailout + r, c::<F>(1.0) / power),
+    )
 }
 
-/// Whether the orbit z ← map(z, |z|) + offset from z = p stays within `escape` for `iterations` steps; `radius` holds
+/// Whether the orbit z ← map(z, #[inline(always)] |z|) + offset from z = p stays within `escape` for `iterations` steps; `radius` holds
 /// the set.
 #[inline(always)]
 fn escape_time_membership<F: Num>(
@@ -561,7 +631,9 @@ fn escape_time_membership<F: Num>(
     let (_, r) = F::iterate(
         iterations,
         (p, length(p)),
+        #[inline(always)]
         |&(_, r)| le(r, escape),
+        #[inline(always)]
         |(z, r)| {
             let z = map(z, r) + offset;
             (z, length(z))
@@ -574,14 +646,30 @@ fn escape_time_membership<F: Num>(
 #[inline(always)]
 pub fn in_mandelbulb<F: Num>(p: V3<F>, power: F, iterations: F::Count, bailout: F) -> F {
     let radius = first_step_radius(power, bailout);
-    escape_time_membership(p, p, iterations, bailout, radius, |z, r| bulb_power(z, r, c(1.0), power).0)
+    escape_time_membership(
+        p,
+        p,
+        iterations,
+        bailout,
+        radius,
+        #[inline(always)]
+        |z, r| bulb_power(z, r, c(1.0), power).0,
+    )
 }
 
 /// The power-8 Mandelbulb: the orbit stays within `bailout` for `iterations` (at least 1) steps.
 #[inline(always)]
 pub fn in_mandelbulb8<F: Num>(p: V3<F>, iterations: F::Count, bailout: F) -> F {
     let radius = first_step_radius(c(8.0), bailout);
-    escape_time_membership(p, p, iterations, bailout, radius, |z, r| mandelbulb8_step(z, r, c(1.0)).0)
+    escape_time_membership(
+        p,
+        p,
+        iterations,
+        bailout,
+        radius,
+        #[inline(always)]
+        |z, r| mandelbulb8_step(z, r, c(1.0)).0,
+    )
 }
 
 /// The Menger sponge of `levels` levels in [-1, 1]³: inside the cube, and at no level in the middle third of its cell
@@ -592,13 +680,18 @@ pub fn in_menger<F: Num>(p: V3<F>, levels: F::Count) -> F {
     let in_cube = le(abs(p.x), one) & le(abs(p.y), one) & le(abs(p.z), one);
     // The point's position in its cell at the current level, in [0, 1]³, and whether a level has removed it.
     let cell = (p + V3::splat(one)) * c::<F>(0.5);
-    let (_, removed) = repeat(levels, (cell, zero), |(cell, removed)| {
-        let s = cell * three;
-        let digit = s.map(|v| clamp(floor(v), zero, c(2.0)));
-        let middle = s.map(|v| select(gt(v, one) & lt(v, c(2.0)), one, zero));
-        let cut = ge(middle.x + middle.y + middle.z, c(2.0));
-        (s - digit, select(cut, one, removed))
-    });
+    let (_, removed) = repeat(
+        levels,
+        (cell, zero),
+        #[inline(always)]
+        |(cell, removed)| {
+            let s = cell * three;
+            let digit = s.map(|v| clamp(floor(v), zero, c(2.0)));
+            let middle = s.map(|v| select(gt(v, one) & lt(v, c(2.0)), one, zero));
+            let cut = ge(middle.x + middle.y + middle.z, c(2.0));
+            (s - digit, select(cut, one, removed))
+        },
+    );
     membership(in_cube & lt(removed, c(0.5)), sd_box(p, V3::splat(one)))
 }
 
@@ -608,21 +701,33 @@ pub fn in_menger<F: Num>(p: V3<F>, levels: F::Count) -> F {
 #[inline(always)]
 pub fn in_sierpinski<F: Num>(p: V3<F>, levels: F::Count) -> F {
     let (zero, one, half) = (c::<F>(0.0), c::<F>(1.0), c::<F>(0.5));
-    let vertices = [[1.0, 1.0, 1.0], [-1.0, -1.0, 1.0], [1.0, -1.0, -1.0], [-1.0, 1.0, -1.0]]
-        .map(|[x, y, z]| v3(c::<F>(x), c::<F>(y), c::<F>(z)));
-    let barycentric = |z: V3<F>| vertices.map(|v| (one + dot(v, z)) * c(0.25));
+    let vertices = [[1.0, 1.0, 1.0], [-1.0, -1.0, 1.0], [1.0, -1.0, -1.0], [-1.0, 1.0, -1.0]].map(
+        #[inline(always)]
+        |[x, y, z]| v3(c::<F>(x), c::<F>(y), c::<F>(z)),
+    );
+    let barycentric = |z: V3<F>| {
+        vertices.map(
+            #[inline(always)]
+            |v| (one + dot(v, z)) * c(0.25),
+        )
+    };
     let l = barycentric(p);
     let in_tetrahedron = ge(min(min(l[0], l[1]), min(l[2], l[3])), zero);
-    let (_, kept) = repeat(levels, (p, select(in_tetrahedron, one, zero)), |(z, kept)| {
-        let l = barycentric(z);
-        let largest = max(max(l[0], l[1]), max(l[2], l[3]));
-        let v = select3(
-            ge(l[0], largest),
-            vertices[0],
-            select3(ge(l[1], largest), vertices[1], select3(ge(l[2], largest), vertices[2], vertices[3])),
-        );
-        (z * c::<F>(2.0) - v, select(ge(largest, half), kept, zero))
-    });
+    let (_, kept) = repeat(
+        levels,
+        (p, select(in_tetrahedron, one, zero)),
+        #[inline(always)]
+        |(z, kept)| {
+            let l = barycentric(z);
+            let largest = max(max(l[0], l[1]), max(l[2], l[3]));
+            let v = select3(
+                ge(l[0], largest),
+                vertices[0],
+                select3(ge(l[1], largest), vertices[1], select3(ge(l[2], largest), vertices[2], vertices[3])),
+            );
+            (z * c::<F>(2.0) - v, select(ge(largest, half), kept, zero))
+        },
+    );
     // Outside a face plane vᵢ·p = −1 (λᵢ < 0) the tetrahedron is at least (−1 − vᵢ·p)/√3 = −4λᵢ/√3 away.
     let apart = -c::<F>(4.0 * INV_SQRT3) * min(min(l[0], l[1]), min(l[2], l[3]));
     membership(gt(kept, half), apart)
@@ -638,7 +743,9 @@ pub fn in_julia<F: Num>(p: V3<F>, cx: F, cy: F, cz: F, cw: F, iterations: F::Cou
     let (_, m) = F::iterate(
         iterations,
         (z0, dot4(z0)),
+        #[inline(always)]
         |&(_, m)| le(m, escape2),
+        #[inline(always)]
         |(z, _)| {
             let z = julia_step(z, [cx, cy, cz, cw]);
             (z, dot4(z))
@@ -665,7 +772,9 @@ pub fn in_mandelbox<F: Num>(p: V3<F>, scale: F, iterations: F::Count, min_radius
     let (_, r) = F::iterate(
         iterations,
         (p, length(p)),
+        #[inline(always)]
         |&(_, r)| le(r, escape),
+        #[inline(always)]
         |(z, _)| {
             let (z, _, _) = mandelbox_step(z, p, scale, min_r2, fold_limit);
             (z, length(z))
@@ -681,7 +790,15 @@ pub fn in_mandelbox<F: Num>(p: V3<F>, scale: F, iterations: F::Count, min_radius
 pub fn in_juliabulb<F: Num>(p: V3<F>, cx: F, cy: F, cz: F, power: F, iterations: F::Count, bailout: F) -> F {
     let offset = v3(cx, cy, cz);
     let radius = min(bailout, pow(bailout + length(offset), c::<F>(1.0) / power));
-    escape_time_membership(p, offset, iterations, bailout, radius, |z, r| bulb_power(z, r, c(1.0), power).0)
+    escape_time_membership(
+        p,
+        offset,
+        iterations,
+        bailout,
+        radius,
+        #[inline(always)]
+        |z, r| bulb_power(z, r, c(1.0), power).0,
+    )
 }
 
 /// Whether a KIFS orbit stays within the unit ball for `iterations` steps (the set's own test, see [`kifs_orbit`]).

@@ -86,4 +86,7 @@ impl PacketEvaluator for Interpreter {
     fn distance_x8(&self, p: V3<F32x8>, env: &Env<F32x8>) -> F32x8 {
         self.walk().distance(p, env)
     }
+    fn sample_x8(&self, p: V3<F32x8>, env: &Env<F32x8>) -> Sample<F32x8> {
+        self.walk().sample(p, env)
+    }
 }

@@ -92,4 +92,6 @@ pub trait Evaluator<F: Real>: Sync {
 /// [`Evaluator`].
 pub trait PacketEvaluator: Sync {
     fn distance_x8(&self, p: V3<crate::lanes::F32x8>, env: &Env<crate::lanes::F32x8>) -> crate::lanes::F32x8;
+    /// Distances and materials at eight points.
+    fn sample_x8(&self, p: V3<crate::lanes::F32x8>, env: &Env<crate::lanes::F32x8>) -> Sample<crate::lanes::F32x8>;
 }

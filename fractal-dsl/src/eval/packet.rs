@@ -80,14 +80,19 @@ pub fn sample_slice(
     for (chunk, start) in out.chunks_mut(LANES).zip((0..n).step_by(LANES)) {
         let s = sample(packet(x, y, z, start), &env);
         for (i, sample) in chunk.iter_mut().enumerate() {
-            *sample = Sample {
-                distance: s.distance.0[i],
-                albedo: V3 { x: s.albedo.x.0[i], y: s.albedo.y.0[i], z: s.albedo.z.0[i] },
-                ambient: s.ambient.0[i],
-                diffuse: s.diffuse.0[i],
-                specular: s.specular.0[i],
-                shininess: s.shininess.0[i],
-            };
+            *sample = sample_lane(&s, i);
         }
+    }
+}
+
+/// Lane `i` of a packet's samples.
+pub fn sample_lane(s: &Sample<F32x8>, i: usize) -> Sample<f32> {
+    Sample {
+        distance: s.distance.0[i],
+        albedo: V3 { x: s.albedo.x.0[i], y: s.albedo.y.0[i], z: s.albedo.z.0[i] },
+        ambient: s.ambient.0[i],
+        diffuse: s.diffuse.0[i],
+        specular: s.specular.0[i],
+        shininess: s.shininess.0[i],
     }
 }

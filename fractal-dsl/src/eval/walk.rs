@@ -137,7 +137,12 @@ impl Walk<'_> {
                 let mut d = self.dist(op.shape(0), p, env);
                 for (child, guard) in rest() {
                     d = match self.guard(guard, p, d) {
-                        Some(worth_it) => F::when(worth_it, d, |d| min(d, self.dist(child, p, env))),
+                        Some(worth_it) => F::when(
+                            worth_it,
+                            d,
+                            #[inline(always)]
+                            |d| min(d, self.dist(child, p, env)),
+                        ),
                         None => min(d, self.dist(child, p, env)),
                     };
                 }

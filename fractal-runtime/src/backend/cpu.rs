@@ -9,7 +9,7 @@
 
 use fractal_dsl::analyse::{bound, fold::fold_node, has_specular, Aabb};
 use fractal_dsl::back::render::{AO_SAMPLES, AO_SPAN, AO_START, GLOW_FALLOFF, GLOW_NORM, MIN_DIRECTION, T_SPACING};
-use fractal_dsl::eval::{Env, Evaluator, PacketEvaluator, Reference};
+use fractal_dsl::eval::{packet::sample_lane, Env, Evaluator, PacketEvaluator, Reference, Sample};
 use fractal_dsl::lanes::{F32x8, LANES};
 use fractal_dsl::math::{dot, length, normalize, v3, Real, V3};
 use fractal_dsl::{HitEpsilon, RenderSettings, Scene, Shadows};
@@ -236,7 +236,7 @@ impl<F: Real, E: Evaluator<F> + ?Sized> Evaluator<F> for Counted<'_, E> {
         EVALUATIONS.with(|n| n.set(n.get() + 1));
         self.0.distance(p, env)
     }
-    fn sample(&self, p: V3<F>, env: &Env<F>) -> fractal_dsl::eval::Sample<F> {
+    fn sample(&self, p: V3<F>, env: &Env<F>) -> Sample<F> {
         EVALUATIONS.with(|n| n.set(n.get() + 1));
         self.0.sample(p, env)
     }
@@ -245,7 +245,8 @@ impl<F: Real, E: Evaluator<F> + ?Sized> Evaluator<F> for Counted<'_, E> {
 impl View<f32> {
     /// The render algorithm's clip and march (steps 2–3) of a row of rays, eight lanes at a time: a lane whose
     /// march ends takes the row's next ray at once, so no lane idles while rays remain. Each ray takes exactly the
-    /// scalar march's steps, whichever lane it runs in.
+    /// scalar march's steps, whichever lane it runs in: the per-step arithmetic (the point, the hit epsilon, the
+    /// test and the step) runs on the lanes together, in the scalar march's order of operations.
     fn march_row(
         &self,
         packets: &dyn PacketEvaluator,
@@ -253,49 +254,52 @@ impl View<f32> {
         rays: &[(V3<f32>, V3<f32>)],
     ) -> Vec<Option<March<f32>>> {
         let mut out: Vec<Option<March<f32>>> = vec![None; rays.len()];
-        let running = |m: &March<f32>, t_far: f32| !m.hit && m.steps < self.max_steps && m.t <= t_far;
-        // Each lane: the ray it marches, its march so far and the end of its clipped span.
-        let mut lanes: [Option<(usize, March<f32>, f32)>; LANES] = [None; LANES];
+        let mut lanes = RowLanes::default();
         let mut next = 0;
         loop {
-            for lane in lanes.iter_mut() {
-                loop {
-                    if let Some((ray, mut march, t_far)) = *lane {
-                        if running(&march, t_far) {
-                            break;
-                        }
-                        march.out_of_steps = !march.hit && march.steps == self.max_steps && march.t <= t_far;
-                        out[ray] = Some(march);
-                        *lane = None;
+            // Retire the lanes whose march ended and give each free lane the next ray that enters the bound.
+            for lane in 0..LANES {
+                if let Some(ray) = lanes.ray[lane] {
+                    if lanes.running(lane, self.max_steps) {
+                        continue;
                     }
-                    let Some(&(ro, rd)) = rays.get(next) else { break };
-                    let ray = next;
+                    out[ray] = Some(lanes.end(lane, self.max_steps));
+                    lanes.ray[lane] = None;
+                }
+                while let Some(&(ro, rd)) = rays.get(next) {
                     next += 1;
                     // A ray that misses the bound has no march (`None` stays in `out`).
                     if let Some((t_near, t_far)) = self.clip(ro, rd) {
-                        let march = March { hit: false, t: t_near, eps: 0.0, steps: 0, out_of_steps: false, glow: 0.0 };
-                        *lane = Some((ray, march, t_far));
+                        lanes.start(lane, next - 1, ro, rd, t_near, t_far);
+                        break;
                     }
                 }
             }
-            let Some(first) = lanes.iter().position(Option::is_some) else { break };
-            let point = |lane: &Option<(usize, March<f32>, f32)>| {
-                let (ray, march, _) = lane.or(lanes[first]).expect("a lane is marching");
-                rays[ray].0 + rays[ray].1 * march.t
+            let Some(first) = lanes.ray.iter().position(Option::is_some) else { break };
+            // An idle lane marches a copy of the first running lane (its result is not used).
+            for lane in 0..LANES {
+                if lanes.ray[lane].is_none() {
+                    lanes.copy(first, lane);
+                }
+            }
+            let t = F32x8(lanes.t);
+            let p = V3 {
+                x: F32x8(lanes.ro[0]) + F32x8(lanes.rd[0]) * t,
+                y: F32x8(lanes.ro[1]) + F32x8(lanes.rd[1]) * t,
+                z: F32x8(lanes.ro[2]) + F32x8(lanes.rd[2]) * t,
             };
-            let d = distances_x8(packets, env, std::array::from_fn(|i| point(&lanes[i])));
-            for (lane, d) in lanes.iter_mut().zip(d) {
-                let Some((_, m, _)) = lane.as_mut() else { continue };
-                m.steps += 1;
-                m.eps = self.hit_epsilon(m.t);
-                if d < m.eps {
-                    m.hit = true;
-                    continue;
+            let d = packets.distance_x8(p, env).0;
+            let eps: [f32; LANES] = std::array::from_fn(|i| self.hit_epsilon(lanes.t[i]));
+            for i in 0..LANES {
+                lanes.steps[i] += 1;
+                lanes.eps[i] = eps[i];
+                lanes.hit[i] = d[i] < eps[i];
+                if !lanes.hit[i] {
+                    if self.glow.is_some() {
+                        lanes.glow[i] += 1.0 / (1.0 + GLOW_FALLOFF as f32 * d[i] * d[i]);
+                    }
+                    lanes.t[i] += d[i];
                 }
-                if self.glow.is_some() {
-                    m.glow += 1.0 / (1.0 + GLOW_FALLOFF as f32 * d * d);
-                }
-                m.t += d;
             }
         }
         out
@@ -371,25 +375,34 @@ impl View<f32> {
             }
         }
 
+        // The materials at the hits, in one packet: a perturbed pattern reads each hit relative to the camera, rd·t.
+        let hit_at = |i: usize| (rays[lane(i)].1, marches[lane(i)].expect("a hit lane has a march").t);
+        let offsets = std::array::from_fn::<_, LANES, _>(|i| hit_at(i).0 * hit_at(i).1);
+        let orbit_env = Env {
+            reference: (!self.orbit.is_empty()).then(|| Reference { offset: lanes_of(offsets), orbit: &self.orbit }),
+            ..*env8
+        };
+        let materials = packets.sample_x8(lanes_of(points.map(|(p, _)| p)), &orbit_env);
+
         std::array::from_fn(|i| {
             let (ro, rd) = rays[i];
             self.finish_with(ro, rd, marches[i], |p, t, eps| {
                 let n = normals[i];
                 let shadow = |light: usize, _: V3<f32>, _: V3<f32>, _: f32| shadows[light][i];
-                (self.shade_lit(eval, env, p, n, rd, t, eps, occlusion[i], &shadow), n)
+                (self.shade_lit(&sample_lane(&materials, i), p, n, rd, t, eps, occlusion[i], &shadow), n)
             })
         })
     }
 }
 
+/// Eight points as one packet.
+fn lanes_of(points: [V3<f32>; LANES]) -> V3<F32x8> {
+    V3 { x: F32x8::from_fn(|i| points[i].x), y: F32x8::from_fn(|i| points[i].y), z: F32x8::from_fn(|i| points[i].z) }
+}
+
 /// The distances at eight points, in one packet.
 fn distances_x8(packets: &dyn PacketEvaluator, env: &Env<F32x8>, points: [V3<f32>; LANES]) -> [f32; LANES] {
-    let p = V3 {
-        x: F32x8::from_fn(|i| points[i].x),
-        y: F32x8::from_fn(|i| points[i].y),
-        z: F32x8::from_fn(|i| points[i].z),
-    };
-    packets.distance_x8(p, env).0
+    packets.distance_x8(lanes_of(points), env).0
 }
 
 /// Marches eight lanes together: while any lane is `running`, evaluates the distance at every running lane's `point`
@@ -411,6 +424,53 @@ fn run_lanes<S>(
         for (i, state) in states.iter_mut().enumerate().filter(|(i, _)| live[*i]) {
             step(i, state, d[i]);
         }
+    }
+}
+
+/// The eight marches of [`View::march_row`], a field per array so the per-step arithmetic runs on all lanes.
+#[derive(Default)]
+struct RowLanes {
+    /// The ray each lane marches (`None`: idle).
+    ray: [Option<usize>; LANES],
+    ro: [[f32; LANES]; 3],
+    rd: [[f32; LANES]; 3],
+    t: [f32; LANES],
+    t_far: [f32; LANES],
+    eps: [f32; LANES],
+    steps: [u32; LANES],
+    hit: [bool; LANES],
+    glow: [f32; LANES],
+}
+
+impl RowLanes {
+    /// Lane `lane` starts marching ray `ray` at `t_near`.
+    fn start(&mut self, lane: usize, ray: usize, ro: V3<f32>, rd: V3<f32>, t_near: f32, t_far: f32) {
+        self.ray[lane] = Some(ray);
+        for (axis, (o, d)) in [(ro.x, rd.x), (ro.y, rd.y), (ro.z, rd.z)].into_iter().enumerate() {
+            self.ro[axis][lane] = o;
+            self.rd[axis][lane] = d;
+        }
+        (self.t[lane], self.t_far[lane], self.eps[lane]) = (t_near, t_far, 0.0);
+        (self.steps[lane], self.hit[lane], self.glow[lane]) = (0, false, 0.0);
+    }
+    /// Lane `to` takes lane `from`'s march (not its ray).
+    fn copy(&mut self, from: usize, to: usize) {
+        for axis in 0..3 {
+            self.ro[axis][to] = self.ro[axis][from];
+            self.rd[axis][to] = self.rd[axis][from];
+        }
+        (self.t[to], self.t_far[to], self.eps[to]) = (self.t[from], self.t_far[from], self.eps[from]);
+        (self.steps[to], self.hit[to], self.glow[to]) = (self.steps[from], self.hit[from], self.glow[from]);
+    }
+    /// Whether lane `lane`'s march goes on: the kernels' loop condition (a NaN t stops it).
+    fn running(&self, lane: usize, max_steps: u32) -> bool {
+        !self.hit[lane] && self.steps[lane] < max_steps && self.t[lane] <= self.t_far[lane]
+    }
+    /// The end of lane `lane`'s march.
+    fn end(&self, lane: usize, max_steps: u32) -> March<f32> {
+        let (hit, t, steps) = (self.hit[lane], self.t[lane], self.steps[lane]);
+        let out_of_steps = !hit && steps == max_steps && t <= self.t_far[lane];
+        March { hit, t, eps: self.eps[lane], steps, out_of_steps, glow: self.glow[lane] }
     }
 }
 
@@ -713,7 +773,7 @@ impl<F: Real> View<F> {
             Some(strength) => occlusion_from(strength, occlusion_points(p, n).map(de)),
         };
         let shadow = |_: usize, origin: V3<F>, l: V3<F>, limit: F| self.shadow(&de, origin, l, limit, eps);
-        self.shade_lit(eval, env, p, n, rd, t, eps, ao, &shadow)
+        self.shade_lit(&self.material(eval, env, p, rd, t), p, n, rd, t, eps, ao, &shadow)
     }
 
     /// Light i's direction from `p`, its radiance there and how far a shadow ray goes towards it.
@@ -733,12 +793,22 @@ impl<F: Real> View<F> {
         p + n * (c::<F>(2.0) * eps)
     }
 
-    /// Step 4 with the occlusion `ao` and, for each light i that faces the surface, `shadow(i, origin, l, limit)`.
+    /// The material at the hit `p`, distance `t` along `rd`.
+    fn material<E: Evaluator<F> + ?Sized>(&self, eval: &E, env: &Env<F>, p: V3<F>, rd: V3<F>, t: F) -> Sample<F> {
+        // A perturbed pattern reads the hit relative to the camera, rd·t, as the kernels pass it.
+        let at_hit = Env {
+            reference: (!self.orbit.is_empty()).then(|| Reference { offset: rd * t, orbit: &self.orbit }),
+            ..*env
+        };
+        eval.sample(p, &at_hit)
+    }
+
+    /// Step 4 with the material `m`, the occlusion `ao` and, for each light i that faces the surface,
+    /// `shadow(i, origin, l, limit)`.
     #[allow(clippy::too_many_arguments)]
-    fn shade_lit<E: Evaluator<F> + ?Sized>(
+    fn shade_lit(
         &self,
-        eval: &E,
-        env: &Env<F>,
+        m: &Sample<F>,
         p: V3<F>,
         n: V3<F>,
         rd: V3<F>,
@@ -748,12 +818,6 @@ impl<F: Real> View<F> {
         shadow: &dyn Fn(usize, V3<F>, V3<F>, F) -> F,
     ) -> V3<F> {
         let one = F::one();
-        // A perturbed pattern reads the hit relative to the camera, rd·t, as the kernels pass it.
-        let at_hit = Env {
-            reference: (!self.orbit.is_empty()).then(|| Reference { offset: rd * t, orbit: &self.orbit }),
-            ..*env
-        };
-        let m = eval.sample(p, &at_hit);
         let mut colour = m.albedo * (m.ambient * ao);
         for (i, light) in self.lights.iter().enumerate() {
             let (l, radiance, limit) = self.light_at(light, p);
