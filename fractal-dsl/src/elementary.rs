@@ -265,7 +265,7 @@ mod tests {
         (f64::from(approx) - exact).abs() / spacing
     }
 
-    /// Every `step`-th float between `lo` and `hi` (by bits, so each binade is covered evenly).
+    /// About `count` floats from `lo` to `hi` (0 < lo ≤ hi), evenly spaced by bits so each binade is covered evenly.
     fn sweep(lo: f32, hi: f32, count: u32) -> impl Iterator<Item = f32> {
         let (a, b) = (lo.to_bits(), hi.to_bits());
         let step = ((b - a) / count).max(1);
@@ -347,8 +347,6 @@ mod tests {
             }
         }
         assert!(atan2(f32::NAN, 1.0).is_nan() && atan2(1.0, f32::NAN).is_nan());
-        let (err, at) = worst(sweep(-1.0, 1.0, 400_000), acos, f64::acos);
-        assert!(err <= 1.3, "acos: {err} ulp at {at}");
         let (err, at) = worst(sweep(1e-30, 1.0, 400_000).flat_map(|x| [x, -x]), acos, f64::acos);
         assert!(err <= 1.3, "acos: {err} ulp at {at}");
         assert!(acos(1.5).is_nan() && acos(f32::NAN).is_nan());
