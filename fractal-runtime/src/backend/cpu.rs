@@ -12,6 +12,7 @@ use fractal_dsl::back::render::{AO_SAMPLES, AO_SPAN, AO_START, GLOW_FALLOFF, GLO
 use fractal_dsl::eval::{packet::sample_lane, Env, Evaluator, PacketEvaluator, Reference, Sample};
 use fractal_dsl::lanes::{F32x8, LANES};
 use fractal_dsl::math::{dot, length, normalize, v3, Real, V3};
+use fractal_dsl::num::Num;
 use fractal_dsl::{HitEpsilon, RenderSettings, Scene, Shadows};
 use rayon::prelude::*;
 use std::cell::Cell;
@@ -288,21 +289,31 @@ impl View<f32> {
                 y: F32x8(lanes.ro[1]) + F32x8(lanes.rd[1]) * t,
                 z: F32x8(lanes.ro[2]) + F32x8(lanes.rd[2]) * t,
             };
-            let d = packets.distance_x8(p, env).0;
-            let eps: [f32; LANES] = std::array::from_fn(|i| self.hit_epsilon(lanes.t[i]));
-            for i in 0..LANES {
+            let d = packets.distance_x8(p, env);
+            let eps = self.hit_epsilon_x8(t);
+            let hit = Num::lt(d, eps);
+            if self.glow.is_some() {
+                let one = F32x8::splat(1.0);
+                let glow = F32x8(lanes.glow);
+                lanes.glow = Num::select(hit, glow, glow + one / (one + F32x8::splat(GLOW_FALLOFF as f32) * d * d)).0;
+            }
+            lanes.t = Num::select(hit, t, t + d).0;
+            lanes.eps = eps.0;
+            for (i, m) in hit.0.iter().enumerate() {
                 lanes.steps[i] += 1;
-                lanes.eps[i] = eps[i];
-                lanes.hit[i] = d[i] < eps[i];
-                if !lanes.hit[i] {
-                    if self.glow.is_some() {
-                        lanes.glow[i] += 1.0 / (1.0 + GLOW_FALLOFF as f32 * d[i] * d[i]);
-                    }
-                    lanes.t[i] += d[i];
-                }
+                lanes.hit[i] = *m != 0;
             }
         }
         out
+    }
+
+    /// [`View::hit_epsilon`] on eight lanes, with the same operations in the same order.
+    fn hit_epsilon_x8(&self, t: F32x8) -> F32x8 {
+        let eps = match self.epsilon {
+            HitEpsilon::Fixed(e) => F32x8::splat(e as f32),
+            HitEpsilon::Pixel(k) => F32x8::splat(k as f32) * F32x8::splat(self.footprint) * t,
+        };
+        Num::max(eps, F32x8::splat(T_SPACING as f32) * t)
     }
 
     /// Steps 4–6 of eight marched rays: normals, occlusion and shadow rays evaluated in packets (lane for lane the
