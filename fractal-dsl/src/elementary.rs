@@ -36,14 +36,26 @@ fn pow2i(n: i32) -> f32 {
     f32::from_bits(((n + 127) as u32) << 23)
 }
 
-/// The largest integer not above `x`, exactly as `f32::floor` (signed zeros, infinities and NaN included), by a
-/// truncating conversion: baseline x86-64 has no rounding instruction, and libm's `floorf` would be a call per lane.
+/// `x`, an integer-valued float (or one to truncate) within i32's range and not NaN, as an i32: one truncating
+/// conversion, where Rust's `as` also saturates and maps NaN to 0 at several instructions per lane.
+#[inline(always)]
+fn to_i32(x: f32) -> i32 {
+    debug_assert!(x.abs() < 2_147_483_648.0, "{x} is not an i32");
+    // SAFETY: every caller bounds x to well inside i32's range and replaces NaN first (see the debug assertion).
+    unsafe { x.to_int_unchecked() }
+}
+
+/// The largest integer not above `x`, exactly as `f32::floor` (signed zeros, infinities and NaN included), by
+/// rounding with 2^23: baseline x86-64 has no rounding instruction, and libm's `floorf` would be a call per lane.
 #[inline(always)]
 pub fn floor(x: f32) -> f32 {
-    // Past 2^23 every float is an integer (and the conversion would saturate).
-    let t = (x as i32) as f32;
-    let t = pick(t > x, t - 1.0, t);
-    pick(x.abs() < 8_388_608.0, t.copysign(x), x)
+    // Past 2^23 every float is an integer (and NaN and ∞ are their own floor).
+    let small = x.abs() < 8_388_608.0;
+    // x + 2^23 − 2^23 (with x's sign) rounds x to the nearest integer; step down where that went up.
+    let magic = 8_388_608.0f32.copysign(x);
+    let r = (x + magic) - magic;
+    let r = pick(r > x, r - 1.0, r);
+    pick(small, r.copysign(x), x)
 }
 
 /// x = m · 2^e with m in [√½, √2): returns (m − 1, e). x must be positive and finite (subnormals are scaled).
@@ -102,7 +114,7 @@ pub fn exp2(x: f32) -> f32 {
         * f
         + 1.0;
     // 2^n in two factors, each a normal float, so results down in the subnormals and up to 2^128 come out right.
-    let n = pick(n.is_nan(), 0.0, n) as i32;
+    let n = to_i32(pick(n.is_nan(), 0.0, n));
     let half = n / 2;
     let r = p * pow2i(half) * pow2i(n - half);
     pick(x.is_nan(), x, r)
@@ -124,7 +136,7 @@ pub fn pow(x: f32, y: f32) -> f32 {
     let whole = floor(n + 0.5);
     let rest = (product - f64::from(whole)) as f32;
     // 2^whole in two factors, each a normal float (|whole| ≤ 200), so results near the ends of the range survive.
-    let whole = pick(whole.is_nan(), 0.0, whole) as i32;
+    let whole = to_i32(pick(whole.is_nan(), 0.0, whole));
     let half = whole / 2;
     let r = exp2(rest) * pow2i(half) * pow2i(whole - half);
     // Specials, in the order libm's rules take precedence.
@@ -144,7 +156,9 @@ pub fn pow(x: f32, y: f32) -> f32 {
 /// The octant of |x| (an even number, Cephes' j after rounding up odd ones) and |x| reduced by it, for `sin`/`cos`.
 #[inline(always)]
 fn reduce_quarter_pi(ax: f32) -> (i32, f32) {
-    let j = (ax * 1.273_239_5) as i32; // 4/π
+    // The callers keep |x| within the reduction's range; anything else (NaN) reduces as 0 here.
+    let ax = pick(ax <= TRIG_REDUCTION_LIMIT, ax, 0.0);
+    let j = to_i32(ax * 1.273_239_5); // 4/π
     let j = (j + 1) & !1;
     let y = j as f32;
     // π/4 in three parts (Cody–Waite): each product y·part is exact for |x| ≤ 8192.
