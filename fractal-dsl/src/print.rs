@@ -304,6 +304,9 @@ fn settings(out: &mut String, s: &RenderSettings) {
             HitEpsilon::Pixel(k) => format!("pixel_epsilon({})", lit(k)),
         });
     }
+    if s.over_relaxation != d.over_relaxation {
+        line(format!("over_relaxation({})", lit(s.over_relaxation)));
+    }
     if s.shadows != d.shadows {
         line(match s.shadows {
             Shadows::None => "no_shadows()".to_string(),

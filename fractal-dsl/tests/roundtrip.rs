@@ -381,9 +381,10 @@ fn scene_strategy() -> impl Strategy<Value = Scene> {
         prop::option::of((rgb_strategy(), 0.001..1.0f64)),
         prop::option::of(rgb_strategy()),
         prop::option::of(0.5..3.0f64),
+        prop::option::of(1.0..=2.0f64),
     );
     (shape(), prop::collection::vec(light(), 0..3), camera_strategy(), settings).prop_map(
-        |(root, lights, cam, (steps, dist, eps, shadows, ao, glow, fog, bg, gamma))| {
+        |(root, lights, cam, (steps, dist, eps, shadows, ao, glow, fog, bg, gamma, relax))| {
             let mut s = scene(root).camera(cam);
             for l in lights {
                 s = s.light(l);
@@ -396,6 +397,9 @@ fn scene_strategy() -> impl Strategy<Value = Scene> {
             }
             if let Some((pixel, e)) = eps {
                 s = if pixel { s.pixel_epsilon(e) } else { s.epsilon(e) };
+            }
+            if let Some(w) = relax {
+                s = s.over_relaxation(w);
             }
             s = match shadows {
                 0 => s,

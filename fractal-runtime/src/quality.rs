@@ -1,7 +1,7 @@
 //! The quality settings an accuracy sweep varies, and how each is applied to a scene: the march's step budget and hit
 //! epsilon (render settings), the iteration count of escape-time fractals (the scene's fractals), a factor on every
 //! distance the march steps by (the step factor, applied by wrapping the CPU evaluator), whether rays are clipped to
-//! the scene's bound, and over-relaxation of the march (the last two on the CPU only).
+//! the scene's bound (on the CPU only), and over-relaxation of the march (a render setting).
 
 use std::fmt;
 
@@ -20,7 +20,7 @@ pub struct Quality {
     pub step_scale: Option<f64>,
     /// `Some(false)`: rays are not clipped to the scene's bound (CPU only; the kernels always clip).
     pub bounds: Option<bool>,
-    /// Over-relaxation factor ω of the march with its fallback (CPU only; the kernels step by d).
+    /// Over-relaxation factor ω of the march with its fallback (the scene's `over_relaxation`).
     pub over_relaxation: Option<f64>,
 }
 
@@ -43,6 +43,9 @@ impl Quality {
         }
         if let Some(e) = self.epsilon {
             out.settings.epsilon = e;
+        }
+        if let Some(w) = self.over_relaxation {
+            out.settings.over_relaxation = w;
         }
         out
     }

@@ -655,18 +655,42 @@ impl<D: Dialect> Kernel<'_, D> {
             HitEpsilon::Fixed(e) => self.lit(e),
             HitEpsilon::Pixel(k) => format!("{} * {} * t", self.lit(k), self.footprint()),
         };
+        // Over-relaxation only where the scene asks for it: a plain march is the loop below without it.
+        let relaxed = s.over_relaxation > 1.0;
+        if relaxed {
+            self.line(l1, &self.variable("omega", float, &self.lit(s.over_relaxation)));
+            self.line(l1, &self.variable("previous", float, &zero));
+            self.line(l1, &self.variable("stride", float, &zero));
+        }
         self.line(l1, &d.counted_loop(&format!("{} && t <= t_far", s.max_steps)));
         self.line(l2, &self.constant("d", float, &self.de("ro + rd * t")));
         let spacing = format!("{} * t", self.lit(T_SPACING));
         self.line(l2, &format!("eps = {};", self.math(MathFn::Max, &[&eps, &spacing])));
-        self.line(l2, "if (d < eps) {");
-        self.line(l3, &format!("hit = {};", d.bool_lit(true)));
-        self.line(l3, "break;");
-        self.line(l2, "}");
+        let hit_test = |w: &mut Self, level: Level| {
+            w.line(level, "if (d < eps) {");
+            w.line(level.next(), &format!("hit = {};", d.bool_lit(true)));
+            w.line(level.next(), "break;");
+            w.line(level, "}");
+        };
+        let abs_d = self.math(MathFn::Abs, &["d"]);
+        if relaxed {
+            // The unbounding spheres of this point and the last do not overlap: the relaxed step may have passed
+            // the surface, so take back its excess and go on with plain steps.
+            self.line(l2, &format!("if (omega > {one} && {abs_d} + previous < stride) {{"));
+            self.line(l3, "stride = stride - omega * stride;");
+            self.line(l3, &format!("omega = {one};"));
+            self.line(l2, "} else {");
+            hit_test(self, l3);
+            self.line(l3, "stride = d * omega;");
+            self.line(l2, "}");
+            self.line(l2, &format!("previous = {abs_d};"));
+        } else {
+            hit_test(self, l2);
+        }
         if s.glow.is_some() {
             self.line(l2, &format!("glow += {one} / ({one} + {} * d * d);", self.lit(GLOW_FALLOFF)));
         }
-        self.line(l2, "t += d;");
+        self.line(l2, if relaxed { "t += stride;" } else { "t += d;" });
         self.line(l1, "}");
     }
 

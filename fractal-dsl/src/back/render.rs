@@ -12,6 +12,10 @@
 //!    eps = fixed ε, or k·footprint·t for a pixel ε; eps = max(eps, [`T_SPACING`]·t) so a far hit never asks for more
 //!    precision than t has; hit if d < eps; otherwise (glow only) glow += 1/(1 + [`GLOW_FALLOFF`]·d²); t += d;
 //!    stop when t > t_far. Because d ≥ eps ≥ T_SPACING·t, every step moves t by at least 4 ulps: no stalls far away.
+//!    With over-relaxation ω > 1 (the scene's `over_relaxation`; Keinert et al. 2014) the step is a `stride`, with
+//!    `previous` = |d| of the last point, both from 0: if ω > 1 and |d| + previous < stride (the unbounding spheres
+//!    do not overlap), stride = stride − ω·stride and ω = 1, and no hit test; otherwise the hit test as above, then
+//!    stride = d·ω; then previous = |d|, glow as above, t += stride. ω = 1 is the plain march exactly.
 //! 4. **Hit shading.** p = ro + rd·t; n = normalize(Σ k_i·scene_de(p + k_i·eps)) over the tetrahedron
 //!    k = (1,−1,−1), (−1,−1,1), (−1,1,−1), (1,1,1) (a zero sum gives the normal +y); m = scene_sample(p).
 //!    Ambient occlusion (when enabled, strength s): occ = Σ_{i<5} (h_i − scene_de(p + n·h_i))·0.95^i with

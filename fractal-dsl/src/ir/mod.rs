@@ -231,6 +231,9 @@ pub struct RenderSettings {
     pub max_steps: u32,
     pub max_distance: f64,
     pub epsilon: HitEpsilon,
+    /// Over-relaxation factor ω of the march, in [1, 2] (Keinert et al. 2014): step ω·d while successive unbounding
+    /// spheres overlap, and where they do not, step back and go on with ω = 1. 1 is plain sphere tracing.
+    pub over_relaxation: f64,
     pub shadows: Shadows,
     /// Ambient occlusion strength (5 samples along the normal); None disables it.
     pub ambient_occlusion: Option<f64>,
@@ -246,6 +249,7 @@ impl Default for RenderSettings {
             max_steps: 128,
             max_distance: 20.0,
             epsilon: HitEpsilon::Fixed(0.0005),
+            over_relaxation: 1.0,
             shadows: Shadows::None,
             ambient_occlusion: None,
             glow: None,

@@ -516,6 +516,9 @@ pub(crate) static METHODS: &[Entry] = &[
     meth(T::Scene, "pixel_epsilon", &[p("pixels", T::Const)], T::Scene, |a| {
         scene(a.scene()?.pixel_epsilon(a.konst()?))
     }),
+    meth(T::Scene, "over_relaxation", &[p("omega", T::Const)], T::Scene, |a| {
+        scene(a.scene()?.over_relaxation(a.konst()?))
+    }),
     meth(T::Scene, "no_shadows", &[], T::Scene, |a| scene(a.scene()?.no_shadows())),
     meth(T::Scene, "hard_shadows", &[], T::Scene, |a| scene(a.scene()?.hard_shadows())),
     meth(T::Scene, "soft_shadows", &[p("k", T::Const)], T::Scene, |a| scene(a.scene()?.soft_shadows(a.konst()?))),

@@ -84,7 +84,7 @@ pub struct SweepPoint {
 }
 
 /// The settings a sweep tries on `scene` (one at a time around its own, then a few combinations), the scene's own
-/// first. The step factor, the bound and over-relaxation are only varied `on_cpu`.
+/// first. The step factor and the bound are only varied `on_cpu`.
 pub fn grid(scene: &Scene, on_cpu: bool) -> Vec<Quality> {
     let own = &scene.settings;
     let mut out = vec![Quality::default()];
@@ -111,8 +111,8 @@ pub fn grid(scene: &Scene, on_cpu: bool) -> Vec<Quality> {
     if on_cpu && bound(&fold_node(&scene.root)).is_some() {
         out.push(Quality { bounds: Some(false), ..Quality::default() });
     }
-    if on_cpu {
-        for w in [1.2, 1.5] {
+    for w in [1.0, 1.2, 1.3, 1.4, 1.5] {
+        if w != own.over_relaxation {
             out.push(Quality { over_relaxation: Some(w), ..Quality::default() });
         }
     }
@@ -154,7 +154,6 @@ fn run_cpu(scene: &Scene, quality: &Quality, frame: &Frame, truth: &Truth) -> Re
             Some(false) => None,
             _ => bound(&fold_node(&applied.root)),
         },
-        over_relaxation: quality.over_relaxation.unwrap_or(1.0),
     };
     let mut times = Vec::new();
     let mut traces = Vec::new();

@@ -163,12 +163,7 @@ pub fn trace_scene<F: Real, E: Evaluator<F> + ?Sized>(
     scene: &Scene,
     frame: &Frame,
 ) -> Result<Vec<PixelTrace>, RenderError> {
-    trace_scene_with(
-        evaluator,
-        scene,
-        frame,
-        MarchLevers { bound: bound(&fold_node(&scene.root)), over_relaxation: 1.0 },
-    )
+    trace_scene_with(evaluator, scene, frame, MarchLevers { bound: bound(&fold_node(&scene.root)) })
 }
 
 /// How [`trace_scene_with`] marches, beside the scene's settings: the accuracy sweep's levers the kernels lack.
@@ -176,8 +171,6 @@ pub fn trace_scene<F: Real, E: Evaluator<F> + ?Sized>(
 pub struct MarchLevers {
     /// Rays are clipped to this box instead of the scene's own bound (`None`: march from 0 to max_distance).
     pub bound: Option<Aabb>,
-    /// Over-relaxation factor ω ≥ 1 (1: plain sphere tracing).
-    pub over_relaxation: f64,
 }
 
 /// [`trace_scene`] with the march's `levers` set.
@@ -187,7 +180,7 @@ pub fn trace_scene_with<F: Real, E: Evaluator<F> + ?Sized>(
     frame: &Frame,
     levers: MarchLevers,
 ) -> Result<Vec<PixelTrace>, RenderError> {
-    let view = View::<F>::new(scene, frame, levers.bound)?.relaxed(levers.over_relaxation);
+    let view = View::<F>::new(scene, frame, levers.bound)?;
     let width = frame.width() as usize;
     let mut traces = vec![PixelTrace::default(); width * frame.height() as usize];
     let counted = Counted(evaluator);
@@ -271,7 +264,7 @@ impl View<f32> {
                     next += 1;
                     // A ray that misses the bound has no march (`None` stays in `out`).
                     if let Some((t_near, t_far)) = self.clip(ro, rd) {
-                        lanes.start(lane, next - 1, ro, rd, t_near, t_far);
+                        lanes.start(lane, next - 1, ro, rd, t_near, t_far, self.relaxation);
                         break;
                     }
                 }
@@ -291,13 +284,26 @@ impl View<f32> {
             };
             let d = packets.distance_x8(p, env);
             let eps = self.hit_epsilon_x8(t);
-            let hit = Num::lt(d, eps);
+            let one = F32x8::splat(1.0);
+            let (hit, step) = if self.relaxation > 1.0 {
+                // The scalar march's over-relaxation, lane by lane (see `View::march`).
+                let (omega, previous, stride) = (F32x8(lanes.omega), F32x8(lanes.previous), F32x8(lanes.stride));
+                let abs_d = Num::abs(d);
+                let overshot = Num::lt(one, omega) & Num::lt(abs_d + previous, stride);
+                let hit = !overshot & Num::lt(d, eps);
+                let stride = Num::select(overshot, stride - omega * stride, d * omega);
+                lanes.omega = Num::select(overshot, one, omega).0;
+                lanes.previous = abs_d.0;
+                lanes.stride = stride.0;
+                (hit, stride)
+            } else {
+                (Num::lt(d, eps), d)
+            };
             if self.glow.is_some() {
-                let one = F32x8::splat(1.0);
                 let glow = F32x8(lanes.glow);
                 lanes.glow = Num::select(hit, glow, glow + one / (one + F32x8::splat(GLOW_FALLOFF as f32) * d * d)).0;
             }
-            lanes.t = Num::select(hit, t, t + d).0;
+            lanes.t = Num::select(hit, t, t + step).0;
             lanes.eps = eps.0;
             for (i, m) in hit.0.iter().enumerate() {
                 lanes.steps[i] += 1;
@@ -451,11 +457,16 @@ struct RowLanes {
     steps: [u32; LANES],
     hit: [bool; LANES],
     glow: [f32; LANES],
+    /// Over-relaxation: each lane's ω, |d| at its last point and its last step.
+    omega: [f32; LANES],
+    previous: [f32; LANES],
+    stride: [f32; LANES],
 }
 
 impl RowLanes {
     /// Lane `lane` starts marching ray `ray` at `t_near`.
-    fn start(&mut self, lane: usize, ray: usize, ro: V3<f32>, rd: V3<f32>, t_near: f32, t_far: f32) {
+    #[allow(clippy::too_many_arguments)]
+    fn start(&mut self, lane: usize, ray: usize, ro: V3<f32>, rd: V3<f32>, t_near: f32, t_far: f32, omega: f32) {
         self.ray[lane] = Some(ray);
         for (axis, (o, d)) in [(ro.x, rd.x), (ro.y, rd.y), (ro.z, rd.z)].into_iter().enumerate() {
             self.ro[axis][lane] = o;
@@ -463,6 +474,7 @@ impl RowLanes {
         }
         (self.t[lane], self.t_far[lane], self.eps[lane]) = (t_near, t_far, 0.0);
         (self.steps[lane], self.hit[lane], self.glow[lane]) = (0, false, 0.0);
+        (self.omega[lane], self.previous[lane], self.stride[lane]) = (omega, 0.0, 0.0);
     }
     /// Lane `to` takes lane `from`'s march (not its ray).
     fn copy(&mut self, from: usize, to: usize) {
@@ -472,6 +484,8 @@ impl RowLanes {
         }
         (self.t[to], self.t_far[to], self.eps[to]) = (self.t[from], self.t_far[from], self.eps[from]);
         (self.steps[to], self.hit[to], self.glow[to]) = (self.steps[from], self.hit[from], self.glow[from]);
+        (self.omega[to], self.previous[to], self.stride[to]) =
+            (self.omega[from], self.previous[from], self.stride[from]);
     }
     /// Whether lane `lane`'s march goes on: the kernels' loop condition (a NaN t stops it).
     fn running(&self, lane: usize, max_steps: u32) -> bool {
@@ -563,6 +577,7 @@ impl<F: Real> View<F> {
             max_steps,
             max_distance,
             epsilon,
+            over_relaxation,
             shadows,
             ambient_occlusion,
             glow,
@@ -605,15 +620,9 @@ impl<F: Real> View<F> {
             fog: fog.as_ref().map(|f| (d3(f.color), c(f.density))),
             background: d3(background),
             gamma,
-            relaxation: F::one(),
+            relaxation: c(over_relaxation),
             orbit: frame.reference_orbit(),
         })
-    }
-
-    /// The same view marching with over-relaxation `omega` (> 1), an accuracy-sweep lever the kernels do not have.
-    pub(crate) fn relaxed(mut self, omega: f64) -> View<F> {
-        self.relaxation = c(omega);
-        self
     }
 
     /// What expressions read: the frame's time and parameters.

@@ -53,6 +53,8 @@ pub struct SettingsRecord {
     pub max_distance: f64,
     /// `fixed <distance>` or `pixel <multiple of the pixel footprint>`.
     pub epsilon: String,
+    /// The march's over-relaxation factor ω (1: plain sphere tracing).
+    pub over_relaxation: f64,
     /// `none`, `hard` or `soft <k>`.
     pub shadows: String,
     pub ambient_occlusion: Option<f64>,
@@ -74,6 +76,7 @@ impl SettingsRecord {
                 HitEpsilon::Fixed(e) => format!("fixed {e}"),
                 HitEpsilon::Pixel(k) => format!("pixel {k}"),
             },
+            over_relaxation: s.over_relaxation,
             shadows: match s.shadows {
                 Shadows::None => "none".to_string(),
                 Shadows::Hard => "hard".to_string(),
@@ -214,6 +217,7 @@ impl BenchRecord {
             ("max_steps", s.max_steps.to_string()),
             ("max_distance", s.max_distance.to_string()),
             ("epsilon", s.epsilon.clone()),
+            ("over_relaxation", s.over_relaxation.to_string()),
             ("shadows", s.shadows.clone()),
             ("ambient_occlusion", opt(s.ambient_occlusion)),
             ("glow", s.glow.map(|c| format!("{} {} {}", c[0], c[1], c[2])).unwrap_or_default()),

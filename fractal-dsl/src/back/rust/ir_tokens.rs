@@ -365,6 +365,7 @@ impl Writer<'_> {
             max_steps,
             max_distance,
             epsilon,
+            over_relaxation,
             shadows,
             ambient_occlusion,
             glow,
@@ -384,6 +385,7 @@ impl Writer<'_> {
                 quote!(#k::HitEpsilon::Pixel(#f))
             }
         };
+        let over_relaxation = f64_lit(*over_relaxation);
         let shadows = match shadows {
             Shadows::None => quote!(#k::Shadows::None),
             Shadows::Hard => quote!(#k::Shadows::Hard),
@@ -406,6 +408,7 @@ impl Writer<'_> {
                 max_steps: #max_steps,
                 max_distance: #max_distance,
                 epsilon: #epsilon,
+                over_relaxation: #over_relaxation,
                 shadows: #shadows,
                 ambient_occlusion: #ambient_occlusion,
                 glow: #glow,
