@@ -207,6 +207,10 @@ fn blend(m: M32x8, a: F32x8, b: F32x8) -> F32x8 {
     F32x8(out)
 }
 
+// The elementary functions are passed as closures marked `#[inline(always)]`, not as function items: a function item
+// is called through a shim LLVM may leave out of line, and out of line it is compiled for the baseline, not for the
+// AVX2 copy of the packet instance.
+#[allow(clippy::redundant_closure)]
 impl Num for F32x8 {
     type Mask = M32x8;
     type Count = u32;
