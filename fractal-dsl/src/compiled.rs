@@ -18,6 +18,9 @@ pub struct NativeFns {
     /// Eight points at a time ([`F32x8`] lanes): the f32 code on packets, lane for lane the same arithmetic.
     pub distance_x8: fn(V3<F32x8>, &Env<F32x8>) -> F32x8,
     pub sample_x8: fn(V3<F32x8>, &Env<F32x8>) -> Sample<F32x8>,
+    /// `distance_x8` over slices of one length (x, y, z, out), the loop compiled with the packet instance: one call
+    /// for a whole slice ([`crate::eval::packet::each_packet`]).
+    pub distance_slice_x8: fn(&[f32], &[f32], &[f32], &mut [f32], &Env<F32x8>),
 }
 
 /// The defaults of a scene's parameters in [`Scene::params`] order, in both precisions the native evaluator runs in:
@@ -145,7 +148,10 @@ impl NativeFns {
     /// time on the calling thread ([`crate::eval::packet`]). Panics if the lengths differ.
     #[allow(clippy::too_many_arguments)]
     pub fn distance_slice(&self, time: f32, params: &[f32], x: &[f32], y: &[f32], z: &[f32], out: &mut [f32]) {
-        crate::eval::packet::distance_slice(self.distance_x8, time, params, x, y, z, out)
+        use crate::eval::packet::{common_length, splat_params};
+        common_length(x, y, z, out.len());
+        let params = splat_params(params);
+        (self.distance_slice_x8)(x, y, z, out, &Env::new(F32x8::splat(time), &params))
     }
 
     /// Distances and materials at many points; see [`NativeFns::distance_slice`].

@@ -136,6 +136,22 @@ fn expand(scene: &fractal_dsl::Scene, span: Span) -> TokenStream2 {
             #distance::<#lanes>(p, env)
         }
         #[allow(clippy::all)]
+        fn __fractal_distance_slice_x8(x: &[f32], y: &[f32], z: &[f32], out: &mut [f32], env: #env) {
+            #[cfg(target_arch = "x86_64")]
+            {
+                #[target_feature(enable = "avx2")]
+                unsafe fn wide(x: &[f32], y: &[f32], z: &[f32], out: &mut [f32], env: #env) {
+                    #krate::eval::packet::each_packet(
+                        #[inline(always)] |p| #distance::<#lanes>(p, env), x, y, z, out)
+                }
+                if #krate::lanes::has_avx2() {
+                    // SAFETY: the CPU has AVX2, checked just above.
+                    return unsafe { wide(x, y, z, out, env) };
+                }
+            }
+            #krate::eval::packet::each_packet(|p| #distance::<#lanes>(p, env), x, y, z, out)
+        }
+        #[allow(clippy::all)]
         fn __fractal_sample_x8(p: #point, env: #env) -> #sample_x8 {
             #[cfg(target_arch = "x86_64")]
             {
@@ -168,6 +184,7 @@ fn expand(scene: &fractal_dsl::Scene, span: Span) -> TokenStream2 {
                 sample_f64: #sample::<f64>,
                 distance_x8: __fractal_distance_x8,
                 sample_x8: __fractal_sample_x8,
+                distance_slice_x8: __fractal_distance_slice_x8,
             },
             __fractal_scene,
             __FRACTAL_DEFAULTS,

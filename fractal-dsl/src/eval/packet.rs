@@ -8,7 +8,7 @@ use crate::lanes::{F32x8, LANES};
 use crate::math::V3;
 
 /// Panics unless the four slices have one length; returns it.
-fn common_length(x: &[f32], y: &[f32], z: &[f32], out: usize) -> usize {
+pub fn common_length(x: &[f32], y: &[f32], z: &[f32], out: usize) -> usize {
     assert!(
         x.len() == y.len() && y.len() == z.len() && z.len() == out,
         "slices of unequal length: x {}, y {}, z {}, out {}",
@@ -34,7 +34,7 @@ fn packet(x: &[f32], y: &[f32], z: &[f32], start: usize) -> V3<F32x8> {
 }
 
 /// The time and parameters in every lane.
-fn splat_params(params: &[f32]) -> Vec<F32x8> {
+pub fn splat_params(params: &[f32]) -> Vec<F32x8> {
     params.iter().map(|&v| F32x8::splat(v)).collect()
 }
 
@@ -49,16 +49,27 @@ pub fn distance_slice(
     z: &[f32],
     out: &mut [f32],
 ) {
-    let n = common_length(x, y, z, out.len());
+    common_length(x, y, z, out.len());
     let params = splat_params(params);
     let env = Env::new(F32x8::splat(time), &params);
-    for (chunk, start) in out.chunks_mut(LANES).zip((0..n).step_by(LANES)) {
-        let d = distance(packet(x, y, z, start), &env);
-        match <&mut [f32; LANES]>::try_from(&mut *chunk) {
-            // A whole packet: a fixed-size copy (no call to memcpy).
-            Ok(whole) => *whole = d.0,
-            Err(_) => chunk.copy_from_slice(&d.0[..chunk.len()]),
-        }
+    each_packet(|p| distance(p, &env), x, y, z, out);
+}
+
+/// `out[i]` = `distance` at (x[i], y[i], z[i]), eight points at a time, for slices of one length. Inlined into its
+/// caller, so the native evaluator compiles the whole loop into its AVX2 copy (no call per packet).
+#[inline(always)]
+pub fn each_packet(distance: impl Fn(V3<F32x8>) -> F32x8, x: &[f32], y: &[f32], z: &[f32], out: &mut [f32]) {
+    // Whole packets by exact chunks (no bounds checks, fixed-size copies), then the padded rest.
+    let lanes = |s: &[f32]| F32x8(s.try_into().expect("eight lanes"));
+    let mut outs = out.chunks_exact_mut(LANES);
+    let inputs = x.chunks_exact(LANES).zip(y.chunks_exact(LANES)).zip(z.chunks_exact(LANES));
+    for (((xs, ys), zs), o) in inputs.zip(&mut outs) {
+        o.copy_from_slice(&distance(V3 { x: lanes(xs), y: lanes(ys), z: lanes(zs) }).0);
+    }
+    let rest = outs.into_remainder();
+    if !rest.is_empty() {
+        let d = distance(packet(x, y, z, x.len() - rest.len()));
+        rest.copy_from_slice(&d.0[..rest.len()]);
     }
 }
 
