@@ -20,8 +20,11 @@ pub struct NativeFns {
     pub sample_x8: fn(V3<F32x8>, &Env<F32x8>) -> Sample<F32x8>,
     /// `distance_x8` over slices of one length (x, y, z, out), the loop compiled with the packet instance: one call
     /// for a whole slice ([`crate::eval::packet::each_packet`]).
-    pub distance_slice_x8: fn(&[f32], &[f32], &[f32], &mut [f32], &Env<F32x8>),
+    pub distance_slice_x8: DistanceSliceFn,
 }
+
+/// The native evaluator's packet distance over slices: `(x, y, z, out, env)`, `out[i]` the distance at the i-th point.
+pub type DistanceSliceFn = fn(&[f32], &[f32], &[f32], &mut [f32], &Env<F32x8>);
 
 /// The defaults of a scene's parameters in [`Scene::params`] order, in both precisions the native evaluator runs in:
 /// the parameter block of [`CompiledScene::distance`], written by the macro as constants.
