@@ -393,10 +393,11 @@ impl View<f32> {
         }
 
         // The materials at the hits, in one packet: a perturbed pattern reads each hit relative to the camera, rd·t.
-        let hit_at = |i: usize| (rays[lane(i)].1, marches[lane(i)].expect("a hit lane has a march").t);
-        let offsets = std::array::from_fn::<_, LANES, _>(|i| hit_at(i).0 * hit_at(i).1);
+        // (Only scenes with a perturbed pattern have an orbit; the offsets are formed for them alone.)
+        let offset = |i: usize| rays[lane(i)].1 * marches[lane(i)].expect("a hit lane has a march").t;
         let orbit_env = Env {
-            reference: (!self.orbit.is_empty()).then(|| Reference { offset: lanes_of(offsets), orbit: &self.orbit }),
+            reference: (!self.orbit.is_empty())
+                .then(|| Reference { offset: lanes_of(std::array::from_fn(offset)), orbit: &self.orbit }),
             ..*env8
         };
         let materials = packets.sample_x8(lanes_of(points.map(|(p, _)| p)), &orbit_env);
