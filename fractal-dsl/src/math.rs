@@ -181,11 +181,17 @@ pub fn abs3<F: Num>(a: V3<F>) -> V3<F> {
 }
 #[inline(always)]
 pub fn max3<F: Num>(a: V3<F>, b: F) -> V3<F> {
-    a.map(|v| max(v, b))
+    a.map(
+        #[inline(always)]
+        |v| max(v, b),
+    )
 }
 #[inline(always)]
 pub fn min3<F: Num>(a: V3<F>, b: F) -> V3<F> {
-    a.map(|v| min(v, b))
+    a.map(
+        #[inline(always)]
+        |v| min(v, b),
+    )
 }
 #[inline(always)]
 pub fn mix3<F: Num>(a: V3<F>, b: V3<F>, t: F) -> V3<F> {

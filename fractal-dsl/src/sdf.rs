@@ -353,9 +353,15 @@ pub fn de_menger<F: Num>(p: V3<F>, levels: F::Count) -> [F; 2] {
         (sd_box(p, V3::splat(c(1.0))), c::<F>(1.0), c::<F>(1.0)),
         #[inline(always)]
         |(d, s, trap)| {
-            let a = (p * s).map(|v| fmod_floor(v, two) - c(1.0));
+            let a = (p * s).map(
+                #[inline(always)]
+                |v| fmod_floor(v, two) - c(1.0),
+            );
             let s = s * three;
-            let r = a.map(|v| abs(c::<F>(1.0) - three * abs(v)));
+            let r = a.map(
+                #[inline(always)]
+                |v| abs(c::<F>(1.0) - three * abs(v)),
+            );
             let da = max(r.x, r.y);
             let db = max(r.y, r.z);
             let dc = max(r.z, r.x);
@@ -686,8 +692,14 @@ pub fn in_menger<F: Num>(p: V3<F>, levels: F::Count) -> F {
         #[inline(always)]
         |(cell, removed)| {
             let s = cell * three;
-            let digit = s.map(|v| clamp(floor(v), zero, c(2.0)));
-            let middle = s.map(|v| select(gt(v, one) & lt(v, c(2.0)), one, zero));
+            let digit = s.map(
+                #[inline(always)]
+                |v| clamp(floor(v), zero, c(2.0)),
+            );
+            let middle = s.map(
+                #[inline(always)]
+                |v| select(gt(v, one) & lt(v, c(2.0)), one, zero),
+            );
             let cut = ge(middle.x + middle.y + middle.z, c(2.0));
             (s - digit, select(cut, one, removed))
         },
