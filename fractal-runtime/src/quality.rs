@@ -1,7 +1,8 @@
 //! The quality settings an accuracy sweep varies, and how each is applied to a scene: the march's step budget and hit
 //! epsilon (render settings), the iteration count of escape-time fractals (the scene's fractals), a factor on every
 //! distance the march steps by (the step factor, applied by wrapping the CPU evaluator), whether rays are clipped to
-//! the scene's bound (on the CPU only), and over-relaxation of the march (a render setting).
+//! the scene's bound (on the CPU only), over-relaxation of the march (a render setting), and whether OpenCL builds
+//! its kernels with fast math (OpenCL only).
 
 use std::fmt;
 
@@ -22,6 +23,9 @@ pub struct Quality {
     pub bounds: Option<bool>,
     /// Over-relaxation factor ω of the march with its fallback (the scene's `over_relaxation`).
     pub over_relaxation: Option<f64>,
+    /// `Some(true)`: OpenCL builds the kernels without `-cl-fast-relaxed-math`, `Some(false)`: with it (OpenCL only;
+    /// `None` keeps the sweep's own choice, `--precise`).
+    pub precise: Option<bool>,
 }
 
 impl Quality {
@@ -85,6 +89,11 @@ impl fmt::Display for Quality {
         }
         if let Some(w) = self.over_relaxation {
             parts.push(format!("relax {w}"));
+        }
+        match self.precise {
+            Some(true) => parts.push("precise math".to_string()),
+            Some(false) => parts.push("fast math".to_string()),
+            None => {}
         }
         if parts.is_empty() {
             write!(f, "scene default")

@@ -3,7 +3,8 @@
 //!
 //! The CPU backend renders with the f32 interpreter of the scene with the setting applied (the same evaluator for
 //! every setting, so times compare) and gives every figure; wgpu and OpenCL render the kernels compiled for the
-//! setting and give what an image holds (hit mask, colour), and cannot scale the step factor.
+//! setting and give what an image holds (hit mask, colour), and cannot scale the step factor. OpenCL also sweeps its
+//! math: the kernels built with and without `-cl-fast-relaxed-math`.
 
 use std::time::Instant;
 
@@ -17,6 +18,7 @@ use crate::error::RenderError;
 use crate::frame::Frame;
 use crate::quality::{Quality, StepScaled};
 use crate::renderer::{KernelSources, RenderJob, Renderer};
+use crate::select::RendererOptions;
 use crate::truth::Truth;
 use fractal_dsl::analyse::{bound, fold::fold_node};
 
@@ -83,9 +85,11 @@ pub struct SweepPoint {
     pub error: TrueError,
 }
 
-/// The settings a sweep tries on `scene` (one at a time around its own, then a few combinations), the scene's own
-/// first. The step factor and the bound are only varied `on_cpu`.
-pub fn grid(scene: &Scene, on_cpu: bool) -> Vec<Quality> {
+/// The settings a sweep tries on `scene` with `backend` (one at a time around its own, then a few combinations), the
+/// scene's own first. The step factor and the bound are only varied on the CPU, the math only on OpenCL, where
+/// `precise` is the sweep's own choice.
+pub fn grid(scene: &Scene, backend: Backend, precise: bool) -> Vec<Quality> {
+    let on_cpu = backend == Backend::Cpu;
     let own = &scene.settings;
     let mut out = vec![Quality::default()];
     for n in [32, 64, 96, 192, 256, 512] {
@@ -115,6 +119,9 @@ pub fn grid(scene: &Scene, on_cpu: bool) -> Vec<Quality> {
         if w != own.over_relaxation {
             out.push(Quality { over_relaxation: Some(w), ..Quality::default() });
         }
+    }
+    if backend == Backend::OpenCl {
+        out.push(Quality { precise: Some(!precise), ..Quality::default() });
     }
     if on_cpu {
         for s in [0.8, 1.2, 4.0 / 3.0] {
@@ -207,9 +214,14 @@ pub fn run(
 ) -> Result<Vec<SweepPoint>, RenderError> {
     let mut out = Vec::new();
     for q in qualities {
-        let point = match (backend, renderer.as_mut()) {
-            (Backend::Cpu, _) | (_, None) => run_cpu(scene, q, frame, truth)?,
-            (_, Some(r)) => run_kernels(r.as_mut(), scene, q, frame, truth)?,
+        let point = match (backend, renderer.as_mut(), q.precise) {
+            (Backend::Cpu, _, _) | (_, None, _) => run_cpu(scene, q, frame, truth)?,
+            // The other math is another build of the program: a renderer of its own.
+            (_, Some(_), Some(precise)) => {
+                let mut other = crate::select::open(backend, &RendererOptions { precise })?;
+                run_kernels(other.as_mut(), scene, q, frame, truth)?
+            }
+            (_, Some(r), None) => run_kernels(r.as_mut(), scene, q, frame, truth)?,
         };
         progress(&point);
         out.push(point);
@@ -250,8 +262,13 @@ mod tests {
     fn the_bound_is_a_lever_of_bounded_scenes_on_the_cpu() {
         let bounded = scene(sphere(1.0)).camera(camera([0.0, 0.5, -3.0], [0.0; 3]));
         let open = scene(union(sphere(1.0), plane(vec3(0.0, 1.0, 0.0), 1.0)));
-        let off = |s: &Scene, cpu| grid(s, cpu).iter().any(|q| q.bounds == Some(false));
-        assert!(off(&bounded, true) && !off(&bounded, false) && !off(&open, true));
+        let off = |s: &Scene, b| grid(s, b, false).iter().any(|q| q.bounds == Some(false));
+        assert!(off(&bounded, Backend::Cpu) && !off(&bounded, Backend::Wgpu) && !off(&open, Backend::Cpu));
+        // The math is a lever of OpenCL alone: the other build than the sweep's own.
+        let math = |b, precise| grid(&bounded, b, precise).iter().filter_map(|q| q.precise).collect::<Vec<_>>();
+        assert_eq!(math(Backend::OpenCl, false), [true]);
+        assert_eq!(math(Backend::OpenCl, true), [false]);
+        assert!(math(Backend::Cpu, false).is_empty() && math(Backend::Wgpu, false).is_empty());
 
         let pose = Pose::from_camera(&bounded.camera, 0.0, &|p| p.default).unwrap();
         let frame = Frame::new(&bounded, &pose, 0.0, 24, 16, &ParamValues::defaults(&bounded)).unwrap();

@@ -248,6 +248,7 @@ impl View<f32> {
         rays: &[(V3<f32>, V3<f32>)],
     ) -> Vec<Option<March<f32>>> {
         let mut out: Vec<Option<March<f32>>> = vec![None; rays.len()];
+        let clipped = self.clip_row(rays);
         let mut lanes = RowLanes::default();
         let mut next = 0;
         loop {
@@ -263,7 +264,7 @@ impl View<f32> {
                 while let Some(&(ro, rd)) = rays.get(next) {
                     next += 1;
                     // A ray that misses the bound has no march (`None` stays in `out`).
-                    if let Some((t_near, t_far)) = self.clip(ro, rd) {
+                    if let Some((t_near, t_far)) = clipped[next - 1] {
                         lanes.start(lane, next - 1, ro, rd, t_near, t_far, self.relaxation);
                         break;
                     }
@@ -309,6 +310,38 @@ impl View<f32> {
                 lanes.steps[i] += 1;
                 lanes.hit[i] = *m != 0;
             }
+        }
+        out
+    }
+
+    /// [`View::clip`] of every ray of a row, eight at a time with the same operations lane for lane.
+    fn clip_row(&self, rays: &[(V3<f32>, V3<f32>)]) -> Vec<Option<(f32, f32)>> {
+        let Some((lo, hi)) = self.bound else {
+            return vec![Some((0.0, self.max_distance)); rays.len()];
+        };
+        let mut out = Vec::with_capacity(rays.len() + LANES);
+        for chunk in rays.chunks(LANES) {
+            // A short last chunk repeats its last ray.
+            let lane = |i: usize| chunk[i.min(chunk.len() - 1)];
+            let packet = |v: &dyn Fn(usize) -> V3<f32>| V3 {
+                x: F32x8::from_fn(|i| v(i).x),
+                y: F32x8::from_fn(|i| v(i).y),
+                z: F32x8::from_fn(|i| v(i).z),
+            };
+            let (ro, rd) = (packet(&|i| lane(i).0), packet(&|i| lane(i).1));
+            let (zero, min_dir) = (F32x8::splat(0.0), F32x8::splat(MIN_DIRECTION as f32));
+            let safe = rd.map(|d| {
+                let m = Num::max(Num::abs(d), min_dir);
+                Num::select(Num::le(zero, d), m, -m)
+            });
+            let t0 = (packet(&|_| lo) - ro) / safe;
+            let t1 = (packet(&|_| hi) - ro) / safe;
+            let entry = t0.zip(t1, Num::min).max_element();
+            let exit = t0.zip(t1, Num::max).min_element();
+            let t_near = Num::max(entry, zero);
+            let t_far = Num::min(exit, F32x8::splat(self.max_distance));
+            let enters = Num::le(t_near, t_far);
+            out.extend((0..chunk.len()).map(|i| (enters.0[i] != 0).then_some((t_near.0[i], t_far.0[i]))));
         }
         out
     }

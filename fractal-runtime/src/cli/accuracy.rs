@@ -113,7 +113,7 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
         Backend::Cpu => None,
         other => Some(crate::select::open(other, &RendererOptions { precise: args.precise })?),
     };
-    let qualities = sweep::grid(scene, backend == Backend::Cpu);
+    let qualities = sweep::grid(scene, backend, args.precise);
     // The scene's own setting against every truth, so both judgements are on record.
     if truths.len() > 1 {
         for (factor, truth) in &truths {
