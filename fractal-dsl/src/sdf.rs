@@ -278,16 +278,20 @@ pub fn de_mandelbulb<F: Num>(p: V3<F>, power: F, iterations: F::Count, bailout: 
         mandelbulb_escape(power, bailout),
         #[inline(always)]
         |z, r, dr| {
-            let (z, dr) = bulb_power(z, r, dr, power);
+            let (z, dr) = bulb_power::<F, false>(z, r, dr, power);
             (z, dr + c(1.0))
         },
     )
 }
 
 /// z ↦ z^power in spherical coordinates (r = |z|), the map of the Mandelbulb and the Juliabulb, with the chain rule's
-/// dr ↦ power·r^(power−1)·dr.
+/// dr ↦ power·r^(power−1)·dr, times k if `STRETCHED`. k = max(1, |sin(power·θ) / sin θ|) (θ from the polar axis) is
+/// how much more the map stretches along the azimuth than along the radius: its Jacobian's largest singular value over
+/// the radial one, which tends to the power near the polar axis. With it the Juliabulb's estimate stays below the true
+/// distance (largest measured ratio 0.63 against 2.8 without, `fractal accuracy --estimators`); the Mandelbulb keeps
+/// the plain rule, as the correction leaves its outliers near the x and y axes (see `fractals.rs`).
 #[inline(always)]
-fn bulb_power<F: Num>(z: V3<F>, r: F, dr: F, power: F) -> (V3<F>, F) {
+fn bulb_power<F: Num, const STRETCHED: bool>(z: V3<F>, r: F, dr: F, power: F) -> (V3<F>, F) {
     // θ from atan2(ρ, z), not acos(z/r): acos is ill-conditioned at ±1, where GPU drivers' approximations lose most
     // (lavapipe's by ~1e-4 rad at the poles, which an orbit then magnifies). On the polar axis the azimuth is
     // undefined and atan2(0, 0) differs between drivers: it is taken as 0 there on every backend.
@@ -298,6 +302,14 @@ fn bulb_power<F: Num>(z: V3<F>, r: F, dr: F, power: F) -> (V3<F>, F) {
     let zr = pow(r, power);
     let (st, ct) = (sin(theta), cos(theta));
     let (sp, cp) = (sin(phi), cos(phi));
+    let dr = if STRETCHED {
+        // |sin pθ / sin θ| = |sin pθ|·r/ρ, capped at p: its limit on the axis and its bound for integer powers (a
+        // non-integer power tears space along the negative axis, where no derivative bounds it).
+        let sin_ratio_r = abs(st) * r;
+        dr * select(le(rho * power, sin_ratio_r), power, max(sin_ratio_r / max(rho, c(TINY)), c(1.0)))
+    } else {
+        dr
+    };
     (v3(st * cp, sp * st, ct) * zr, dr)
 }
 
@@ -469,7 +481,8 @@ fn mandelbox_step<F: Num>(z: V3<F>, p: V3<F>, scale: F, min_r2: F, fold_limit: F
 }
 
 /// Juliabulb: the Mandelbulb's map of `power` with the constant c = (cx, cy, cz) in place of the point, z ← z^power + c
-/// from z = p. The derivative has no + 1: c does not move with p.
+/// from z = p. The derivative has no + 1: c does not move with p, and takes the map's azimuthal stretch
+/// ([`bulb_power`]).
 #[inline(always)]
 pub fn de_juliabulb<F: Num>(p: V3<F>, cx: F, cy: F, cz: F, power: F, iterations: F::Count, bailout: F) -> [F; 2] {
     // An orbit through 0 (p = 0 itself) has dr = 0 from then on; the floor keeps the estimate finite.
@@ -480,7 +493,7 @@ pub fn de_juliabulb<F: Num>(p: V3<F>, cx: F, cy: F, cz: F, power: F, iterations:
         mandelbulb_escape(power, bailout),
         #[inline(always)]
         |z, r, dr| {
-            let (z, dr) = bulb_power(z, r, dr, power);
+            let (z, dr) = bulb_power::<F, true>(z, r, dr, power);
             (z, max(dr, c(TINY)))
         },
     )
@@ -659,7 +672,7 @@ pub fn in_mandelbulb<F: Num>(p: V3<F>, power: F, iterations: F::Count, bailout: 
         bailout,
         radius,
         #[inline(always)]
-        |z, r| bulb_power(z, r, c(1.0), power).0,
+        |z, r| bulb_power::<F, false>(z, r, c(1.0), power).0,
     )
 }
 
@@ -809,7 +822,7 @@ pub fn in_juliabulb<F: Num>(p: V3<F>, cx: F, cy: F, cz: F, power: F, iterations:
         bailout,
         radius,
         #[inline(always)]
-        |z, r| bulb_power(z, r, c(1.0), power).0,
+        |z, r| bulb_power::<F, false>(z, r, c(1.0), power).0,
     )
 }
 

@@ -96,8 +96,12 @@ pub fn distance_tolerance(family: Family, class: Class) -> Tol {
         // CPU (outside the set; inside only the sign is compared, see the harness). pocl's fast math depends on the
         // host it compiles for: ≤ 9.6 on an AMD EPYC, 120.7 on an Intel Xeon (power 8 with bailout 256 at a
         // never-escaping point on x = 0, where the estimate is −0.012), so fast math gets the GPU bound.
+        // The Juliabulb's derivative takes the map's azimuthal stretch |sin pθ|·r/ρ (`sdf::de_juliabulb`), so
+        // lavapipe's sin at arguments up to 8π reaches its estimate too: measured 203 on lavapipe near the surface
+        // (13.7 before the stretch).
         (CpuF32, Mandelbulb | Juliabulb) => ulps(40.0),
-        (Gpu | FastMath, Mandelbulb | Juliabulb) => ulps(180.0),
+        (Gpu | FastMath, Mandelbulb) => ulps(180.0),
+        (Gpu | FastMath, Juliabulb) => ulps(300.0),
     }
 }
 
