@@ -13,30 +13,9 @@ use fractal::dsl::CompiledScene;
 use fractal::prelude::*;
 use std::hint::black_box;
 
-const POINTS: usize = 1 << 20;
-
-/// Points spread over [−1.5, 1.5]³ by three co-prime strides (deterministic, no RNG crate).
-fn points() -> [Vec<f32>; 3] {
-    let axis = |stride: usize, modulus: usize| -> Vec<f32> {
-        (0..POINTS).map(|i| ((i * stride) % modulus) as f32 / modulus as f32 * 3.0 - 1.5).collect()
-    };
-    [axis(7919, 1009), axis(104_729, 997), axis(1_299_709, 991)]
-}
-
-fn sixteen_spheres() -> CompiledScene {
-    scene! {
-        union(
-            sphere(0.2).translate(vec3(-0.75, -0.75, 0.0)), sphere(0.2).translate(vec3(-0.25, -0.75, 0.0)),
-            sphere(0.2).translate(vec3(0.25, -0.75, 0.0)), sphere(0.2).translate(vec3(0.75, -0.75, 0.0)),
-            sphere(0.2).translate(vec3(-0.75, -0.25, 0.0)), sphere(0.2).translate(vec3(-0.25, -0.25, 0.0)),
-            sphere(0.2).translate(vec3(0.25, -0.25, 0.0)), sphere(0.2).translate(vec3(0.75, -0.25, 0.0)),
-            sphere(0.2).translate(vec3(-0.75, 0.25, 0.0)), sphere(0.2).translate(vec3(-0.25, 0.25, 0.0)),
-            sphere(0.2).translate(vec3(0.25, 0.25, 0.0)), sphere(0.2).translate(vec3(0.75, 0.25, 0.0)),
-            sphere(0.2).translate(vec3(-0.75, 0.75, 0.0)), sphere(0.2).translate(vec3(-0.25, 0.75, 0.0)),
-            sphere(0.2).translate(vec3(0.25, 0.75, 0.0)), sphere(0.2).translate(vec3(0.75, 0.75, 0.0)),
-        )
-    }
-}
+#[path = "shared/expressions.rs"]
+mod expressions;
+use expressions::{points, sixteen_spheres, POINTS};
 
 fn evaluators(c: &mut Criterion) {
     let [x, y, z] = points();

@@ -17,35 +17,15 @@ use fractal_dsl::eval::interp::Interpreter;
 use fractal_dsl::CompiledScene;
 use fractal_macros::scene;
 
-const POINTS: usize = 1 << 20;
+#[path = "../../shared/expressions.rs"]
+mod expressions;
+use expressions::{points, sixteen_spheres, POINTS};
+
 /// Fidget gets the points in slices of this many, its fastest: measured here, the JIT gave 344 / 369 / 346 / 254 M
 /// points/s on the sphere for slices of 512 / 4096 / 65536 / all 2^20 points, and the VM 119 / 126 / 115 / 100.
 const FIDGET_CHUNK: usize = 4096;
 
-/// The points of `benches/evaluator.rs`: [−1.5, 1.5]³ by three co-prime strides.
-fn points() -> [Vec<f32>; 3] {
-    let axis = |stride: usize, modulus: usize| -> Vec<f32> {
-        (0..POINTS).map(|i| ((i * stride) % modulus) as f32 / modulus as f32 * 3.0 - 1.5).collect()
-    };
-    [axis(7919, 1009), axis(104_729, 997), axis(1_299_709, 991)]
-}
-
 const SPHERE_CENTRES: [f32; 4] = [-0.75, -0.25, 0.25, 0.75];
-
-fn sixteen_spheres() -> CompiledScene {
-    scene! {
-        union(
-            sphere(0.2).translate(vec3(-0.75, -0.75, 0.0)), sphere(0.2).translate(vec3(-0.25, -0.75, 0.0)),
-            sphere(0.2).translate(vec3(0.25, -0.75, 0.0)), sphere(0.2).translate(vec3(0.75, -0.75, 0.0)),
-            sphere(0.2).translate(vec3(-0.75, -0.25, 0.0)), sphere(0.2).translate(vec3(-0.25, -0.25, 0.0)),
-            sphere(0.2).translate(vec3(0.25, -0.25, 0.0)), sphere(0.2).translate(vec3(0.75, -0.25, 0.0)),
-            sphere(0.2).translate(vec3(-0.75, 0.25, 0.0)), sphere(0.2).translate(vec3(-0.25, 0.25, 0.0)),
-            sphere(0.2).translate(vec3(0.25, 0.25, 0.0)), sphere(0.2).translate(vec3(0.75, 0.25, 0.0)),
-            sphere(0.2).translate(vec3(-0.75, 0.75, 0.0)), sphere(0.2).translate(vec3(-0.25, 0.75, 0.0)),
-            sphere(0.2).translate(vec3(0.25, 0.75, 0.0)), sphere(0.2).translate(vec3(0.75, 0.75, 0.0)),
-        )
-    }
-}
 
 fn length(x: Tree, y: Tree, z: Tree) -> Tree {
     (x.square() + y.square() + z.square()).sqrt()
@@ -156,7 +136,8 @@ fn main() {
                 POINTS as f64 / s[s.len() / 2] / 1e6
             })
             .collect();
-        let difference = first_results[0].iter().zip(&first_results[2]).map(|(a, b)| (a - b).abs()).fold(0.0f32, f32::max);
+        let difference =
+            first_results[0].iter().zip(&first_results[2]).map(|(a, b)| (a - b).abs()).fold(0.0f32, f32::max);
         println!(
             "| {name} | {:.0} | {:.1} | {:.0} | {:.1} | {:.2} | {:.2} | {difference:.1e} |",
             rate[0],

@@ -329,18 +329,8 @@ impl View<f32> {
                 z: F32x8::from_fn(|i| v(i).z),
             };
             let (ro, rd) = (packet(&|i| lane(i).0), packet(&|i| lane(i).1));
-            let (zero, min_dir) = (F32x8::splat(0.0), F32x8::splat(MIN_DIRECTION as f32));
-            let safe = rd.map(|d| {
-                let m = Num::max(Num::abs(d), min_dir);
-                Num::select(Num::le(zero, d), m, -m)
-            });
-            let t0 = (packet(&|_| lo) - ro) / safe;
-            let t1 = (packet(&|_| hi) - ro) / safe;
-            let entry = t0.zip(t1, Num::min).max_element();
-            let exit = t0.zip(t1, Num::max).min_element();
-            let t_near = Num::max(entry, zero);
-            let t_far = Num::min(exit, F32x8::splat(self.max_distance));
-            let enters = Num::le(t_near, t_far);
+            let (t_near, t_far, enters) =
+                slab(packet(&|_| lo), packet(&|_| hi), F32x8::splat(self.max_distance), ro, rd);
             out.extend((0..chunk.len()).map(|i| (enters.0[i] != 0).then_some((t_near.0[i], t_far.0[i]))));
         }
         out
@@ -531,6 +521,26 @@ impl RowLanes {
         let out_of_steps = !hit && steps == max_steps && t <= self.t_far[lane];
         March { hit, t, eps: self.eps[lane], steps, out_of_steps, glow: self.glow[lane] }
     }
+}
+
+/// The slab test of the ray (ro, rd) against the box [lo, hi], clipped to [0, max_distance]: the interval's ends and
+/// whether it is not empty. Written once for a ray ([`View::clip`]) and for eight ([`View::clip_row`]), so both take
+/// the same operations.
+#[inline(always)]
+fn slab<N: Num>(lo: V3<N>, hi: V3<N>, max_distance: N, ro: V3<N>, rd: V3<N>) -> (N, N, N::Mask) {
+    let (zero, min_dir) = (N::lit(0.0), N::lit(MIN_DIRECTION));
+    // Each direction component kept at least MIN_DIRECTION from 0, with its sign.
+    let safe = rd.map(|d| {
+        let m = N::max(N::abs(d), min_dir);
+        N::select(N::le(zero, d), m, -m)
+    });
+    let t0 = (lo - ro) / safe;
+    let t1 = (hi - ro) / safe;
+    let entry = t0.zip(t1, N::min).max_element();
+    let exit = t0.zip(t1, N::max).min_element();
+    let t_near = N::max(entry, zero);
+    let t_far = N::min(exit, max_distance);
+    (t_near, t_far, N::le(t_near, t_far))
 }
 
 /// One pixel in the renderer's precision.
@@ -786,22 +796,8 @@ impl<F: Real> View<F> {
         let Some((lo, hi)) = self.bound else {
             return Some((F::zero(), self.max_distance));
         };
-        let min_dir = c::<F>(MIN_DIRECTION);
-        let safe = rd.map(|d| {
-            let m = d.abs().max(min_dir);
-            if d >= F::zero() {
-                m
-            } else {
-                -m
-            }
-        });
-        let t0 = (lo - ro) / safe;
-        let t1 = (hi - ro) / safe;
-        let entry = t0.zip(t1, |a, b| a.min(b)).max_element();
-        let exit = t0.zip(t1, |a, b| a.max(b)).min_element();
-        let t_near = entry.max(F::zero());
-        let t_far = exit.min(self.max_distance);
-        (t_near <= t_far).then_some((t_near, t_far))
+        let (t_near, t_far, enters) = slab(lo, hi, self.max_distance, ro, rd);
+        enters.then_some((t_near, t_far))
     }
 
     /// Step 4's normal: the tetrahedral gradient of the distance at `p` with taps `eps` apart.
