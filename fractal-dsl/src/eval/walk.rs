@@ -159,6 +159,9 @@ impl Walk<'_> {
                 let k = op.num(0, env);
                 leaf3(Leaf::SmoothMax, self.dist(op.shape(0), p, env), -self.dist(op.shape(1), p, env), k)
             }
+            // The commonest operation, without `domain`'s general result (a tenth of the interpreter's time on a
+            // union of translated primitives).
+            Meaning::Translate => self.dist(op.shape(0), p - op.vec(0, env), env),
             _ => {
                 let (q, post) = domain(op, p, env);
                 post.apply(self.dist(op.shape(0), q, env))
