@@ -39,6 +39,7 @@ use fractal_dsl::eval::Env;
 use fractal_dsl::math::{v3, V3};
 use fractal_dsl::Scene;
 use rayon::prelude::*;
+use std::sync::OnceLock;
 
 use crate::backend::cpu::View;
 use crate::error::RenderError;
@@ -111,6 +112,8 @@ pub struct Truth {
     view: View<f64>,
     time: f64,
     params: Vec<f64>,
+    /// Per pixel, once asked: whether some ray of its cone meets the scene ([`Truth::cone_sees_scene`]).
+    cone_sees: Vec<OnceLock<bool>>,
 }
 
 impl Truth {
@@ -130,6 +133,7 @@ impl Truth {
             view,
             time,
             params,
+            cone_sees: (0..frame.width() as usize * frame.height() as usize).map(|_| OnceLock::new()).collect(),
         };
         let shading = Interpreter::new(&scene)?;
         let width = frame.width() as usize;
@@ -294,35 +298,56 @@ impl Truth {
         Some(([n.x, n.y, n.z], crease_x || crease_y))
     }
 
+    /// Whether some ray of pixel (x, y)'s cone meets the scene (sub-rays on a `grid`×`grid` lattice across the pixel,
+    /// each marched as the truth marches): a render that hits where the centre ray misses has then found part of what
+    /// the pixel covers, as a ray that stops on a filament it passes a tenth of a footprint from. Computed once per
+    /// pixel and kept, as every render of a sweep asks about the same silhouette pixels.
+    pub fn cone_sees_scene(&self, x: u32, y: u32, grid: u32) -> bool {
+        let index = (y * self.width + x) as usize;
+        *self.cone_sees[index].get_or_init(|| {
+            (0..grid * grid).any(|k| {
+                let px = x as f64 + ((k % grid) as f64 + 0.5) / grid as f64;
+                let py = y as f64 + ((k / grid) as f64 + 0.5) / grid as f64;
+                self.with_ray(px, py, |ray| {
+                    ray.first_crossing(0.0, self.view.max_distance(), |t| self.step(t)).is_some()
+                })
+            })
+        })
+    }
+
     /// Pixel-cone consistency of a render that stopped at depth `t` in pixel (x, y): the smallest depth difference,
     /// in footprints, between `t` and a point of the scene seen by the pixel within `window` footprints of `t`
-    /// (sub-rays on a `grid`×`grid` lattice across the pixel, sampled along the ray at the truth's step); `None` when
-    /// the pixel sees none of the scene there.
-    pub fn cone_error(&self, x: u32, y: u32, t: f64, window: f64, grid: u32) -> Option<f64> {
+    /// (sub-rays on a `grid`×`grid` lattice across the pixel, sampled along the ray every `step_footprints`, never
+    /// finer than the truth's own step); `None` when the pixel sees none of the scene there.
+    ///
+    /// Every sub-ray is sampled at one depth offset before any moves to the next, outward from `t` on both sides, so
+    /// the first point found is the nearest and ends the search: a render that stopped on the scene costs a few
+    /// samples, and only one the pixel's cone does not explain pays for the whole window.
+    pub fn cone_error(&self, x: u32, y: u32, t: f64, window: f64, grid: u32, step_footprints: f64) -> Option<f64> {
         let foot = self.footprint_at(t);
-        let step = self.settings.step_footprints * foot;
+        let step = step_footprints.max(self.settings.step_footprints) * foot;
         let samples = (window * foot / step).ceil() as i64;
-        let mut best: Option<f64> = None;
-        for j in 0..grid {
-            for i in 0..grid {
-                let px = x as f64 + (i as f64 + 0.5) / grid as f64;
-                let py = y as f64 + (j as f64 + 0.5) / grid as f64;
-                self.with_ray(px, py, |ray| {
-                    // Nearest depths first: outward from t on both sides.
-                    for k in 0..=samples {
-                        if best.is_some_and(|b| b <= k as f64 * step / foot) {
-                            break;
-                        }
-                        for s in [t - k as f64 * step, t + k as f64 * step] {
-                            if s >= 0.0 && ray.value(s) <= 0.0 {
-                                best = Some(k as f64 * step / foot);
-                            }
-                        }
-                    }
-                });
-            }
-        }
-        best
+        let (member_time, member_params) =
+            (Member(self.time), self.params.iter().map(|&p| Member(p)).collect::<Vec<_>>());
+        let env = Env::new(member_time, &member_params);
+        let rays: Vec<TruthRay> = (0..grid * grid)
+            .map(|k| {
+                let px = x as f64 + ((k % grid) as f64 + 0.5) / grid as f64;
+                let py = y as f64 + ((k / grid) as f64 + 0.5) / grid as f64;
+                let (ro, rd) = self.view.ray(px, py);
+                TruthRay {
+                    membership: &self.membership,
+                    env: &env,
+                    origin: [ro.x, ro.y, ro.z],
+                    direction: [rd.x, rd.y, rd.z],
+                }
+            })
+            .collect();
+        (0..=samples).find_map(|k| {
+            let depths = [t - k as f64 * step, t + k as f64 * step];
+            let seen = rays.iter().any(|ray| depths.iter().any(|&s| s >= 0.0 && ray.value(s) <= 0.0));
+            seen.then_some(k as f64 * step / foot)
+        })
     }
 }
 

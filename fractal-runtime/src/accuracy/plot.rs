@@ -98,8 +98,15 @@ mod tests {
     use crate::quality::Quality;
 
     fn point(quality: Quality, time_ms: f64, hit_mismatch: f64) -> SweepPoint {
-        let error =
-            TrueError { width: 8, height: 8, false_hits: hit_mismatch, false_misses: 0.0, psnr: 30.0, traced: None };
+        let error = TrueError {
+            width: 8,
+            height: 8,
+            false_hits: hit_mismatch,
+            false_hits_cone: hit_mismatch,
+            false_misses: 0.0,
+            psnr: 30.0,
+            traced: None,
+        };
         SweepPoint { quality, time_ms, error }
     }
 

@@ -3,7 +3,8 @@
 //!
 //! The CPU backend renders with the f32 interpreter of the scene with the setting applied (the same evaluator for
 //! every setting, so times compare) and gives every figure; wgpu and OpenCL render the kernels compiled for the
-//! setting and give what an image holds (hit mask, colour), and cannot scale the step factor. OpenCL also sweeps its
+//! setting and give what an image holds (hit mask, colour; for a scene with glow the mask of the same march drawn
+//! without glow), and cannot scale the step factor. OpenCL also sweeps its
 //! math: the kernels built with and without `-cl-fast-relaxed-math`.
 
 use std::time::Instant;
@@ -13,6 +14,7 @@ use fractal_dsl::{HitEpsilon, Node, Scene};
 
 use crate::accuracy::metrics::{measure, Observed, TrueError};
 use crate::backend::cpu::{trace_scene_with, MarchLevers};
+use crate::bench::precision::scene_hits;
 use crate::device::Backend;
 use crate::error::RenderError;
 use crate::frame::Frame;
@@ -104,7 +106,7 @@ pub fn grid(scene: &Scene, backend: Backend, precise: bool) -> Vec<Quality> {
     for e in [fixed * 0.25, fixed * 4.0, 0.002] {
         out.push(Quality { epsilon: Some(HitEpsilon::Fixed(e)), ..Quality::default() });
     }
-    for k in [0.25, 0.5, 1.0, 2.0] {
+    for k in [0.05, 0.1, 0.25, 0.5, 1.0, 2.0] {
         out.push(Quality { epsilon: Some(HitEpsilon::Pixel(k)), ..Quality::default() });
     }
     if let Some(n) = escape_time_iterations(scene) {
@@ -122,6 +124,17 @@ pub fn grid(scene: &Scene, backend: Backend, precise: bool) -> Vec<Quality> {
     }
     if backend == Backend::OpenCl {
         out.push(Quality { precise: Some(!precise), ..Quality::default() });
+    }
+    // A finer pixel epsilon with the steps to reach it, plain and over-relaxed, and for an escape-time set with the
+    // iterations to come near its limit: the combinations that can keep a pixel epsilon's fattening of the surface,
+    // and the fatter set of few iterations, within budget.
+    for k in [0.025, 0.05, 0.1] {
+        let finer = Quality { epsilon: Some(HitEpsilon::Pixel(k)), max_steps: Some(256), ..Quality::default() };
+        out.push(finer);
+        out.push(Quality { over_relaxation: Some(1.3), ..finer });
+        if let Some(n) = escape_time_iterations(scene) {
+            out.push(Quality { over_relaxation: Some(1.3), iterations: Some(n + 4), ..finer });
+        }
     }
     if on_cpu {
         for s in [0.8, 1.2, 4.0 / 3.0] {
@@ -192,7 +205,17 @@ fn run_kernels(
         image = renderer.render(&job)?;
         times.push(start.elapsed().as_secs_f64() * 1e3);
     }
-    let error = measure(&applied, truth, Observed::Image(&image));
+    let mut error = measure(&applied, truth, Observed::Image(&image));
+    if applied.settings.glow.is_some() {
+        // Glow tints the misses, so the hit mask is read from the same march drawn without it (glow is summed along
+        // the march and never changes a step).
+        let glowless =
+            Scene { settings: fractal_dsl::RenderSettings { glow: None, ..applied.settings.clone() }, ..applied };
+        let kernels = fractal_dsl::compile(&glowless)?;
+        let image = renderer.render(&RenderJob::new(KernelSources::compiled(&kernels), frame))?;
+        let hits = scene_hits(&glowless, &image).expect("a scene without glow has a hit mask");
+        error = error.with_hit_mask(truth, &hits);
+    }
     Ok(SweepPoint { quality: *quality, time_ms: median(times), error })
 }
 

@@ -229,6 +229,7 @@ impl BenchRecord {
             ("frame_ratio", opt(b.map(|b| b.frame_ratio))),
             ("baseline_hit_mismatch", opt(b.and_then(|b| b.error.as_ref()).and_then(|e| e.hit_mismatch))),
             ("true_false_hits", self.true_error.false_hits.to_string()),
+            ("true_false_hits_cone", self.true_error.false_hits_cone.to_string()),
             ("true_false_misses", self.true_error.false_misses.to_string()),
             ("true_psnr_db", format!("{:.2}", self.true_error.psnr)),
         ]

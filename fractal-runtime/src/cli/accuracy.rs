@@ -155,10 +155,42 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
     };
     let _ = writeln!(out, "  {verdict}; {default_line}\n");
     let _ = writeln!(md, "\n**{verdict}**; {default_line}.\n");
+    for &other in args.also_on.iter().filter(|&&b| b != backend) {
+        let line = default_on(scene, &frame, judged, other, args.precise, budget)?;
+        let _ = writeln!(out, "  {line}");
+        let _ = writeln!(md, "- {line}");
+    }
+    if !args.also_on.is_empty() {
+        let _ = writeln!(md);
+    }
     if let Some(path) = &args.csv {
         append_csv(path, &table::csv_rows(&loaded.name, &backend.to_string(), args.size, &points, budget))?;
     }
     Ok(md)
+}
+
+/// The scene's own setting rendered on `backend` against `truth`: one line with its time, the figures its image
+/// holds and the budget's verdict on them, or why the backend did not open.
+fn default_on(
+    scene: &fractal_dsl::Scene,
+    frame: &Frame,
+    truth: &Truth,
+    backend: Backend,
+    precise: bool,
+    budget: &Budget,
+) -> Result<String, CliError> {
+    let mut renderer = match crate::select::open(backend, &RendererOptions { precise }) {
+        Ok(r) => r,
+        Err(e) => return Ok(format!("scene default on {backend}: not measured, the backend did not open ({e})")),
+    };
+    let point = &sweep::run(scene, frame, truth, backend, Some(&mut renderer), &[Quality::default()], &mut |_| {})?[0];
+    let violations = budget.violations(&point.error);
+    let verdict = if violations.is_empty() {
+        "within budget on the figures an image holds".to_string()
+    } else {
+        format!("not within budget: {}", violations.join("; "))
+    };
+    Ok(format!("scene default on {backend}: {:.1} ms, {}; {verdict}", point.time_ms, point.error.describe()))
 }
 
 /// Share of the pixels whose hit or miss differs between two truths of one frame.

@@ -235,6 +235,10 @@ pub struct AccuracyArgs {
     /// OpenCL: build without -cl-fast-relaxed-math
     #[arg(long)]
     pub precise: bool,
+    /// After the sweep, measure the scene's default on these backends too, against the same truth (wgpu,opencl);
+    /// one that does not open is reported, not an error
+    #[arg(long, value_name = "BACKENDS", value_delimiter = ',', value_parser = parse_one_backend)]
+    pub also_on: Vec<crate::device::Backend>,
     /// Truth march step in pixel footprints
     #[arg(long, value_name = "F", default_value_t = crate::truth::DEFAULT_STEP_FOOTPRINTS, value_parser = parse_truth_step)]
     pub truth_step: f64,
@@ -398,6 +402,13 @@ pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
 
 pub fn parse_backend(text: &str) -> Result<BackendChoice, String> {
     text.parse::<BackendChoice>().map_err(|e| e.to_string())
+}
+
+fn parse_one_backend(text: &str) -> Result<crate::device::Backend, String> {
+    match parse_backend(text)? {
+        BackendChoice::Only(b) => Ok(b),
+        BackendChoice::Auto => Err("name a backend: cpu, wgpu or opencl".to_string()),
+    }
 }
 
 /// What `fractal export --target` writes.
