@@ -438,6 +438,24 @@ mod tests {
         assert!(blunt.false_hits > good.false_hits);
     }
 
+    /// A false hit is cone-consistent when the pixel's cone meets the scene off its centre: a half-pixel epsilon
+    /// fattens a sphere's silhouette by pixels its cone covers in part, and three pixels fatten it beyond any cone.
+    #[test]
+    fn false_hits_within_the_pixel_cone_are_told_apart() {
+        let ball = scene(sphere(1.0)).camera(camera([0.0, 0.3, -3.0], [0.0; 3]));
+        let f = frame(&ball, 40, 30);
+        let truth = Truth::compute(&ball, &f, TruthSettings::default()).unwrap();
+        let error = |s: &Scene| {
+            let traces = trace_scene::<f32, _>(&Interpreter::new(s).unwrap(), s, &f).unwrap();
+            measure(s, &truth, Observed::Traced(&traces))
+        };
+        let half = error(&ball.clone().pixel_epsilon(0.5));
+        let wide = error(&ball.clone().pixel_epsilon(3.0));
+        assert!(half.false_hits > 0.0 && half.false_hits_cone < 0.5 * half.false_hits, "{}", half.describe());
+        assert!(wide.false_hits_cone > 0.5 * wide.false_hits, "{}", wide.describe());
+        assert!(wide.hit_mismatch() > half.hit_mismatch() && half.hit_mismatch() <= half.hit_mismatch_thin());
+    }
+
     /// An image of a scene with glow has no hit mask (glow tints the misses): its hit figures are not made up.
     #[test]
     fn an_image_with_glow_reports_no_hit_figures() {

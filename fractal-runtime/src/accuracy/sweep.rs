@@ -311,6 +311,28 @@ mod tests {
         );
     }
 
+    /// Glow tints the misses of an image; a kernel render's hit mask is then read from the same march drawn without
+    /// glow, so a backend that returns images alone is still judged on its hits.
+    #[test]
+    fn a_kernel_render_with_glow_still_has_a_hit_mask() {
+        let glowing = scene(sphere(1.0)).camera(camera([0.0, 0.0, -3.0], [0.0; 3])).glow(rgb(0.2, 0.4, 1.0));
+        let pose = Pose::from_camera(&glowing.camera, 0.0, &|p| p.default).unwrap();
+        let frame = Frame::new(&glowing, &pose, 0.0, 24, 16, &ParamValues::defaults(&glowing)).unwrap();
+        let truth = Truth::compute(&glowing, &frame, TruthSettings::default()).unwrap();
+        let mut renderer = match crate::select::open(Backend::Wgpu, &RendererOptions::default()) {
+            Ok(r) => r,
+            Err(e) if std::env::var("FRACTAL_REQUIRE_GPU_BACKENDS").is_ok_and(|v| v == "1") => {
+                panic!("wgpu required but unavailable: {e}")
+            }
+            Err(e) => return eprintln!("wgpu skipped: {e}"),
+        };
+        let point = run_kernels(renderer.as_mut(), &glowing, &Quality::default(), &frame, &truth).unwrap();
+        assert!(point.error.psnr.is_finite() && point.error.hit_mismatch() < 0.01, "{}", point.error.describe());
+        let blunt = Quality { epsilon: Some(HitEpsilon::Pixel(4.0)), ..Quality::default() };
+        let point = run_kernels(renderer.as_mut(), &glowing, &blunt, &frame, &truth).unwrap();
+        assert!(point.error.false_hits > 0.01, "{}", point.error.describe());
+    }
+
     /// Over-relaxation with its fallback finds the same surface in fewer steps; a factor of 2 would step through
     /// thin walls without the fallback, so it is the test of the fallback too.
     #[test]
