@@ -2,8 +2,8 @@
 //!
 //! - **Hit mask**: false hits (the render hit, the truth misses) and false misses, as fractions of all pixels; false
 //!   misses whose march ran out of steps are counted apart. False hits are counted thin-ray (the ray through the
-//!   pixel's centre misses) and cone-consistent (no ray of the pixel's cone meets the scene either,
-//!   [`Truth::cone_sees_scene`]): a pixel a filament crosses off its centre is partly covered, and a render that hits
+//!   pixel's centre misses) and cone-consistent (no ray of the pixel's cone, [`COVER_GRID`]² of them, meets the
+//!   scene either, [`Truth::cone_sees_scene`]): a pixel a filament crosses off its centre is partly covered, and a render that hits
 //!   there is as right as one that misses. The budget judges the cone-consistent figure.
 //! - **Depth** where both hit, in pixel footprints: |t − t_true| / (pixel angle · t_true). *Thin-ray*: against the
 //!   crossing of the ray through the pixel's centre. *Cone-consistent*: a render that stopped where some part of the
@@ -43,6 +43,9 @@ pub const CONE_CHECK: f64 = 0.5;
 pub const CONE_WINDOW: f64 = 2.0;
 /// Sub-rays per side of the pixel in the cone check.
 pub const CONE_GRID: u32 = 5;
+/// Sub-rays per side of the pixel that decide whether its cone meets the scene at all (a false hit's): each marches
+/// the whole ray, so fewer than the depth check's.
+pub const COVER_GRID: u32 = 3;
 /// Sampling step of the cone check along each sub-ray, in footprints: coarser than the truth's march (a sixty-fourth
 /// of a footprint is far below what a pixel resolves, and the check runs for every render of a sweep), and a feature
 /// thinner than it only makes the check stricter.
@@ -218,7 +221,7 @@ fn mask_error(truth: &Truth, hits: &[bool]) -> (f64, f64, f64) {
     let false_hits: Vec<usize> = (0..hits.len()).filter(|&i| hits[i] && !truth.pixels[i].hit()).collect();
     let uncovered = false_hits
         .par_iter()
-        .filter(|&&i| !truth.cone_sees_scene(i as u32 % truth.width, i as u32 / truth.width, CONE_GRID))
+        .filter(|&&i| !truth.cone_sees_scene(i as u32 % truth.width, i as u32 / truth.width, COVER_GRID))
         .count();
     let false_misses = hits.iter().zip(&truth.pixels).filter(|(h, t)| !**h && t.hit()).count();
     (false_hits.len() as f64 / n, uncovered as f64 / n, false_misses as f64 / n)
