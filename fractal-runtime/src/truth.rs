@@ -306,8 +306,7 @@ impl Truth {
         let index = (y * self.width + x) as usize;
         *self.cone_sees[index].get_or_init(|| {
             (0..grid * grid).any(|k| {
-                let px = x as f64 + ((k % grid) as f64 + 0.5) / grid as f64;
-                let py = y as f64 + ((k / grid) as f64 + 0.5) / grid as f64;
+                let (px, py) = sub_pixel(x, y, k, grid);
                 self.with_ray(px, py, |ray| {
                     ray.first_crossing(0.0, self.view.max_distance(), |t| self.step(t)).is_some()
                 })
@@ -332,8 +331,7 @@ impl Truth {
         let env = Env::new(member_time, &member_params);
         let rays: Vec<TruthRay> = (0..grid * grid)
             .map(|k| {
-                let px = x as f64 + ((k % grid) as f64 + 0.5) / grid as f64;
-                let py = y as f64 + ((k / grid) as f64 + 0.5) / grid as f64;
+                let (px, py) = sub_pixel(x, y, k, grid);
                 let (ro, rd) = self.view.ray(px, py);
                 TruthRay {
                     membership: &self.membership,
@@ -349,6 +347,12 @@ impl Truth {
             seen.then_some(k as f64 * step / foot)
         })
     }
+}
+
+/// The image position of sub-ray `k` of pixel (x, y) on a `grid`×`grid` lattice across the pixel.
+fn sub_pixel(x: u32, y: u32, k: u32, grid: u32) -> (f64, f64) {
+    let at = |i: u32| (i as f64 + 0.5) / grid as f64;
+    (x as f64 + at(k % grid), y as f64 + at(k / grid))
 }
 
 #[cfg(test)]
