@@ -80,6 +80,41 @@ proptest! {
     }
 }
 
+// ---- displacements ---------------------------------------------------------------------------------------------------
+
+/// A displacement divides its distance by 1 + the amount's slope bound (`fractal-dsl/src/analyse/slope.rs`): the
+/// displaced value stays 1-Lipschitz, on the built-in terrain's and planet's noise and on noise of skewed and repeated
+/// coordinates (where the slope bound's Frobenius norm must hold for coordinates that are not orthogonal). Pairs close
+/// together, where the noise's own slope shows, and far apart; the largest ratio is printed.
+#[test]
+fn displaced_noise_stays_1_lipschitz() {
+    let shapes: Vec<(&str, Node)> = vec![
+        (
+            "terrain",
+            plane(vec3(0.0, 1.0, 0.0), 0.0)
+                .displace(1.0 * fbm2(x() * 0.3, z() * 0.3, 4) + 0.03 * noise2(x() * 3.0, z() * 3.0)),
+        ),
+        ("planet", sphere(1.0).displace(0.1 * fbm3(x() * 1.4, y() * 1.4, z() * 1.4, 5) - 0.02)),
+        ("skewed", sphere(1.0).displace(0.3 * noise3(x() * 2.0 + y() * 2.0, x() * 2.0 - z(), y() * 3.0))),
+        ("repeated", box3([0.8, 0.8, 0.8]).displace(0.2 * noise2(x() * 4.0, x() * 4.0))),
+    ];
+    let mut rng = Rng(0x5107e);
+    for (name, shape) in shapes {
+        let interp = Interpreter::new(&scene(shape)).unwrap();
+        let mut worst: f64 = 0.0;
+        for k in 0..40_000 {
+            let p = rng.in_cube(3.0);
+            let dir = rng.direction();
+            let len = 10f64.powf(-4.0 + 4.0 * rng.unit()) * if k % 2 == 0 { 1.0 } else { 0.01 };
+            let q = [0, 1, 2].map(|i| p[i] + dir[i] * len);
+            let ratio = (d64(&interp, p) - d64(&interp, q)).abs() / dist(p, q);
+            worst = worst.max(ratio);
+        }
+        eprintln!("{name}: largest |f(p) - f(q)| / |p - q| = {worst:.3}");
+        assert!(worst <= 1.0 + 1e-9, "{name}: the displaced value changes {worst} times as fast as the point");
+    }
+}
+
 // ---- fractal estimators ---------------------------------------------------------------------------------------------
 
 impl Rng {

@@ -15,11 +15,17 @@
 //! gradient of that distance at the hit, by f64 central differences: the exact normal. Elsewhere from the true
 //! surface: four neighbouring rays half a pixel to each side find their crossings within [`NORMAL_WINDOW`] footprints
 //! of the centre's, and the normal is the cross product of the surface's differences across x and y (central where
-//! both sides continue the surface, one-sided at a silhouette). Where the surface bends by more than
-//! [`ROUGH_DEGREES`] from one side of the centre to the other (a crease through the pixel), or that normal and the
-//! same one from rays a quarter pixel away differ by more than that (a fractal's detail below a pixel), the surface
-//! has no single normal at the pixel's scale: the pixel is *rough* and no normal error is measured there, since any
-//! one normal a renderer picks is as right as another.
+//! both sides continue the surface, one-sided at a silhouette).
+//!
+//! **Rough pixels.** A pixel has one normal at its scale only where the surface keeps it across the pixel; elsewhere
+//! the pixel is *rough* and no normal error is measured there, since any one normal a renderer picks is as right as
+//! another. On an exact surface: the exact gradient half a footprint away along each axis, and at the crossings of the
+//! eight rays half a pixel away (axes and diagonals), stays within [`ROUGH_DEGREES`] of the centre's (an edge, the lip
+//! of a hole, a silhouette seen nearly edge-on fail it). Elsewhere: the surface bends by more than [`ROUGH_DEGREES`]
+//! from one side of the centre to the other (a crease through the pixel), or ends on one side (a silhouette, the lip of
+//! a hole), or that normal and the same one from rays a quarter pixel away differ by more than that (a fractal's
+//! detail below a pixel), or a ray half a pixel away on a diagonal finds no surface within [`ROUGH_DEGREES`] of the
+//! centre's plane (a hole or a rim between the axis neighbours).
 //!
 //! **Colour.** The true hit shaded by the render algorithm ([`crate::backend::cpu`]) in f64 with the true normal;
 //! materials, shadows and occlusion are what the algorithm defines them to be (from the f64 scene distance). Glow is
@@ -56,6 +62,9 @@ pub const NORMAL_OFFSET: f64 = 0.5;
 /// Largest angle between the normals from neighbours [`NORMAL_OFFSET`] and half that away for which the true surface
 /// still counts as smooth at the pixel's scale.
 pub const ROUGH_DEGREES: f64 = 10.0;
+/// Directions of a pixel's neighbouring rays, in units of the offset: the axes, then the diagonals.
+const NEIGHBOURS: [(f64, f64); 8] =
+    [(-1.0, 0.0), (1.0, 0.0), (0.0, -1.0), (0.0, 1.0), (-1.0, -1.0), (1.0, -1.0), (-1.0, 1.0), (1.0, 1.0)];
 /// Below this distance the truth march steps as if it were this far (scene units), so it never crawls at the camera.
 pub const NEAR: f64 = 0.1;
 
@@ -193,14 +202,14 @@ impl Truth {
         let (ro, rd) = self.view.ray(px, py);
         let p = ro + rd * t;
         let (normal, rough) = match self.exact_normal(p, rd, t) {
-            Some(n) => (Some(n), false),
+            Some(n) => (Some(n), !self.exact_smooth(px, py, p, n, t)),
             None => {
                 let normal = self.normal(px, py, t, NORMAL_OFFSET);
                 let finer = self.normal(px, py, t, 0.5 * NORMAL_OFFSET);
                 let smooth = match (normal, finer) {
                     (Some((a, false)), Some((b, false))) => {
                         let cos = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-                        cos >= ROUGH_DEGREES.to_radians().cos()
+                        cos >= ROUGH_DEGREES.to_radians().cos() && self.continues_to_corners(px, py, t, a)
                     }
                     _ => false,
                 };
@@ -212,6 +221,24 @@ impl Truth {
         let env = self.view.env();
         let colour = self.view.shade_hit(shading, &env, p, n, rd, t, self.view.hit_epsilon(t));
         TruthPixel { t, normal, rough, colour: [colour.x, colour.y, colour.z] }
+    }
+
+    /// Whether the surface the centre ray hit at `t`, with normal `n`, also lies under the pixel's corners: rays
+    /// [`NORMAL_OFFSET`] pixels away on both diagonals find it within the window and within [`ROUGH_DEGREES`] of the
+    /// plane through the centre's hit. Between the axis neighbours a hole or a rim narrower than the pixel can hide,
+    /// and a pixel over one covers more than one surface.
+    fn continues_to_corners(&self, px: f64, py: f64, t: f64, n: [f64; 3]) -> bool {
+        let (ro, rd) = self.view.ray(px, py);
+        let centre = ro + rd * t;
+        let n = v3(n[0], n[1], n[2]);
+        let d = NORMAL_OFFSET;
+        NEIGHBOURS[4..].iter().all(|&(i, j)| {
+            self.neighbour(px + i * d, py + j * d, t).is_some_and(|q| {
+                let off = q - centre;
+                fractal_dsl::math::dot(off, n).abs()
+                    <= ROUGH_DEGREES.to_radians().sin() * fractal_dsl::math::length(off)
+            })
+        })
     }
 
     /// The surface point a neighbouring ray at (px, py) finds within the window around depth `t`, if the surface
@@ -231,20 +258,26 @@ impl Truth {
     }
 
     /// The gradient of the scene's value at the hit `p` (ray distance `t`, direction `rd`), facing the camera, when
-    /// the value there is an exact distance: unit length, and the same slope on both sides of `p` along each axis
-    /// (a crease, a fractal's sign-only membership or a fractal's bound nearby fail one of the two).
+    /// the value there is an exact distance (see [`Truth::exact_gradient`]).
     fn exact_normal(&self, p: V3<f64>, rd: V3<f64>, t: f64) -> Option<[f64; 3]> {
+        let n = self.exact_gradient(p, t)?;
+        let n = if fractal_dsl::math::dot(n, rd) > 0.0 { -n } else { n };
+        Some([n.x, n.y, n.z])
+    }
+
+    /// The gradient of the scene's value at `q` (near ray distance `t`) when the value there is an exact distance:
+    /// unit length, and the same slope on both sides of `q` along each axis (a crease, a fractal's sign-only
+    /// membership or a fractal's bound nearby fail one of the two).
+    fn exact_gradient(&self, q: V3<f64>, t: f64) -> Option<V3<f64>> {
         let h = 1e-3 * self.footprint_at(t.max(NEAR));
         let member_params: Vec<Member> = self.params.iter().map(|&p| Member(p)).collect();
         let env = Env::new(Member(self.time), &member_params);
         let value = |q: V3<f64>| self.membership.value([q.x, q.y, q.z], &env);
-        let at = value(p);
+        let at = value(q);
         let mut g = [0.0; 3];
         for (axis, slope) in g.iter_mut().enumerate() {
-            let mut e = [0.0; 3];
-            e[axis] = h;
-            let e = v3(e[0], e[1], e[2]);
-            let (ahead, behind) = ((value(p + e) - at) / h, (at - value(p - e)) / h);
+            let e = axis_step(axis, h);
+            let (ahead, behind) = ((value(q + e) - at) / h, (at - value(q - e)) / h);
             if (ahead - behind).abs() > 1e-3 {
                 return None;
             }
@@ -252,12 +285,25 @@ impl Truth {
         }
         let n = v3(g[0], g[1], g[2]);
         let len = fractal_dsl::math::length(n);
-        if !((1.0 - 1e-3)..=(1.0 + 1e-3)).contains(&len) {
-            return None;
-        }
-        let n = n / len;
-        let n = if fractal_dsl::math::dot(n, rd) > 0.0 { -n } else { n };
-        Some([n.x, n.y, n.z])
+        ((1.0 - 1e-3)..=(1.0 + 1e-3)).contains(&len).then(|| n / len)
+    }
+
+    /// Whether the exact surface with normal `n` at the hit `p` of the ray through (px, py) keeps that normal across
+    /// the pixel: within [`ROUGH_DEGREES`] of `n`, the exact gradient [`NORMAL_OFFSET`] footprints away along each
+    /// axis on both sides, and the exact normal wherever the eight rays [`NORMAL_OFFSET`] pixels away (axes and
+    /// diagonals) meet the surface within the window. An edge or a rim that close (a box's edge, the lip of a hole)
+    /// is a crease inside the pixel's footprint, where no one normal is the pixel's; a silhouette of a smooth
+    /// surface is not.
+    fn exact_smooth(&self, px: f64, py: f64, p: V3<f64>, n: [f64; 3], t: f64) -> bool {
+        let n = v3(n[0], n[1], n[2]);
+        let r = NORMAL_OFFSET * self.footprint_at(t);
+        let cos_rough = ROUGH_DEGREES.to_radians().cos();
+        let same = |g: Option<V3<f64>>| g.is_some_and(|g| fractal_dsl::math::dot(g, n).abs() >= cos_rough);
+        let d = NORMAL_OFFSET;
+        (0..6).all(|k| same(self.exact_gradient(p + axis_step(k / 2, if k % 2 == 0 { r } else { -r }), t)))
+            && NEIGHBOURS.iter().all(|&(i, j)| {
+                self.neighbour(px + i * d, py + j * d, t).is_none_or(|q| same(self.exact_gradient(q, t)))
+            })
     }
 
     /// The true surface's normal at the hit `t` of the ray through (px, py), facing the camera, from neighbouring
@@ -281,8 +327,10 @@ impl Truth {
                 }
                 (Some(m), Some(p)) if gap(m) < gap(p) => Some((centre - m, bent(centre - m, p - centre))),
                 (Some(m), Some(p)) => Some((p - centre, bent(centre - m, p - centre))),
-                (None, Some(p)) => Some((p - centre, false)),
-                (Some(m), None) => Some((centre - m, false)),
+                // The surface ends within the pixel (a silhouette, the lip of a hole): a normal from the side that
+                // goes on, and no single normal for the pixel, which also covers what lies beyond the edge.
+                (None, Some(p)) => Some((p - centre, true)),
+                (Some(m), None) => Some((centre - m, true)),
                 (None, None) => None,
             }
         };
@@ -349,6 +397,13 @@ impl Truth {
     }
 }
 
+/// A step of `h` along coordinate axis `axis`.
+fn axis_step(axis: usize, h: f64) -> V3<f64> {
+    let mut e = [0.0; 3];
+    e[axis] = h;
+    v3(e[0], e[1], e[2])
+}
+
 /// The image position of sub-ray `k` of pixel (x, y) on a `grid`×`grid` lattice across the pixel.
 fn sub_pixel(x: u32, y: u32, k: u32, grid: u32) -> (f64, f64) {
     let at = |i: u32| (i as f64 + 0.5) / grid as f64;
@@ -374,7 +429,7 @@ mod tests {
         let f = frame(&s, 40, 30);
         let truth = Truth::compute(&s, &f, TruthSettings::default()).unwrap();
         let centre = v3(0.2, -0.1, 0.3);
-        let mut hits = 0;
+        let (mut hits, mut rough) = (0, 0);
         for y in 0..30 {
             for x in 0..40 {
                 let (ro, rd) = truth.view.ray(x as f64 + 0.5, y as f64 + 0.5);
@@ -397,18 +452,73 @@ mod tests {
                     let got = pixel.normal.expect("a normal");
                     let cos = n.x * got[0] + n.y * got[1] + n.z * got[2];
                     assert!(cos > 1.0 - 1e-9, "pixel ({x}, {y}): normal {got:?} against {n:?}");
-                    assert!(!pixel.rough, "pixel ({x}, {y}) of a sphere is rough");
+                    // Only near the silhouette does the normal turn by more than the rough angle within a pixel.
+                    let facing = -fractal_dsl::math::dot(n, rd);
+                    assert!(!pixel.rough || facing < 0.5, "pixel ({x}, {y}) of a sphere is rough, facing {facing}");
+                    rough += pixel.rough as usize;
                 }
             }
         }
-        assert!(hits > 100, "only {hits} hits");
+        assert!(hits > 100 && rough < hits / 5, "{hits} hits, {rough} rough");
+    }
+
+    /// An exact surface's normal is the pixel's only where the surface keeps it across the pixel: next to a box's
+    /// edge (two faces within the pixel's footprint) the pixel is rough, inside a face it is not.
+    #[test]
+    fn exact_edges_are_rough_at_the_pixels_scale() {
+        let s = scene(box3(vec3(0.6, 0.6, 0.6)).rotate_y(0.5)).camera(camera([1.2, 1.4, -2.6], [0.0; 3]).fov(50.0));
+        let (w, h) = (48, 36);
+        let truth = Truth::compute(&s, &frame(&s, w, h), TruthSettings::default()).unwrap();
+        let face = |x: i64, y: i64| {
+            let p = truth.at(x.clamp(0, w as i64 - 1) as u32, y.clamp(0, h as i64 - 1) as u32);
+            p.normal.map(|n| n.map(|c| (c * 1e3).round() as i64))
+        };
+        let (mut edges, mut faces) = (0, 0);
+        for y in 0..h as i64 {
+            for x in 0..w as i64 {
+                let Some(own) = face(x, y) else { continue };
+                let around = |r: i64| (-r..=r).flat_map(move |j| (-r..=r).map(move |i| (i, j)));
+                let pixel = truth.at(x as u32, y as u32);
+                if around(1).any(|(i, j)| face(x + i, y + j).is_some_and(|n| n != own)) {
+                    // Another face in a neighbouring pixel: an edge runs within a pixel and a half of the centre.
+                    continue;
+                }
+                if around(2).all(|(i, j)| face(x + i, y + j) == Some(own)) {
+                    assert!(!pixel.rough, "pixel ({x}, {y}) inside a face is rough");
+                    faces += 1;
+                }
+            }
+        }
+        let on_edge = |x: u32, y: u32| {
+            let n = face(x as i64, y as i64);
+            n.is_some()
+                && [(1, 0), (0, 1)].iter().any(|&(i, j)| {
+                    let m = face(x as i64 + i, y as i64 + j);
+                    m.is_some() && m != n
+                })
+        };
+        for y in 0..h {
+            for x in 0..w {
+                if on_edge(x, y) {
+                    // The pixel or its right or lower neighbour holds the edge between them.
+                    let right_or_below = if face(x as i64 + 1, y as i64) != face(x as i64, y as i64) {
+                        truth.at(x + 1, y)
+                    } else {
+                        truth.at(x, y + 1)
+                    };
+                    assert!(truth.at(x, y).rough || right_or_below.rough, "edge at ({x}, {y}) is smooth");
+                    edges += 1;
+                }
+            }
+        }
+        assert!(faces > 50 && edges > 20, "{faces} face pixels, {edges} edge pixels");
     }
 
     /// On a fractal the membership gives no gradient: normals come from neighbouring rays, and where the set's
     /// detail is finer than a pixel the pixel is rough and left out of the normal error.
     #[test]
     fn fractal_normals_come_from_neighbouring_rays_and_fine_detail_is_rough() {
-        let bulb = scene(mandelbulb(8).iterations(8)).camera(camera([1.2, 1.0, -2.2], [0.0; 3]));
+        let bulb = scene(mandelbulb(8).iterations(4)).camera(camera([1.2, 1.0, -2.2], [0.0; 3]));
         let truth = Truth::compute(&bulb, &frame(&bulb, 48, 27), TruthSettings::default()).unwrap();
         let hits: Vec<&TruthPixel> = truth.pixels.iter().filter(|p| p.hit()).collect();
         let rough = hits.iter().filter(|p| p.rough).count();

@@ -16,10 +16,8 @@
 //!    `previous` = |d| of the last point, both from 0: if ω > 1 and |d| + previous < stride (the unbounding spheres
 //!    do not overlap), stride = stride − ω·stride and ω = 1, and no hit test; otherwise the hit test as above, then
 //!    stride = d·ω; then previous = |d|, glow as above, t += stride. ω = 1 is the plain march exactly.
-//! 4. **Hit shading.** p = ro + rd·t; n = normalize(Σ k_i·scene_de(p + k_i·h)) over the tetrahedron
-//!    k = (1,−1,−1), (−1,−1,1), (−1,1,−1), (1,1,1) (a zero sum gives the normal +y), with taps
-//!    h = max(eps, [`NORMAL_FOOTPRINTS`]·footprint·t) apart: the surface's normal at the pixel's scale, however fine
-//!    the hit epsilon; m = scene_sample(p).
+//! 4. **Hit shading.** p = ro + rd·t; n = normalize(Σ k_i·scene_de(p + k_i·eps)) over the tetrahedron
+//!    k = (1,−1,−1), (−1,−1,1), (−1,1,−1), (1,1,1) (a zero sum gives the normal +y); m = scene_sample(p).
 //!    Ambient occlusion (when enabled, strength s): occ = Σ_{i<5} (h_i − scene_de(p + n·h_i))·0.95^i with
 //!    h_i = [`AO_START`] + [`AO_SPAN`]·i/4; ao = clamp(1 − 3·s·occ, 0, 1); otherwise ao = 1.
 //!    colour = albedo·ambient·ao; then per light: L and radiance (directional: the slot's unit direction and colour,
@@ -35,13 +33,6 @@
 //! 7. **Output:** colour = clamp(colour, 0, 1)^(1/gamma) (sqrt when gamma = 2, nothing when 1); packed RGBA8 with
 //!    each channel u32(c·255 + 0.5), R in the low byte, A = 255.
 
-/// Least spacing of the normal's taps, in pixel footprints at the hit: a finer hit epsilon finds the surface more
-/// closely, but a normal from taps a twentieth of a pixel apart is the normal of detail the pixel cannot show (against
-/// the true surface's normal at the pixel's scale, `fractal accuracy` measured p99 errors of 48–85° on the Julia set
-/// with taps at a 0.05–0.1 pixel epsilon). A quarter: the tetrahedron's taps then reach √3/4 ≈ 0.43 footprint, inside
-/// the half pixel over which the truth calls a surface smooth; taps of half a footprint reach across edges the truth
-/// sees 0.6 pixel away.
-pub const NORMAL_FOOTPRINTS: f64 = 0.25;
 /// Relative float spacing of t that the hit epsilon never goes below: 4 ulps of an f32 (2⁻²¹ ≈ 4.77e-7).
 pub const T_SPACING: f64 = 4.76837158203125e-7;
 /// Smallest ray-direction component used by the bound slab test.

@@ -8,9 +8,7 @@
 //! renderers draw the same pose from the same numbers.
 
 use fractal_dsl::analyse::{bound, fold::fold_node, has_specular, Aabb};
-use fractal_dsl::back::render::{
-    AO_SAMPLES, AO_SPAN, AO_START, GLOW_FALLOFF, GLOW_NORM, MIN_DIRECTION, NORMAL_FOOTPRINTS, T_SPACING,
-};
+use fractal_dsl::back::render::{AO_SAMPLES, AO_SPAN, AO_START, GLOW_FALLOFF, GLOW_NORM, MIN_DIRECTION, T_SPACING};
 use fractal_dsl::eval::{packet::sample_lane, Env, Evaluator, PacketEvaluator, Reference, Sample};
 use fractal_dsl::lanes::{F32x8, LANES};
 use fractal_dsl::math::{dot, length, normalize, v3, Real, V3};
@@ -374,10 +372,7 @@ impl View<f32> {
         };
         let points: [(V3<f32>, f32); LANES] = std::array::from_fn(at);
 
-        let taps: [[V3<f32>; 4]; LANES] = std::array::from_fn(|i| {
-            let t = marches[lane(i)].expect("a hit lane has a march").t;
-            normal_taps(points[i].0, self.normal_tap(t, points[i].1))
-        });
+        let taps: [[V3<f32>; 4]; LANES] = std::array::from_fn(|i| normal_taps(points[i].0, points[i].1));
         let tap_distances: [[f32; LANES]; 4] =
             std::array::from_fn(|k| distances_x8(packets, env8, std::array::from_fn(|i| taps[i][k])));
         let normals: [V3<f32>; LANES] =
@@ -719,7 +714,7 @@ impl<F: Real> View<F> {
         march: Option<March<F>>,
     ) -> Pixel<F> {
         self.finish_with(ro, rd, march, |p, t, eps| {
-            let n = self.normal(eval, env, p, self.normal_tap(t, eps));
+            let n = self.normal(eval, env, p, eps);
             (self.shade_hit(eval, env, p, n, rd, t, eps), n)
         })
     }
@@ -803,11 +798,6 @@ impl<F: Real> View<F> {
         };
         let (t_near, t_far, enters) = slab(lo, hi, self.max_distance, ro, rd);
         enters.then_some((t_near, t_far))
-    }
-
-    /// Step 4's spacing of the normal's taps at a hit at `t` with hit epsilon `eps`.
-    fn normal_tap(&self, t: F, eps: F) -> F {
-        eps.max(c::<F>(NORMAL_FOOTPRINTS) * self.footprint * t)
     }
 
     /// Step 4's normal: the tetrahedral gradient of the distance at `p` with taps `eps` apart.

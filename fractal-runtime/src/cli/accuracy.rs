@@ -113,7 +113,8 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
         Backend::Cpu => None,
         other => Some(crate::select::open(other, &RendererOptions { precise: args.precise })?),
     };
-    let qualities = sweep::grid(scene, backend, args.precise);
+    let qualities =
+        if args.default_only { vec![Quality::default()] } else { sweep::grid(scene, backend, args.precise) };
     // The scene's own setting against every truth, so both judgements are on record.
     if truths.len() > 1 {
         for (factor, truth) in &truths {
@@ -268,9 +269,17 @@ fn append_csv(path: &std::path::Path, rows: &str) -> Result<(), CliError> {
 
 fn report_text(args: &AccuracyArgs, backend: Backend, budget: &Budget, sections: &str) -> String {
     let (w, h) = args.size;
+    let mut command = format!("fractal accuracy --report --size {w}x{h} --backend {backend}");
+    if args.truth_step != truth::DEFAULT_STEP_FOOTPRINTS {
+        command += &format!(" --truth-step {}", args.truth_step);
+    }
+    if !args.also_on.is_empty() {
+        let list: Vec<String> = args.also_on.iter().map(|b| b.to_string()).collect();
+        command += &format!(" --also-on {}", list.join(","));
+    }
     format!(
         "# Accuracy: speed against true error\n\n\
-         Written by `fractal accuracy --report --size {w}x{h} --backend {backend}`. Every built-in scene is rendered \
+         Written by `{command}`. Every built-in scene is rendered \
          from its own camera at t = 0 with each quality setting and measured against a ground truth that never reads \
          a distance estimate: each fractal decided by its own iteration (escape time or IFS levels), exact primitives \
          by their exact f64 distance, the first crossing along each ray found with steps of {:.4} pixel footprints and \
@@ -278,12 +287,15 @@ fn report_text(args: &AccuracyArgs, backend: Backend, budget: &Budget, sections:
          and at doubled counts until doubling moves less than {:.1} % of the hit mask (at most {MAX_TRUTH_FACTOR}x); \
          the sweep is judged against the last.\n\n\
          Columns: time of the render (median of {}), distance evaluations per pixel, false hits and misses (% of \
-         pixels), rays out of steps, depth error in pixel footprints (median and p99, thin-ray and pixel-cone \
-         consistent; *interior*: truth hits whose 8 neighbours hit too), overshoot (rays that passed more than a \
+         pixels; a false hit is *thin-ray* where the ray through the pixel's centre misses, *cone-consistent* where \
+         no ray of the pixel's cone meets the scene either, and the budget counts the latter), rays out of steps, \
+         depth error in pixel footprints (median and p99, thin-ray and pixel-cone consistent; *interior*: truth hits \
+         whose 8 neighbours hit too), overshoot (rays that passed more than a \
          footprint through the true surface), normal error, colour PSNR, NaN/Inf pixels. Definitions: \
          `fractal-runtime/src/accuracy/metrics.rs`.\n\n\
          Normals are compared where render and truth stand on the same surface and the true surface has one normal \
-         at the pixel's scale (*normals measured*: their share of the pixels both hit).\n\n\
+         at the pixel's scale: no edge, rim, silhouette, hole or detail below the pixel within half a pixel of its \
+         centre (*normals measured*: their share of the pixels both hit).\n\n\
          Budget: hit mismatch ≤ {:.1} %, overshoot ≤ {:.1} %, normal p99 ≤ {}° (judged over at least {} measured \
          normals: the p99 of fewer is their maximum), no ray out of steps, no NaN/Inf, interior depth p99 ≤ {} \
          footprint (cone-consistent).\n\n{sections}",

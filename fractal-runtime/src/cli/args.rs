@@ -239,6 +239,9 @@ pub struct AccuracyArgs {
     /// one that does not open is reported, not an error
     #[arg(long, value_name = "BACKENDS", value_delimiter = ',', value_parser = parse_one_backend)]
     pub also_on: Vec<crate::device::Backend>,
+    /// Measure the scene's own setting only, no sweep (the truths, the default's figures and its verdict)
+    #[arg(long)]
+    pub default_only: bool,
     /// Truth march step in pixel footprints
     #[arg(long, value_name = "F", default_value_t = crate::truth::DEFAULT_STEP_FOOTPRINTS, value_parser = parse_truth_step)]
     pub truth_step: f64,
