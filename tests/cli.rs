@@ -549,6 +549,13 @@ fn accuracy_sweeps_settings_against_the_truth_and_writes_a_report() {
     let rows: Vec<&str> = csv.lines().collect();
     assert!(rows[0].starts_with("scene,backend,size,setting,ms"), "{}", rows[0]);
     assert!(rows.len() > 15 && rows[1..].iter().all(|r| r.starts_with("mandelbulb_bench,cpu,24x14,")), "{csv}");
+    // The scene's own setting alone: its figures and verdict, no sweep.
+    let out = run_in(&dir, &["accuracy", "hello_world", "--size", "24x14", "--truth-step", "0.05", "--default-only"]);
+    assert_ok(&out);
+    let text = stdout(&out);
+    let rows = text.lines().filter(|l| l.starts_with("scene default ")).count();
+    assert_eq!(rows, 1, "{text}");
+    assert!(!text.contains("steps 32") && text.contains("the scene default is"), "{text}");
     let report_args =
         ["--report", "--size", "16x9", "--truth-step", "0.05", "--estimator-samples", "4", "--out", "r.md"];
     let out = run_in(&dir, &[&["accuracy"][..], &report_args].concat());

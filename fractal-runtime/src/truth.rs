@@ -404,9 +404,11 @@ fn axis_step(axis: usize, h: f64) -> V3<f64> {
     v3(e[0], e[1], e[2])
 }
 
-/// The image position of sub-ray `k` of pixel (x, y) on a `grid`×`grid` lattice across the pixel.
+/// The image position of sub-ray `k` of pixel (x, y) on a `grid`×`grid` lattice across the pixel, edge to edge: the
+/// pixel's cone reaches half a pixel from its centre, as far as a half-pixel hit epsilon finds the surface (a lattice
+/// of cell centres, a third of a pixel out at 3×3, would call that surface outside the pixel).
 fn sub_pixel(x: u32, y: u32, k: u32, grid: u32) -> (f64, f64) {
-    let at = |i: u32| (i as f64 + 0.5) / grid as f64;
+    let at = |i: u32| if grid > 1 { i as f64 / (grid - 1) as f64 } else { 0.5 };
     (x as f64 + at(k % grid), y as f64 + at(k / grid))
 }
 

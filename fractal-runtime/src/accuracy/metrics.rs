@@ -41,11 +41,11 @@ pub const NORMAL_SAME_SURFACE: f64 = 1.0;
 pub const CONE_CHECK: f64 = 0.5;
 /// How far from where the render stopped, in footprints, the cone check looks for the scene.
 pub const CONE_WINDOW: f64 = 2.0;
-/// Sub-rays per side of the pixel in the cone check.
+/// Sub-rays per side of the pixel, edge to edge, in the cone check (a quarter of a pixel apart).
 pub const CONE_GRID: u32 = 5;
-/// Sub-rays per side of the pixel that decide whether its cone meets the scene at all (a false hit's): each marches
-/// the whole ray, so fewer than the depth check's.
-pub const COVER_GRID: u32 = 3;
+/// Sub-rays per side of the pixel, edge to edge, that decide whether its cone meets the scene at all (a false hit's):
+/// each marches the whole ray, so fewer than the depth check's; a third of a pixel apart.
+pub const COVER_GRID: u32 = 4;
 /// Sampling step of the cone check along each sub-ray, in footprints: coarser than the truth's march (a sixty-fourth
 /// of a footprint is far below what a pixel resolves, and the check runs for every render of a sweep), and a feature
 /// thinner than it only makes the check stricter.
