@@ -119,8 +119,9 @@ pub struct Truth {
     pub pixels: Vec<TruthPixel>,
     membership: SceneMembership,
     view: View<f64>,
-    time: f64,
-    params: Vec<f64>,
+    /// The frame's time and parameter values, as the membership walker reads them.
+    time: Member,
+    params: Vec<Member>,
     /// Per pixel, once asked: whether some ray of its cone meets the scene ([`Truth::cone_sees_scene`]).
     cone_sees: Vec<OnceLock<bool>>,
 }
@@ -130,8 +131,8 @@ impl Truth {
     pub fn compute(scene: &Scene, frame: &Frame, settings: TruthSettings) -> Result<Truth, RenderError> {
         let scene = with_iterations_scaled(scene, settings.iteration_factor);
         let view = View::<f64>::new(&scene, frame, None)?;
-        let time = frame.time() as f64;
-        let params: Vec<f64> = frame.params().into_iter().map(|p| p as f64).collect();
+        let time = Member(frame.time() as f64);
+        let params: Vec<Member> = frame.params().into_iter().map(|p| Member(p as f64)).collect();
         let mut truth = Truth {
             width: frame.width(),
             height: frame.height(),
@@ -169,9 +170,7 @@ impl Truth {
     }
 
     fn with_ray<R>(&self, px: f64, py: f64, f: impl FnOnce(&TruthRay) -> R) -> R {
-        let (member_time, member_params) =
-            (Member(self.time), self.params.iter().map(|&p| Member(p)).collect::<Vec<_>>());
-        let env = Env::new(member_time, &member_params);
+        let env = self.env();
         let (ro, rd) = self.view.ray(px, py);
         let ray = TruthRay {
             membership: &self.membership,
@@ -180,6 +179,11 @@ impl Truth {
             direction: [rd.x, rd.y, rd.z],
         };
         f(&ray)
+    }
+
+    /// The frame's time and parameters for the membership walker.
+    fn env(&self) -> Env<'_, Member> {
+        Env::new(self.time, &self.params)
     }
 
     /// The march step at ray distance t.
@@ -270,8 +274,7 @@ impl Truth {
     /// membership or a fractal's bound nearby fail one of the two).
     fn exact_gradient(&self, q: V3<f64>, t: f64) -> Option<V3<f64>> {
         let h = 1e-3 * self.footprint_at(t.max(NEAR));
-        let member_params: Vec<Member> = self.params.iter().map(|&p| Member(p)).collect();
-        let env = Env::new(Member(self.time), &member_params);
+        let env = self.env();
         let value = |q: V3<f64>| self.membership.value([q.x, q.y, q.z], &env);
         let at = value(q);
         let mut g = [0.0; 3];
@@ -374,9 +377,7 @@ impl Truth {
         let foot = self.footprint_at(t);
         let step = step_footprints.max(self.settings.step_footprints) * foot;
         let samples = (window * foot / step).ceil() as i64;
-        let (member_time, member_params) =
-            (Member(self.time), self.params.iter().map(|&p| Member(p)).collect::<Vec<_>>());
-        let env = Env::new(member_time, &member_params);
+        let env = self.env();
         let rays: Vec<TruthRay> = (0..grid * grid)
             .map(|k| {
                 let (px, py) = sub_pixel(x, y, k, grid);

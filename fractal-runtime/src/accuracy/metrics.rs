@@ -3,8 +3,8 @@
 //! - **Hit mask**: false hits (the render hit, the truth misses) and false misses, as fractions of all pixels; false
 //!   misses whose march ran out of steps are counted apart. False hits are counted thin-ray (the ray through the
 //!   pixel's centre misses) and cone-consistent (no ray of the pixel's cone, [`COVER_GRID`]² of them, meets the
-//!   scene either, [`Truth::cone_sees_scene`]): a pixel a filament crosses off its centre is partly covered, and a render that hits
-//!   there is as right as one that misses. The budget judges the cone-consistent figure.
+//!   scene either, [`Truth::cone_sees_scene`]): a pixel a filament crosses off its centre is partly covered, and a
+//!   render that hits there is as right as one that misses. The budget judges the cone-consistent figure.
 //! - **Depth** where both hit, in pixel footprints: |t − t_true| / (pixel angle · t_true). *Thin-ray*: against the
 //!   crossing of the ray through the pixel's centre. *Cone-consistent*: a render that stopped where some part of the
 //!   pixel's cone meets the scene is not wrong by more than the depth gap to that meeting (a ray that stops on a
