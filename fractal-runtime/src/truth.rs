@@ -365,6 +365,16 @@ impl Truth {
         })
     }
 
+    /// Whether some ray of pixel (x, y)'s cone (sub-rays on a `grid`×`grid` lattice across the pixel, each marched as
+    /// the truth marches) meets none of the scene before `t`: a render that went on to `t` past the centre ray's hit
+    /// has then passed through a feature narrower than the pixel, and drawn what the rest of the pixel sees.
+    pub fn cone_sees_past(&self, x: u32, y: u32, t: f64, grid: u32) -> bool {
+        (0..grid * grid).any(|k| {
+            let (px, py) = sub_pixel(x, y, k, grid);
+            self.with_ray(px, py, |ray| ray.first_crossing(0.0, t, |t| self.step(t)).is_none())
+        })
+    }
+
     /// Pixel-cone consistency of a render that stopped at depth `t` in pixel (x, y): the smallest depth difference,
     /// in footprints, between `t` and a point of the scene seen by the pixel within `window` footprints of `t`
     /// (sub-rays on a `grid`×`grid` lattice across the pixel, sampled along the ray every `step_footprints`, never

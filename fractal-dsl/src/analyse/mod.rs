@@ -9,7 +9,19 @@ pub mod slope;
 pub use bounds::{bound, Aabb};
 pub use reference::{reference, scene_reference, ReferenceSpec};
 
+use crate::ir::op::Meaning;
 use crate::ir::Node;
+
+/// Whether a march's hits are refined by the distance's sign ([`crate::back::render`], step 3b): the tree displaces
+/// a surface (its distance is divided by the displacement's slope bound, so a hit test on it can stop that many times
+/// the hit epsilon short of the surface) and holds no fractal (a distance estimate has no sign to bracket with; every
+/// primitive's does).
+pub fn refines_by_sign(node: &Node) -> bool {
+    fn displaces(node: &Node) -> bool {
+        node.op().is_some_and(|op| op.decl().meaning == Meaning::Displace) || node.children().iter().any(displaces)
+    }
+    displaces(node) && !node.has_fractal()
+}
 
 /// Whether some material of the tree may have a specular term (a literal 0 is the only certain "no"): the kernels
 /// and the CPU renderer both leave the specular term out when not.

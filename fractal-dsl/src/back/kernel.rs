@@ -662,17 +662,34 @@ impl<D: Dialect> Kernel<'_, D> {
             self.line(l1, &self.variable("previous", float, &zero));
             self.line(l1, &self.variable("stride", float, &zero));
         }
+        if p.refine {
+            self.line(l1, &self.variable("t_last", float, "t"));
+            self.line(l1, &self.variable("d_last", float, &zero));
+        }
         self.line(l1, &d.counted_loop(&format!("{} && t <= t_far", s.max_steps)));
         self.line(l2, &self.constant("d", float, &self.de("ro + rd * t")));
         let spacing = format!("{} * t", self.lit(T_SPACING));
         self.line(l2, &format!("eps = {};", self.math(MathFn::Max, &[&eps, &spacing])));
+        let abs_d = self.math(MathFn::Abs, &["d"]);
+        // The step this iteration takes once the hit test has passed over it.
+        let step = if relaxed { "stride" } else { "advance" };
+        if p.refine && !relaxed {
+            self.line(l2, &self.variable("advance", float, "d"));
+        }
         let hit_test = |w: &mut Self, level: Level| {
             w.line(level, "if (d < eps) {");
-            w.line(level.next(), &format!("hit = {};", d.bool_lit(true)));
-            w.line(level.next(), "break;");
+            if p.refine {
+                w.refine(level.next(), step);
+                if relaxed {
+                    w.line(level, "} else {");
+                    w.line(level.next(), "stride = d * omega;");
+                }
+            } else {
+                w.line(level.next(), &format!("hit = {};", d.bool_lit(true)));
+                w.line(level.next(), "break;");
+            }
             w.line(level, "}");
         };
-        let abs_d = self.math(MathFn::Abs, &["d"]);
         if relaxed {
             // The unbounding spheres of this point and the last do not overlap: the relaxed step may have passed
             // the surface, so take back its excess and go on with plain steps.
@@ -681,7 +698,9 @@ impl<D: Dialect> Kernel<'_, D> {
             self.line(l3, &format!("omega = {one};"));
             self.line(l2, "} else {");
             hit_test(self, l3);
-            self.line(l3, "stride = d * omega;");
+            if !p.refine {
+                self.line(l3, "stride = d * omega;");
+            }
             self.line(l2, "}");
             self.line(l2, &format!("previous = {abs_d};"));
         } else {
@@ -690,8 +709,66 @@ impl<D: Dialect> Kernel<'_, D> {
         if s.glow.is_some() {
             self.line(l2, &format!("glow += {one} / ({one} + {} * d * d);", self.lit(GLOW_FALLOFF)));
         }
-        self.line(l2, if relaxed { "t += stride;" } else { "t += d;" });
+        if p.refine {
+            self.line(l2, "t_last = t;");
+            self.line(l2, "d_last = d;");
+        }
+        let advance = if p.refine || relaxed { format!("t += {step};") } else { "t += d;".to_string() };
+        self.line(l2, &advance);
         self.line(l1, "}");
+    }
+
+    /// Step 3b of [`super::render`], the sign refinement, where `d < eps` (inside the march's loop): the hit where
+    /// `d ≤ 0`, refined on its bracket; otherwise the sign step, into `step`.
+    fn refine(&mut self, l1: Level, step: &str) {
+        let d = self.d;
+        let float = self.float();
+        let (l2, l3, l4, l5) = (l1.next(), l1.next().next(), Level(l1.0 + 3), Level(l1.0 + 4));
+        let (zero, one, half) = (self.lit(0.0), self.lit(1.0), self.lit(0.5));
+        let false_position = "a + (b - a) * (fa / (fa - fb))";
+        self.line(
+            l1,
+            "// A displaced distance is divided by its slope bound, but its sign is exact: a hit is a crossing.",
+        );
+        self.line(l1, &format!("if (d <= {zero}) {{"));
+        self.line(l2, &format!("if (d_last > {zero}) {{"));
+        for (name, value) in [("a", "t_last"), ("fa", "d_last"), ("b", "t"), ("fb", "d"), ("side", &zero)] {
+            self.line(l3, &self.variable(name, float, value));
+        }
+        self.line(l3, &d.counted_loop_over("k", &d.index_lit(REFINE_STEPS)));
+        self.line(l4, &self.constant("m", float, false_position));
+        self.line(l4, &self.constant("fm", float, &self.de("ro + rd * m")));
+        self.line(l4, &format!("if (fm <= {zero}) {{"));
+        self.line(l5, "b = m;");
+        self.line(l5, "fb = fm;");
+        self.line(l5, &format!("if (side < {zero}) {{"));
+        self.line(l5.next(), &format!("fa = fa * {half};"));
+        self.line(l5, "}");
+        self.line(l5, &format!("side = -{one};"));
+        self.line(l4, "} else {");
+        self.line(l5, "a = m;");
+        self.line(l5, "fa = fm;");
+        self.line(l5, &format!("if (side > {zero}) {{"));
+        self.line(l5.next(), &format!("fb = fb * {half};"));
+        self.line(l5, "}");
+        self.line(l5, &format!("side = {one};"));
+        self.line(l4, "}");
+        self.line(l3, "}");
+        self.line(l3, &format!("t = {false_position};"));
+        self.line(l2, "}");
+        self.line(l2, &format!("hit = {};", d.bool_lit(true)));
+        self.line(l2, "break;");
+        self.line(l1, "}");
+        self.line(l1, &format!("{step} = eps;"));
+        self.line(l1, "if (d_last > d) {");
+        let toward = format!("{} * d * (t - t_last) / (d_last - d)", self.lit(PROBE_SHARE));
+        self.line(l2, &format!("{step} = {};", self.math(MathFn::Max, &[step, &toward])));
+        self.line(l1, "}");
+        let reach = format!("{} * eps", self.lit(PROBE_REACH));
+        self.line(l1, &format!("{step} = {};", self.math(MathFn::Min, &[step, &reach])));
+        if self.p.settings.over_relaxation > 1.0 {
+            self.line(l1, &format!("omega = {one};"));
+        }
     }
 
     /// Steps 4 to 6 of [`super::render`] after [`Self::march`]: declares and sets `col`, the linear colour.

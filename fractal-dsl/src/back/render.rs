@@ -16,6 +16,17 @@
 //!    `previous` = |d| of the last point, both from 0: if ω > 1 and |d| + previous < stride (the unbounding spheres
 //!    do not overlap), stride = stride − ω·stride and ω = 1, and no hit test; otherwise the hit test as above, then
 //!    stride = d·ω; then previous = |d|, glow as above, t += stride. ω = 1 is the plain march exactly.
+//!    Scenes refined by sign (3b) keep each step's point as the last sample (t_last, d_last), first (t_near, 0).
+//!    **3b. Sign refinement** (only scenes that displace a surface and hold no fractal:
+//!    [`crate::analyse::refines_by_sign`]). A displaced distance is divided by the displacement's slope bound k, so
+//!    d < eps may be k·eps/sin(grazing angle) short of the surface, or above a crest the ray passes over; its sign is
+//!    exact. So d < eps is a hit only where d ≤ 0; at 0 < d < eps the step is a sign step: eps, or where
+//!    d_last > d [`PROBE_SHARE`] of the distance to the zero of the line through the last two samples,
+//!    d·(t − t_last)/(d_last − d), if that is longer; at most [`PROBE_REACH`]·eps; with over-relaxation, ω = 1 from
+//!    then on. At a hit with d_last > 0 (d ≤ 0 < d_last brackets the crossing): [`REFINE_STEPS`] steps of the Illinois
+//!    false position on (a, f_a) = (t_last, d_last), (b, f_b) = (t, d) — m = a + (b − a)·f_a/(f_a − f_b); where
+//!    scene_de(m) ≤ 0, b = m, and f_a halves if b moved last time too; else a = m, and f_b halves if a moved last
+//!    time too — then t = the final bracket's false position.
 //! 4. **Hit shading.** p = ro + rd·t; n = normalize(Σ k_i·scene_de(p + k_i·eps)) over the tetrahedron
 //!    k = (1,−1,−1), (−1,−1,1), (−1,1,−1), (1,1,1) (a zero sum gives the normal +y); m = scene_sample(p).
 //!    Ambient occlusion (when enabled, strength s): occ = Σ_{i<5} (h_i − scene_de(p + n·h_i))·0.95^i with
@@ -47,3 +58,10 @@ pub const AO_START: f64 = 0.01;
 pub const AO_SPAN: f64 = 0.12;
 /// Ambient occlusion samples.
 pub const AO_SAMPLES: u32 = 5;
+/// Sign refinement: share of the extrapolated distance to the crossing a sign step takes (the line through the last
+/// two samples is a guess; going half way, a bump the line does not foresee is more likely sampled than passed).
+pub const PROBE_SHARE: f64 = 0.5;
+/// Sign refinement: the longest sign step, in hit epsilons.
+pub const PROBE_REACH: f64 = 16.0;
+/// Sign refinement: Illinois steps on a bracketed crossing.
+pub const REFINE_STEPS: u32 = 6;

@@ -65,6 +65,8 @@ pub struct Program {
     pub bound: Option<Aabb>,
     /// Whether any material can have a specular term (otherwise the kernels omit it).
     pub specular: bool,
+    /// Whether the march refines its hits by the distance's sign ([`analyse::refines_by_sign`]).
+    pub refine: bool,
     /// The perturbation reference the frame holds for the scene's Mandelbrot patterns; when there is one, the
     /// sample function takes the point relative to it as a second argument, [`REFERENCE_OFFSET`].
     pub reference: Option<crate::analyse::ReferenceSpec>,
@@ -144,6 +146,7 @@ fn lower_with(scene: &Scene, perturb: bool) -> Program {
         sample_reads_frame: reads[1],
         bound: analyse::bound(&folded.root),
         specular: analyse::has_specular(&folded.root),
+        refine: analyse::refines_by_sign(&folded.root),
         reference: plan.reference,
         settings: folded.settings.clone(),
         distance,

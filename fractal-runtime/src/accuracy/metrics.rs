@@ -87,8 +87,12 @@ pub struct TracedError {
     pub depth_cone: Spread,
     pub depth_thin_interior: Spread,
     pub depth_cone_interior: Spread,
-    /// Fraction of pixels whose ray passed through the true surface.
+    /// Fraction of pixels whose ray passed more than [`OVERSHOOT_FOOTPRINTS`] through the true surface: *thin-ray*.
     pub overshoot: f64,
+    /// Of those, the fraction of pixels where every ray of the pixel's cone meets the scene that far in front of
+    /// where the render stopped: *cone-consistent* (a ray that passes through a feature narrower than the pixel
+    /// draws what the rest of the pixel sees).
+    pub overshoot_cone: f64,
     /// Degrees.
     pub normal: Spread,
     /// Fraction of the pixels both hit where the normal was measured (the rest are rough at the pixel's scale).
@@ -152,13 +156,14 @@ impl TrueError {
         if let Some(t) = &self.traced {
             s += &format!(
                 "; depth error (footprints) median {:.2}, p99 {:.2} thin-ray / {:.2} cone-consistent, interior p99 \
-                 {:.2} cone-consistent; overshoot {:.3} %; normal error median {:.1}°, p99 {:.1}° (on {:.0} % of \
+                 {:.2} cone-consistent; overshoot {:.3} % thin-ray / {:.3} % cone-consistent; normal error median {:.1}°, p99 {:.1}° (on {:.0} % of \
                  hits); {:.3} % out of steps; {} NaN/Inf pixels; {:.1} distance evaluations per pixel",
                 t.depth_thin.median,
                 t.depth_thin.p99,
                 t.depth_cone.p99,
                 t.depth_cone_interior.p99,
                 100.0 * t.overshoot,
+                100.0 * t.overshoot_cone,
                 t.normal.median,
                 t.normal.p99,
                 100.0 * t.normal_measured,
@@ -244,8 +249,9 @@ fn angle_degrees(a: [f64; 3], b: [f64; 3]) -> f64 {
     (dot / (len(a) * len(b))).clamp(-1.0, 1.0).acos().to_degrees()
 }
 
-/// One pixel's (thin, cone, interior) depth errors where both hit, normal error, and whether it overshot.
-type PixelError = (Option<(f64, f64, bool)>, Option<f64>, bool);
+/// One pixel's (thin, cone, interior) depth errors where both hit, normal error, and whether it overshot (`None`:
+/// no; `Some(cone)`: thin-ray, and `cone` when the pixel's cone does not explain it either).
+type PixelError = (Option<(f64, f64, bool)>, Option<f64>, Option<bool>);
 
 fn traced_error(truth: &Truth, traces: &[PixelTrace]) -> TracedError {
     use rayon::prelude::*;
@@ -257,7 +263,9 @@ fn traced_error(truth: &Truth, traces: &[PixelTrace]) -> TracedError {
         .map(|(i, r)| {
             let (x, y) = ((i as u32) % truth.width, (i as u32) / truth.width);
             let t = truth.pixels[i];
-            let overshoot = t.hit() && r.t.is_finite() && r.t > t.t + OVERSHOOT_FOOTPRINTS * truth.footprint_at(t.t);
+            let margin = OVERSHOOT_FOOTPRINTS * truth.footprint_at(t.t);
+            let overshoot = t.hit() && r.t.is_finite() && r.t > t.t + margin;
+            let overshoot = overshoot.then(|| !truth.cone_sees_past(x, y, r.t - margin, COVER_GRID));
             if !(r.hit && t.hit()) {
                 return (None, None, overshoot);
             }
@@ -289,7 +297,8 @@ fn traced_error(truth: &Truth, traces: &[PixelTrace]) -> TracedError {
         depth_cone: Spread::of(depths().map(|d| d.1).collect()),
         depth_thin_interior: Spread::of(depths().filter(|d| d.2).map(|d| d.0).collect()),
         depth_cone_interior: Spread::of(depths().filter(|d| d.2).map(|d| d.1).collect()),
-        overshoot: per_pixel.iter().filter(|p| p.2).count() as f64 / n,
+        overshoot: per_pixel.iter().filter(|p| p.2.is_some()).count() as f64 / n,
+        overshoot_cone: per_pixel.iter().filter(|p| p.2 == Some(true)).count() as f64 / n,
         normal: Spread::of(per_pixel.iter().filter_map(|p| p.1).collect()),
         normal_measured: per_pixel.iter().filter(|p| p.1.is_some()).count() as f64
             / per_pixel.iter().filter(|p| p.0.is_some()).count().max(1) as f64,

@@ -36,7 +36,7 @@ pub const MIN_NORMALS: usize = 100;
 pub struct Budget {
     /// Fraction of pixels.
     pub hit_mismatch: f64,
-    /// Fraction of pixels.
+    /// Fraction of pixels, cone-consistent.
     pub overshoot: f64,
     /// Degrees.
     pub normal_p99: f64,
@@ -58,8 +58,8 @@ impl Budget {
             out.push(format!("hit mismatch {:.2} %", 100.0 * e.hit_mismatch()));
         }
         if let Some(t) = &e.traced {
-            if t.overshoot > self.overshoot {
-                out.push(format!("overshoot {:.2} %", 100.0 * t.overshoot));
+            if t.overshoot_cone > self.overshoot {
+                out.push(format!("overshoot {:.2} %", 100.0 * t.overshoot_cone));
             }
             if t.normal.count >= MIN_NORMALS && t.normal.p99 > self.normal_p99 {
                 out.push(format!("normal p99 {:.1}°", t.normal.p99));

@@ -7,8 +7,11 @@
 //! It reads the camera, lights, time and parameters from the same [`Frame`] uniforms the kernels read, so the three
 //! renderers draw the same pose from the same numbers.
 
-use fractal_dsl::analyse::{bound, fold::fold_node, has_specular, Aabb};
-use fractal_dsl::back::render::{AO_SAMPLES, AO_SPAN, AO_START, GLOW_FALLOFF, GLOW_NORM, MIN_DIRECTION, T_SPACING};
+use fractal_dsl::analyse::{bound, fold::fold_node, has_specular, refines_by_sign, Aabb};
+use fractal_dsl::back::render::{
+    AO_SAMPLES, AO_SPAN, AO_START, GLOW_FALLOFF, GLOW_NORM, MIN_DIRECTION, PROBE_REACH, PROBE_SHARE, REFINE_STEPS,
+    T_SPACING,
+};
 use fractal_dsl::eval::{packet::sample_lane, Env, Evaluator, PacketEvaluator, Reference, Sample};
 use fractal_dsl::lanes::{F32x8, LANES};
 use fractal_dsl::math::{dot, length, normalize, v3, Real, V3};
@@ -121,7 +124,12 @@ pub fn render_packets<E: Evaluator<f32> + ?Sized>(
         let env = Env::new(view.time, &view.params);
         let env8 = Env::new(F32x8::splat(view.time), &params);
         let row_rays: Vec<(V3<f32>, V3<f32>)> = (0..width).map(|x| view.ray(x as f32 + 0.5, y as f32 + 0.5)).collect();
-        let row_marches = view.march_row(packets, &env8, &row_rays);
+        let mut row_marches = view.march_row(packets, &env8, &row_rays);
+        if view.refine {
+            for (m, &(ro, rd)) in row_marches.iter_mut().zip(&row_rays) {
+                *m = m.map(|m| view.settle(evaluator, &env, ro, rd, m));
+            }
+        }
         let mut shadows = Vec::with_capacity(view.lights.len());
         for (chunk, x0) in row.chunks_mut(LANES).zip((0..width).step_by(LANES)) {
             // The last group of a row repeats its last pixel; the repeats are not written.
@@ -286,25 +294,36 @@ impl View<f32> {
             let d = packets.distance_x8(p, env);
             let eps = self.hit_epsilon_x8(t);
             let one = F32x8::splat(1.0);
+            let (last_t, last_d) = (F32x8(lanes.last_t), F32x8(lanes.last_d));
+            // Step 3b: near the surface of a scene refined by sign, a hit is a crossing and the step a sign step.
+            let near = Num::lt(d, eps);
+            let (hit_near, near_step) = if self.refine {
+                (Num::le(d, F32x8::splat(0.0)), sign_step(d, eps, t, (last_t, last_d)))
+            } else {
+                (near, d)
+            };
             let (hit, step) = if self.relaxation > 1.0 {
-                // The scalar march's over-relaxation, lane by lane (see `View::march`).
+                // The scalar march's over-relaxation, lane by lane (see `View::march_on`).
                 let (omega, previous, stride) = (F32x8(lanes.omega), F32x8(lanes.previous), F32x8(lanes.stride));
                 let abs_d = Num::abs(d);
                 let overshot = Num::lt(one, omega) & Num::lt(abs_d + previous, stride);
-                let hit = !overshot & Num::lt(d, eps);
-                let stride = Num::select(overshot, stride - omega * stride, d * omega);
-                lanes.omega = Num::select(overshot, one, omega).0;
+                let near = !overshot & near;
+                let stride = Num::select(overshot, stride - omega * stride, Num::select(near, near_step, d * omega));
+                lanes.omega = Num::select(overshot | near, one, omega).0;
                 lanes.previous = abs_d.0;
                 lanes.stride = stride.0;
-                (hit, stride)
+                (near & hit_near, stride)
             } else {
-                (Num::lt(d, eps), d)
+                (near & hit_near, Num::select(near, near_step, d))
             };
             if self.glow.is_some() {
                 let glow = F32x8(lanes.glow);
                 lanes.glow = Num::select(hit, glow, glow + one / (one + F32x8::splat(GLOW_FALLOFF as f32) * d * d)).0;
             }
             lanes.t = Num::select(hit, t, t + step).0;
+            lanes.last_t = Num::select(hit, last_t, t).0;
+            lanes.last_d = Num::select(hit, last_d, d).0;
+            lanes.d = d.0;
             lanes.eps = eps.0;
             for (i, m) in hit.0.iter().enumerate() {
                 lanes.steps[i] += 1;
@@ -485,6 +504,10 @@ struct RowLanes {
     omega: [f32; LANES],
     previous: [f32; LANES],
     stride: [f32; LANES],
+    /// The distance at t once the lane hits, and the sample before t (for the sign refinement).
+    d: [f32; LANES],
+    last_t: [f32; LANES],
+    last_d: [f32; LANES],
 }
 
 impl RowLanes {
@@ -499,6 +522,7 @@ impl RowLanes {
         (self.t[lane], self.t_far[lane], self.eps[lane]) = (t_near, t_far, 0.0);
         (self.steps[lane], self.hit[lane], self.glow[lane]) = (0, false, 0.0);
         (self.omega[lane], self.previous[lane], self.stride[lane]) = (omega, 0.0, 0.0);
+        (self.d[lane], self.last_t[lane], self.last_d[lane]) = (0.0, t_near, 0.0);
     }
     /// Lane `to` takes lane `from`'s march (not its ray).
     fn copy(&mut self, from: usize, to: usize) {
@@ -510,6 +534,7 @@ impl RowLanes {
         (self.steps[to], self.hit[to], self.glow[to]) = (self.steps[from], self.hit[from], self.glow[from]);
         (self.omega[to], self.previous[to], self.stride[to]) =
             (self.omega[from], self.previous[from], self.stride[from]);
+        (self.d[to], self.last_t[to], self.last_d[to]) = (self.d[from], self.last_t[from], self.last_d[from]);
     }
     /// Whether lane `lane`'s march goes on: the kernels' loop condition (a NaN t stops it).
     fn running(&self, lane: usize, max_steps: u32) -> bool {
@@ -519,8 +544,27 @@ impl RowLanes {
     fn end(&self, lane: usize, max_steps: u32) -> March<f32> {
         let (hit, t, steps) = (self.hit[lane], self.t[lane], self.steps[lane]);
         let out_of_steps = !hit && steps == max_steps && t <= self.t_far[lane];
-        March { hit, t, eps: self.eps[lane], steps, out_of_steps, glow: self.glow[lane] }
+        March {
+            hit,
+            t,
+            t_far: self.t_far[lane],
+            eps: self.eps[lane],
+            d: self.d[lane],
+            last: (self.last_t[lane], self.last_d[lane]),
+            steps,
+            out_of_steps,
+            glow: self.glow[lane],
+        }
     }
+}
+
+/// Step 3b's sign step at 0 < d < eps: eps, or a share of the distance to the zero of the line through the last
+/// sample and this one where the ray nears the surface, up to the reach. Written once for a ray and for eight.
+#[inline(always)]
+fn sign_step<N: Num>(d: N, eps: N, t: N, (last_t, last_d): (N, N)) -> N {
+    let toward = N::lit(PROBE_SHARE) * d * (t - last_t) / (last_d - d);
+    let step = N::select(N::lt(d, last_d), N::max(eps, toward), eps);
+    N::min(step, N::lit(PROBE_REACH) * eps)
 }
 
 /// The slab test of the ray (ro, rd) against the box [lo, hi], clipped to [0, max_distance]: the interval's ends and
@@ -558,10 +602,34 @@ struct Pixel<F> {
 struct March<F> {
     hit: bool,
     t: F,
+    /// Where the march must end (the clip's far end).
+    t_far: F,
     eps: F,
+    /// The distance at t (at a hit; the last one evaluated otherwise).
+    d: F,
+    /// The sample before t: (t_last, d_last).
+    last: (F, F),
     steps: u32,
     out_of_steps: bool,
     glow: F,
+}
+
+impl<F: Real> March<F> {
+    /// A march about to start at `t_near`.
+    fn start(t_near: F, t_far: F) -> March<F> {
+        let zero = F::zero();
+        March {
+            hit: false,
+            t: t_near,
+            t_far,
+            eps: zero,
+            d: zero,
+            last: (t_near, zero),
+            steps: 0,
+            out_of_steps: false,
+            glow: zero,
+        }
+    }
 }
 
 /// The render algorithm set up for one frame: camera, lights, settings and bound in precision `F`.
@@ -589,6 +657,8 @@ pub(crate) struct View<F> {
     gamma: f64,
     /// Over-relaxation factor of the march (1: plain sphere tracing, the render algorithm's).
     relaxation: F,
+    /// Whether hits are refined by the distance's sign ([`refines_by_sign`]).
+    refine: bool,
     /// The frame's perturbation reference orbit (empty without one).
     orbit: Vec<[f32; 2]>,
 }
@@ -629,6 +699,7 @@ impl<F: Real> View<F> {
             background,
             gamma,
         } = scene.settings;
+        let folded = fold_node(&scene.root);
         let lights = frame
             .lights()
             .into_iter()
@@ -653,7 +724,7 @@ impl<F: Real> View<F> {
             params: frame.params().into_iter().map(|p| c(p as f64)).collect(),
             lights,
             bound: scene_bound.map(|b| (d3(b.min), d3(b.max))),
-            specular: has_specular(&fold_node(&scene.root)),
+            specular: has_specular(&folded),
             max_steps,
             max_distance: c(max_distance),
             epsilon,
@@ -665,6 +736,7 @@ impl<F: Real> View<F> {
             background: d3(background),
             gamma,
             relaxation: c(over_relaxation),
+            refine: refines_by_sign(&folded),
             orbit: frame.reference_orbit(),
         })
     }
@@ -747,40 +819,84 @@ impl<F: Real> View<F> {
     /// Steps 2–3: clip to the bound and march; `None` for a ray that misses the bound.
     fn march<E: Evaluator<F> + ?Sized>(&self, eval: &E, env: &Env<F>, ro: V3<F>, rd: V3<F>) -> Option<March<F>> {
         let (t_near, t_far) = self.clip(ro, rd)?;
-        let mut t = t_near;
-        let mut glow = F::zero();
-        let mut eps = F::zero();
+        let march = self.march_on(eval, env, ro, rd, March::start(t_near, t_far));
+        Some(self.settle(eval, env, ro, rd, march))
+    }
+
+    /// Step 3 from where `m` stands (its t, steps, glow and last sample): to a hit test that passes, the end of the
+    /// ray or the last step.
+    fn march_on<E: Evaluator<F> + ?Sized>(
+        &self,
+        eval: &E,
+        env: &Env<F>,
+        ro: V3<F>,
+        rd: V3<F>,
+        m: March<F>,
+    ) -> March<F> {
+        let March { mut t, t_far, mut eps, mut d, mut last, mut steps, mut glow, .. } = m;
         let mut hit = false;
-        let mut step = 0;
         // Over-relaxation (Keinert et al. 2014, "Enhanced sphere tracing"): step ω·d while the unbounding spheres of
         // successive points overlap; where they do not, the step may have passed the surface, so step back and go on
         // with ω = 1. With ω = 1 this is the render algorithm's march exactly (the fallback never fires).
         let mut omega = self.relaxation;
         let (mut previous, mut length) = (F::zero(), F::zero());
         // The kernels' loop condition, so a NaN t stops the march as it does there.
-        while step < self.max_steps && t <= t_far {
-            step += 1;
-            let d = eval.distance(ro + rd * t, env);
+        while steps < self.max_steps && t <= t_far {
+            steps += 1;
+            d = eval.distance(ro + rd * t, env);
             eps = self.hit_epsilon(t);
             let overshot = omega > F::one() && d.abs() + previous < length;
             if overshot {
                 length = length - omega * length;
                 omega = F::one();
-            } else {
-                if d < eps {
+            } else if d < eps {
+                if !self.refine || d <= F::zero() {
                     hit = true;
                     break;
                 }
+                length = sign_step(d, eps, t, last);
+                omega = F::one();
+            } else {
                 length = d * omega;
             }
             previous = d.abs();
             if self.glow.is_some() {
                 glow = glow + F::one() / (F::one() + c::<F>(GLOW_FALLOFF) * d * d);
             }
+            last = (t, d);
             t = t + length;
         }
-        let out_of_steps = !hit && step == self.max_steps && t <= t_far;
-        Some(March { hit, t, eps, steps: step, out_of_steps, glow })
+        let out_of_steps = !hit && steps == self.max_steps && t <= t_far;
+        March { hit, t, t_far, eps, d, last, steps, out_of_steps, glow }
+    }
+
+    /// Step 3b's refinement of a march that ended, in a scene that [`View::refine`]s: a hit that brackets its
+    /// crossing with the sample before it moves onto the crossing.
+    fn settle<E: Evaluator<F> + ?Sized>(&self, eval: &E, env: &Env<F>, ro: V3<F>, rd: V3<F>, m: March<F>) -> March<F> {
+        let ((mut a, mut fa), (mut b, mut fb)) = (m.last, (m.t, m.d));
+        if !(self.refine && m.hit && fa > F::zero()) {
+            return m;
+        }
+        // Illinois: an end kept twice in a row has its value halved, so both ends move.
+        let (half, mut side) = (c::<F>(0.5), F::zero());
+        for _ in 0..REFINE_STEPS {
+            let x = a + (b - a) * (fa / (fa - fb));
+            let fx = eval.distance(ro + rd * x, env);
+            if fx <= F::zero() {
+                (b, fb) = (x, fx);
+                if side < F::zero() {
+                    fa = fa * half;
+                }
+                side = -F::one();
+            } else {
+                (a, fa) = (x, fx);
+                if side > F::zero() {
+                    fb = fb * half;
+                }
+                side = F::one();
+            }
+        }
+        March { t: a + (b - a) * (fa / (fa - fb)), ..m }
     }
 
     pub(crate) fn hit_epsilon(&self, t: F) -> F {

@@ -219,7 +219,7 @@ Renders the scene's camera at t = 0 with each quality setting (max steps, hit ep
 escape-time fractals, over-relaxation, and on the CPU a factor on the step and the bound on or off), measures each
 against a ground truth computed from each
 fractal's own membership test and exact primitive distances, prints the table and the fastest setting within the
-error budget (hit mismatch <= 0.5 %, overshoot <= 0.1 %, normal p99 <= 5 degrees, no ray out of steps, no NaN/Inf,
+error budget (hit mismatch <= 0.5 %, overshoot <= 0.1 % pixel-cone consistent, normal p99 <= 5 degrees, no ray out of steps, no NaN/Inf,
 interior depth p99 <= 1 footprint, pixel-cone consistent).
 --report does it for every built-in scene and writes the Markdown report (docs/accuracy.md).")]
 pub struct AccuracyArgs {
