@@ -565,6 +565,30 @@ mod tests {
         assert!(blunt.false_hits > good.false_hits);
     }
 
+    /// A displaced distance is divided by its slope bound (about 7 here), so a hit test on it alone stopped rays up
+    /// to that many epsilons short of the ground, more along grazing rays. The march refined by sign stops on it.
+    #[test]
+    fn displaced_ground_is_hit_where_it_is_not_an_epsilon_times_its_slope_bound_in_front() {
+        let source = "scene(plane(vec3(0.0, 1.0, 0.0), 0.0).displace(fbm2(x * 0.5, z * 0.5, 4)))\
+                      .camera(camera(vec3(0.0, 1.6, -6.0), vec3(0.0, 0.2, 2.0)).fov(60.0))\
+                      .max_steps(384).max_distance(30.0).pixel_epsilon(0.25)";
+        let s = fractal_dsl::parse::parse_str(source).unwrap();
+        assert!(fractal_dsl::analyse::refines_by_sign(&s.root));
+        let f = frame(&s, 64, 36);
+        let truth = Truth::compute(&s, &f, TruthSettings::default()).unwrap();
+        let traces = trace_scene::<f32, _>(&Interpreter::new(&s).unwrap(), &s, &f).unwrap();
+        let e = measure(&s, &truth, Observed::Traced(&traces));
+        let t = e.traced.as_ref().unwrap();
+        assert!(e.false_hits_cone < 0.005 && e.false_misses < 0.005, "{}", e.describe());
+        assert!(t.depth_cone_interior.p99 < 1.0 && t.overshoot_cone < 0.005, "{}", e.describe());
+        // A fractal's estimate has no sign to follow: a scene with one keeps the plain hit test.
+        let with_bulb = fractal_dsl::parse::parse_str(
+            &source.replace("scene(plane", "scene(union(mandelbulb(8), plane").replace("4)))", "4))))"),
+        )
+        .unwrap();
+        assert!(!fractal_dsl::analyse::refines_by_sign(&with_bulb.root));
+    }
+
     /// A false hit is cone-consistent when the pixel's cone meets the scene off its centre: a half-pixel epsilon
     /// fattens a sphere's silhouette by pixels its cone covers in part, and three pixels fatten it beyond any cone.
     #[test]
