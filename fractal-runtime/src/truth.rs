@@ -118,6 +118,9 @@ pub struct Truth {
     /// Row-major.
     pub pixels: Vec<TruthPixel>,
     membership: SceneMembership,
+    /// The scene holds no fractal: its value is a function whose zero set is the surface (an exact distance, or one
+    /// divided by a displacement's slope bound), never a sign only, so its gradient is the surface's normal.
+    valued: bool,
     view: View<f64>,
     /// The frame's time and parameter values, as the membership walker reads them.
     time: Member,
@@ -140,6 +143,7 @@ impl Truth {
             settings,
             pixels: Vec::new(),
             membership: SceneMembership::new(&scene),
+            valued: !scene.root.has_fractal(),
             view,
             time,
             params,
@@ -269,9 +273,10 @@ impl Truth {
         Some([n.x, n.y, n.z])
     }
 
-    /// The gradient of the scene's value at `q` (near ray distance `t`) when the value there is an exact distance:
-    /// unit length, and the same slope on both sides of `q` along each axis (a crease, a fractal's sign-only
-    /// membership or a fractal's bound nearby fail one of the two).
+    /// The direction of the gradient of the scene's value at `q` (near ray distance `t`) when the value there is a
+    /// smooth function: the same slope on both sides of `q` along each axis (a crease fails it), and in a scene
+    /// with a fractal, unit length (the exact distance of a primitive; a fractal's sign-only membership or its bound
+    /// nearby fail it).
     fn exact_gradient(&self, q: V3<f64>, t: f64) -> Option<V3<f64>> {
         let h = 1e-3 * self.footprint_at(t.max(NEAR));
         let env = self.env();
@@ -288,7 +293,8 @@ impl Truth {
         }
         let n = v3(g[0], g[1], g[2]);
         let len = fractal_dsl::math::length(n);
-        ((1.0 - 1e-3)..=(1.0 + 1e-3)).contains(&len).then(|| n / len)
+        let exact = ((1.0 - 1e-3)..=(1.0 + 1e-3)).contains(&len) || (self.valued && len > 0.0);
+        exact.then(|| n / len)
     }
 
     /// Whether the exact surface with normal `n` at the hit `p` of the ray through (px, py) keeps that normal across

@@ -784,7 +784,8 @@ impl<D: Dialect> Kernel<'_, D> {
         self.line(l1, "if (hit) {");
         self.line(l2, &self.constant("p", vec3, "ro + rd * t"));
         let distance_frame = p.distance_reads_frame;
-        let n = self.call("scene_normal", "p, eps", distance_frame);
+        let tap = if p.refine { format!("eps * {}", self.lit(REFINED_NORMAL_SHARE)) } else { "eps".to_string() };
+        let n = self.call("scene_normal", &format!("p, {tap}"), distance_frame);
         self.line(l2, &self.constant("n", vec3, &n));
         // A perturbed pattern reads the hit relative to the camera, rd·t: exact to t's precision at any zoom.
         let sample_args = if p.reference.is_some() { "p, rd * t" } else { "p" };

@@ -27,8 +27,9 @@
 //!    false position on (a, f_a) = (t_last, d_last), (b, f_b) = (t, d) — m = a + (b − a)·f_a/(f_a − f_b); where
 //!    scene_de(m) ≤ 0, b = m, and f_a halves if b moved last time too; else a = m, and f_b halves if a moved last
 //!    time too — then t = the final bracket's false position.
-//! 4. **Hit shading.** p = ro + rd·t; n = normalize(Σ k_i·scene_de(p + k_i·eps)) over the tetrahedron
-//!    k = (1,−1,−1), (−1,−1,1), (−1,1,−1), (1,1,1) (a zero sum gives the normal +y); m = scene_sample(p).
+//! 4. **Hit shading.** p = ro + rd·t; n = normalize(Σ k_i·scene_de(p + k_i·h)) over the tetrahedron
+//!    k = (1,−1,−1), (−1,−1,1), (−1,1,−1), (1,1,1) (a zero sum gives the normal +y), h = eps, or in a scene refined
+//!    by sign (3b) [`REFINED_NORMAL_SHARE`]·eps; m = scene_sample(p).
 //!    Ambient occlusion (when enabled, strength s): occ = Σ_{i<5} (h_i − scene_de(p + n·h_i))·0.95^i with
 //!    h_i = [`AO_START`] + [`AO_SPAN`]·i/4; ao = clamp(1 − 3·s·occ, 0, 1); otherwise ao = 1.
 //!    colour = albedo·ambient·ao; then per light: L and radiance (directional: the slot's unit direction and colour,
@@ -65,3 +66,7 @@ pub const PROBE_SHARE: f64 = 0.5;
 pub const PROBE_REACH: f64 = 16.0;
 /// Sign refinement: Illinois steps on a bracketed crossing.
 pub const REFINE_STEPS: u32 = 6;
+/// Sign refinement: the normal's tap in hit epsilons. The hit is on the surface, and a tap an epsilon away reaches
+/// across a crease onto a surface whose distance has another scale (the exact ocean beside land divided by its slope
+/// bound), which turned the planet's coastal normals by up to 29°.
+pub const REFINED_NORMAL_SHARE: f64 = 0.125;

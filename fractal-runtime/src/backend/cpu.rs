@@ -9,8 +9,8 @@
 
 use fractal_dsl::analyse::{bound, fold::fold_node, has_specular, refines_by_sign, Aabb};
 use fractal_dsl::back::render::{
-    AO_SAMPLES, AO_SPAN, AO_START, GLOW_FALLOFF, GLOW_NORM, MIN_DIRECTION, PROBE_REACH, PROBE_SHARE, REFINE_STEPS,
-    T_SPACING,
+    AO_SAMPLES, AO_SPAN, AO_START, GLOW_FALLOFF, GLOW_NORM, MIN_DIRECTION, PROBE_REACH, PROBE_SHARE,
+    REFINED_NORMAL_SHARE, REFINE_STEPS, T_SPACING,
 };
 use fractal_dsl::eval::{packet::sample_lane, Env, Evaluator, PacketEvaluator, Reference, Sample};
 use fractal_dsl::lanes::{F32x8, LANES};
@@ -391,7 +391,8 @@ impl View<f32> {
         };
         let points: [(V3<f32>, f32); LANES] = std::array::from_fn(at);
 
-        let taps: [[V3<f32>; 4]; LANES] = std::array::from_fn(|i| normal_taps(points[i].0, points[i].1));
+        let taps: [[V3<f32>; 4]; LANES] =
+            std::array::from_fn(|i| normal_taps(points[i].0, self.normal_tap(points[i].1)));
         let tap_distances: [[f32; LANES]; 4] =
             std::array::from_fn(|k| distances_x8(packets, env8, std::array::from_fn(|i| taps[i][k])));
         let normals: [V3<f32>; LANES] =
@@ -918,7 +919,16 @@ impl<F: Real> View<F> {
 
     /// Step 4's normal: the tetrahedral gradient of the distance at `p` with taps `eps` apart.
     fn normal<E: Evaluator<F> + ?Sized>(&self, eval: &E, env: &Env<F>, p: V3<F>, eps: F) -> V3<F> {
-        normal_from(normal_taps(p, eps).map(|q| eval.distance(q, env)))
+        normal_from(normal_taps(p, self.normal_tap(eps)).map(|q| eval.distance(q, env)))
+    }
+
+    /// Step 4's tap of the normal at a hit of epsilon `eps`.
+    fn normal_tap(&self, eps: F) -> F {
+        if self.refine {
+            eps * c::<F>(REFINED_NORMAL_SHARE)
+        } else {
+            eps
+        }
     }
 
     /// Step 4 after the normal: the colour of the hit at `p` (distance `t` along `rd`) with normal `n`.
