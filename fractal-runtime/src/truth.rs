@@ -572,7 +572,8 @@ mod tests {
     }
 
     /// A displaced distance is divided by its slope bound (about 7 here), so a hit test on it alone stopped rays up
-    /// to that many epsilons short of the ground, more along grazing rays. The march refined by sign stops on it.
+    /// to that many epsilons short of the ground, more along grazing rays. The march refined by sign stops on it, and
+    /// its normal there is the ground's.
     #[test]
     fn displaced_ground_is_hit_where_it_is_not_an_epsilon_times_its_slope_bound_in_front() {
         let source = "scene(plane(vec3(0.0, 1.0, 0.0), 0.0).displace(fbm2(x * 0.5, z * 0.5, 4)))\
@@ -587,6 +588,8 @@ mod tests {
         let t = e.traced.as_ref().unwrap();
         assert!(e.false_hits_cone < 0.005 && e.false_misses < 0.005, "{}", e.describe());
         assert!(t.depth_cone_interior.p99 < 1.0 && t.overshoot_cone < 0.005, "{}", e.describe());
+        // Its truth takes the normal from the value's gradient, which is not of unit length here.
+        assert!(t.normal_measured > 0.2 && t.normal.p99 < 5.0, "{}", e.describe());
         // A fractal's estimate has no sign to follow: a scene with one keeps the plain hit test.
         let with_bulb = fractal_dsl::parse::parse_str(
             &source.replace("scene(plane", "scene(union(mandelbulb(8), plane").replace("4)))", "4))))"),
