@@ -133,22 +133,7 @@ impl Truth {
     /// Computes the truth of `scene` seen through `frame`.
     pub fn compute(scene: &Scene, frame: &Frame, settings: TruthSettings) -> Result<Truth, RenderError> {
         let scene = with_iterations_scaled(scene, settings.iteration_factor);
-        let view = View::<f64>::new(&scene, frame, None)?;
-        let time = Member(frame.time() as f64);
-        let params: Vec<Member> = frame.params().into_iter().map(|p| Member(p as f64)).collect();
-        let mut truth = Truth {
-            width: frame.width(),
-            height: frame.height(),
-            footprint: view.footprint(),
-            settings,
-            pixels: Vec::new(),
-            membership: SceneMembership::new(&scene),
-            valued: !scene.root.has_fractal(),
-            view,
-            time,
-            params,
-            cone_sees: (0..frame.width() as usize * frame.height() as usize).map(|_| OnceLock::new()).collect(),
-        };
+        let mut truth = Truth::unfilled(&scene, frame, settings)?;
         let shading = Interpreter::new(&scene)?;
         let width = frame.width() as usize;
         let mut pixels = vec![
@@ -162,6 +147,37 @@ impl Truth {
         });
         truth.pixels = pixels;
         Ok(truth)
+    }
+
+    /// Only the hit mask of [`Truth::compute`] (row-major), without the normals and colours it would discard.
+    pub fn hit_mask(scene: &Scene, frame: &Frame, settings: TruthSettings) -> Result<Vec<bool>, RenderError> {
+        let scene = with_iterations_scaled(scene, settings.iteration_factor);
+        let truth = Truth::unfilled(&scene, frame, settings)?;
+        let width = frame.width();
+        Ok((0..width * frame.height())
+            .into_par_iter()
+            .map(|i| truth.first_hit((i % width) as f64 + 0.5, (i / width) as f64 + 0.5).is_some())
+            .collect())
+    }
+
+    /// The truth of `scene` (its iterations already scaled) without its pixels.
+    fn unfilled(scene: &Scene, frame: &Frame, settings: TruthSettings) -> Result<Truth, RenderError> {
+        let view = View::<f64>::new(scene, frame, None)?;
+        let time = Member(frame.time() as f64);
+        let params: Vec<Member> = frame.params().into_iter().map(|p| Member(p as f64)).collect();
+        Ok(Truth {
+            width: frame.width(),
+            height: frame.height(),
+            footprint: view.footprint(),
+            settings,
+            pixels: Vec::new(),
+            membership: SceneMembership::new(scene),
+            valued: !scene.root.has_fractal(),
+            view,
+            time,
+            params,
+            cone_sees: (0..frame.width() as usize * frame.height() as usize).map(|_| OnceLock::new()).collect(),
+        })
     }
 
     pub fn at(&self, x: u32, y: u32) -> &TruthPixel {
@@ -185,6 +201,11 @@ impl Truth {
         f(&ray)
     }
 
+    /// The first crossing of the ray through (px, py), as the truth marches it.
+    fn first_hit(&self, px: f64, py: f64) -> Option<f64> {
+        self.with_ray(px, py, |ray| ray.first_crossing(0.0, self.view.max_distance(), |t| self.step(t)))
+    }
+
     /// The frame's time and parameters for the membership walker.
     fn env(&self) -> Env<'_, Member> {
         Env::new(self.time, &self.params)
@@ -203,8 +224,7 @@ impl Truth {
             rough: false,
             colour: [background.x, background.y, background.z],
         };
-        let Some(t) = self.with_ray(px, py, |ray| ray.first_crossing(0.0, self.view.max_distance(), |t| self.step(t)))
-        else {
+        let Some(t) = self.first_hit(px, py) else {
             return miss;
         };
         let (ro, rd) = self.view.ray(px, py);
@@ -364,9 +384,7 @@ impl Truth {
         *self.cone_sees[index].get_or_init(|| {
             (0..grid * grid).any(|k| {
                 let (px, py) = sub_pixel(x, y, k, grid);
-                self.with_ray(px, py, |ray| {
-                    ray.first_crossing(0.0, self.view.max_distance(), |t| self.step(t)).is_some()
-                })
+                self.first_hit(px, py).is_some()
             })
         })
     }

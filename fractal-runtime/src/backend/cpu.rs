@@ -127,7 +127,7 @@ pub fn render_packets<E: Evaluator<f32> + ?Sized>(
         let mut row_marches = view.march_row(packets, &env8, &row_rays);
         if view.refine {
             for (m, &(ro, rd)) in row_marches.iter_mut().zip(&row_rays) {
-                *m = m.map(|m| view.settle(evaluator, &env, ro, rd, m));
+                *m = m.map(|m| view.refined(evaluator, &env, ro, rd, m));
             }
         }
         let mut shadows = Vec::with_capacity(view.lights.len());
@@ -303,7 +303,7 @@ impl View<f32> {
                 (near, d)
             };
             let (hit, step) = if self.relaxation > 1.0 {
-                // The scalar march's over-relaxation, lane by lane (see `View::march_on`).
+                // The scalar march's over-relaxation, lane by lane (see `View::march`).
                 let (omega, previous, stride) = (F32x8(lanes.omega), F32x8(lanes.previous), F32x8(lanes.stride));
                 let abs_d = Num::abs(d);
                 let overshot = Num::lt(one, omega) & Num::lt(abs_d + previous, stride);
@@ -548,7 +548,6 @@ impl RowLanes {
         March {
             hit,
             t,
-            t_far: self.t_far[lane],
             eps: self.eps[lane],
             d: self.d[lane],
             last: (self.last_t[lane], self.last_d[lane]),
@@ -603,8 +602,6 @@ struct Pixel<F> {
 struct March<F> {
     hit: bool,
     t: F,
-    /// Where the march must end (the clip's far end).
-    t_far: F,
     eps: F,
     /// The distance at t (at a hit; the last one evaluated otherwise).
     d: F,
@@ -613,24 +610,6 @@ struct March<F> {
     steps: u32,
     out_of_steps: bool,
     glow: F,
-}
-
-impl<F: Real> March<F> {
-    /// A march about to start at `t_near`.
-    fn start(t_near: F, t_far: F) -> March<F> {
-        let zero = F::zero();
-        March {
-            hit: false,
-            t: t_near,
-            t_far,
-            eps: zero,
-            d: zero,
-            last: (t_near, zero),
-            steps: 0,
-            out_of_steps: false,
-            glow: zero,
-        }
-    }
 }
 
 /// The render algorithm set up for one frame: camera, lights, settings and bound in precision `F`.
@@ -820,21 +799,8 @@ impl<F: Real> View<F> {
     /// Steps 2–3: clip to the bound and march; `None` for a ray that misses the bound.
     fn march<E: Evaluator<F> + ?Sized>(&self, eval: &E, env: &Env<F>, ro: V3<F>, rd: V3<F>) -> Option<March<F>> {
         let (t_near, t_far) = self.clip(ro, rd)?;
-        let march = self.march_on(eval, env, ro, rd, March::start(t_near, t_far));
-        Some(self.settle(eval, env, ro, rd, march))
-    }
-
-    /// Step 3 from where `m` stands (its t, steps, glow and last sample): to a hit test that passes, the end of the
-    /// ray or the last step.
-    fn march_on<E: Evaluator<F> + ?Sized>(
-        &self,
-        eval: &E,
-        env: &Env<F>,
-        ro: V3<F>,
-        rd: V3<F>,
-        m: March<F>,
-    ) -> March<F> {
-        let March { mut t, t_far, mut eps, mut d, mut last, mut steps, mut glow, .. } = m;
+        let (mut t, mut eps, mut d, mut steps, mut glow) = (t_near, F::zero(), F::zero(), 0, F::zero());
+        let mut last = (t_near, F::zero());
         let mut hit = false;
         // Over-relaxation (Keinert et al. 2014, "Enhanced sphere tracing"): step ω·d while the unbounding spheres of
         // successive points overlap; where they do not, the step may have passed the surface, so step back and go on
@@ -868,12 +834,12 @@ impl<F: Real> View<F> {
             t = t + length;
         }
         let out_of_steps = !hit && steps == self.max_steps && t <= t_far;
-        March { hit, t, t_far, eps, d, last, steps, out_of_steps, glow }
+        Some(self.refined(eval, env, ro, rd, March { hit, t, eps, d, last, steps, out_of_steps, glow }))
     }
 
     /// Step 3b's refinement of a march that ended, in a scene that [`View::refine`]s: a hit that brackets its
     /// crossing with the sample before it moves onto the crossing.
-    fn settle<E: Evaluator<F> + ?Sized>(&self, eval: &E, env: &Env<F>, ro: V3<F>, rd: V3<F>, m: March<F>) -> March<F> {
+    fn refined<E: Evaluator<F> + ?Sized>(&self, eval: &E, env: &Env<F>, ro: V3<F>, rd: V3<F>, m: March<F>) -> March<F> {
         let ((mut a, mut fa), (mut b, mut fb)) = (m.last, (m.t, m.d));
         if !(self.refine && m.hit && fa > F::zero()) {
             return m;

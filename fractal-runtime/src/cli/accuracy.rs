@@ -27,12 +27,6 @@ pub const CONVERGED_FACTOR: u32 = 2;
 pub const CONVERGED_MASK: f64 = 0.001;
 /// Largest factor on the iterations the truth goes to.
 pub const MAX_TRUTH_FACTOR: u32 = 8;
-/// A truth has settled in its step when a truth at twice the step moves less than this share of the hit mask, the
-/// hit budget (a truth less certain than that cannot judge it). One that has not (walls thinner than the step, which
-/// a finer step keeps finding) is no ground truth, however many iterations it has. Measured at 192x108, 1/64
-/// footprint: the Mandelbulb's truths move 0.20–0.26 %, the Mandelbox's 0.41 % at its own iterations and 2–3 % at
-/// more.
-pub const SETTLED_STEP_MASK: f64 = 0.005;
 
 pub fn accuracy(args: &AccuracyArgs, library: &SceneLibrary) -> Result<(), CliError> {
     let backend = match args.backend {
@@ -96,7 +90,7 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
         let settings = TruthSettings { step_footprints: args.truth_step, iteration_factor: factor };
         let truth = Truth::compute(scene, &frame, settings)?;
         let hits = truth.pixels.iter().filter(|p| p.hit()).count();
-        let moved = truths.last().map(|(_, previous)| mask_moved(previous, &truth));
+        let moved = truths.last().map(|(_, previous)| mask_moved(previous.pixels.iter().map(|p| p.hit()), &truth));
         let line = format!(
             "truth at {factor}x the iterations: {:.2} % of pixels hit{}, step {:.4} footprint, {:.1} s",
             100.0 * hits as f64 / truth.pixels.len() as f64,
@@ -113,7 +107,7 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
         }
         factor *= 2;
     }
-    let judged = &truths[settled_in_step(scene, &frame, args.truth_step, &truths, &mut |line| {
+    let judged = &truths[settled_in_step(scene, &frame, args.truth_step, budget, &truths, &mut |line| {
         let _ = writeln!(out, "  {line}");
         let _ = writeln!(md, "- {line}");
     })?]
@@ -206,20 +200,25 @@ fn default_on(
 
 /// Which of `truths` (in rising iterations) the sweep is judged against: the one of most iterations that has settled
 /// in its `step`, checked against a truth at twice the step from the most iterations down (the first when none has).
-/// Each check is reported through `say`.
+/// A truth has settled when that moves less of its hit mask than the budget's hit mismatch (a truth less certain
+/// than that cannot judge it); one that has not (walls thinner than the step, which a finer step keeps finding) is
+/// no ground truth, however many iterations it has. Measured at 192x108, 1/64 footprint: the Mandelbulb's truths
+/// move 0.20–0.26 %, the Mandelbox's 0.41 % at its own iterations and 2–3 % at more. Each check is reported
+/// through `say`.
 fn settled_in_step(
     scene: &fractal_dsl::Scene,
     frame: &Frame,
     step: f64,
+    budget: &Budget,
     truths: &[(u32, Truth)],
     say: &mut dyn FnMut(String),
 ) -> Result<usize, CliError> {
     for (i, (factor, truth)) in truths.iter().enumerate().rev() {
         let start = Instant::now();
         let settings = TruthSettings { step_footprints: 2.0 * step, iteration_factor: *factor };
-        let coarse = Truth::compute(scene, frame, settings)?;
-        let moved = mask_moved(&coarse, truth);
-        let settled = moved < SETTLED_STEP_MASK;
+        let coarse = Truth::hit_mask(scene, frame, settings)?;
+        let moved = mask_moved(coarse, truth);
+        let settled = moved < budget.hit_mismatch;
         let verdict = match (settled, i) {
             (true, _) => "settled: judged against",
             (false, 0) => "not settled, and no truth of fewer iterations: judged against all the same",
@@ -237,10 +236,10 @@ fn settled_in_step(
     Ok(0)
 }
 
-/// Share of the pixels whose hit or miss differs between two truths of one frame.
-fn mask_moved(a: &Truth, b: &Truth) -> f64 {
-    let moved = a.pixels.iter().zip(&b.pixels).filter(|(p, q)| p.hit() != q.hit()).count();
-    moved as f64 / a.pixels.len().max(1) as f64
+/// Share of the pixels whose hit or miss differs between hit mask `a` and truth `b` of one frame.
+fn mask_moved(a: impl IntoIterator<Item = bool>, b: &Truth) -> f64 {
+    let moved = a.into_iter().zip(&b.pixels).filter(|(hit, q)| *hit != q.hit()).count();
+    moved as f64 / b.pixels.len().max(1) as f64
 }
 
 /// Every studied fractal's estimate against its true distance: printed, and returned as a Markdown section.
@@ -346,7 +345,7 @@ fn report_text(args: &AccuracyArgs, backend: Backend, budget: &Budget, sections:
          footprint (cone-consistent).\n\n{sections}",
         args.truth_step,
         100.0 * CONVERGED_MASK,
-        100.0 * SETTLED_STEP_MASK,
+        100.0 * budget.hit_mismatch,
         sweep::TIMING_RUNS,
         100.0 * budget.hit_mismatch,
         100.0 * budget.overshoot,
