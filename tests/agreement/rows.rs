@@ -40,6 +40,10 @@ pub fn vocabulary() -> Vec<Row> {
         // ---- fractals
         row!("mandelbulb(8) trig-free", Mandelbulb, { mandelbulb(8) }).within(1.5),
         row!("mandelbulb(7.5) trig", Mandelbulb, { mandelbulb(7.5) }).within(1.5),
+        row!("mandelbulb(3) stretched", Mandelbulb, { mandelbulb(3.0) }).within(1.5),
+        row!("mandelbulb(2 + sin t) stretched, animated", Mandelbulb, { mandelbulb(2.5 + 0.5 * sin(t)) })
+            .within(1.5)
+            .at_time(0.75),
         row!("mandelbulb(8 + sin t) animated", Mandelbulb, { mandelbulb(8.0 + sin(t)) }).within(1.5).at_time(0.75),
         row!("mandelbulb iterations, bailout", Mandelbulb, { mandelbulb(8).iterations(5).bailout(4.0) }).within(1.5),
         row!("menger", Menger, { menger(4) }).within(1.5),
