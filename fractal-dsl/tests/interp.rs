@@ -205,6 +205,9 @@ fn fractal_leaves_call_the_leaf_functions_times_the_step_factor() {
     // Its step factor is that of the lowest power it can take (2 here).
     let animated = Interpreter::new(&scene(mandelbulb(param("power", 8.0, 2.0..12.0)))).unwrap();
     assert_eq!(animated.distance_in(p, &Env::new(0.0, &[8.0])), sdf::de_mandelbulb(p, 8.0, 8, 2.0)[0] * 0.35);
+    // A power that stays below 4 takes the stretched estimate, at the factor 1.
+    let low = Interpreter::new(&scene(mandelbulb(param("power", 3.0, 2.0..3.5)))).unwrap();
+    assert_eq!(low.distance_in(p, &Env::new(0.0, &[3.0])), sdf::de_mandelbulb_stretched(p, 3.0, 8, 2.0)[0]);
 }
 
 #[test]
