@@ -22,17 +22,16 @@
 //! `juliabulb` scene the change took 19.1 distance evaluations per pixel to 10.4 and its false hits from 8.9 % to
 //! 4.1 % (96×54, CPU), with no ray through the surface.
 //!
-//! A Mandelbulb whose power stays below 4 takes the same stretch (`sdf::de_mandelbulb_stretched`). With the plain derivative
-//! its largest estimate / true distance was 66 (power 2) and 21 (power 3) near the coordinate axes, and at its factor
-//! 0.35 the power-3 points still unsafe were 1.00 % of those near the planes and 0.67 % of those near the axes (the
-//! study's 300 points a region). The stretched estimate at the factor 1: none near the planes, 1.00 % near the axes,
-//! all at the x axis, where the stretch is 1 and the estimate is the plain one; power 2 at most 1.03 (near the axes),
-//! with one point in 60 above 1 at another seed. On
-//! `mandelbulb_powers` (192×108, CPU) the march took 9.4 distance evaluations per pixel instead of 15.8, 31 ms
-//! instead of 44, its cone-consistent false hits went from 8.1 % to 5.7 %, and no ray passed through the surface.
-//! From power 4 up the plain rule stays: on the power-8 showcase the stretched estimate, smaller near the poles,
-//! stopped rays up to 2.8 footprints (interior p99) in front of the surface at the same epsilon, for no fewer
-//! evaluations.
+//! A Mandelbulb whose power stays below 4 takes the same stretch (`sdf::de_mandelbulb_stretched`). With the plain
+//! derivative its largest estimate / true distance was 66 (power 2) and 21 (power 3) near the coordinate axes, and at
+//! its factor 0.35 the power-3 points still unsafe were 1.00 % of those near the planes and 0.67 % of those near the
+//! axes (the study's 300 points a region). The stretched estimate at the factor 1: none near the planes, 1.00 % near
+//! the axes, all at the x axis, where the stretch is 1 and the estimate is the plain one; power 2 at most 1.03 (near
+//! the axes), with one point in 60 above 1 at another seed. On `mandelbulb_powers` (192×108, CPU) the march took 9.4
+//! distance evaluations per pixel instead of 15.8, 31 ms instead of 44, its cone-consistent false hits went from
+//! 8.1 % to 5.7 %, and no ray passed through the surface. From power 4 up the plain rule stays: on the power-8
+//! showcase the stretched estimate, smaller near the poles, stopped rays up to 2.8 footprints (interior p99) in front
+//! of the surface at the same epsilon, for no fewer evaluations.
 
 use crate::ir::fractal::FractalArgValue;
 use crate::ir::{Expr, Fractal, Vec3Expr, Vec4Expr};
@@ -42,7 +41,7 @@ use families::*;
 pub mod families {
     use crate::analyse::bounds::{julia_radius, juliabulb_radius, mandelbox_half_extent, mandelbulb_radius};
     use crate::analyse::interval::range;
-    use crate::geom::Aabb;
+    use crate::geom::{Aabb, Interval};
     use crate::ir::fractal::{
         CallArg, FractalArg, FractalArgShape, FractalDecl, FractalRule, Iterations, Membership, Setting, MAX_ITERATIONS,
     };
@@ -76,12 +75,16 @@ pub mod families {
     use crate::ir::Expr;
 
     /// Escape-time estimators: outside the box the raw estimate is at least 0.67 (Mandelbulb, powers 2–32; Julia)
-    /// times the distance to the box, measured (0.50 and 0.57 after the factors 0.75 and 0.85); the reach takes 0.6 ×
-    /// the step factor. Inside the set the estimate is not a distance, so union guards over them are not exact (they
-    /// stay safe: the box holds the surface).
-    fn escape_time_bound(f: &Fractal, radius: Option<f64>) -> Option<PrimBound> {
-        radius.map(|r| PrimBound { aabb: Aabb::cube(r), reach: 0.6 * f.step_factor() })
+    /// times the distance to the box, measured (0.50 and 0.57 after the factors 0.75 and 0.85); the reach takes
+    /// [`PLAIN_OUTSIDE`] × the step factor, or `outside` × it for an estimate that is a fraction of that one. Inside
+    /// the set the estimate is not a distance, so union guards over them are not exact (they stay safe: the box holds
+    /// the surface).
+    fn escape_time_bound(f: &Fractal, radius: Option<f64>, outside: f64) -> Option<PrimBound> {
+        radius.map(|r| PrimBound { aabb: Aabb::cube(r), reach: outside * f.step_factor() })
     }
+
+    /// The plain escape-time estimate outside its box, in distances to the box (measured at no less than 0.67).
+    const PLAIN_OUTSIDE: f64 = 0.6;
 
     pub static MANDELBULB: FractalDecl = FractalDecl {
         name: "mandelbulb",
@@ -103,21 +106,12 @@ pub mod families {
             };
             (leaf, vec![num(power), count(f), num(f.bailout_or_default())])
         },
-        step_factor: |f| {
-            if stretched_bulb(f) {
-                1.0
-            } else {
-                bulb_step_factor(f.number().map_or(8.0, |p| range(p).lo))
-            }
-        },
+        step_factor: |f| if stretched_bulb(f) { 1.0 } else { bulb_step_factor(bulb_powers(f).lo) },
         bound: |f| {
-            let radius = mandelbulb_radius(f.number().map_or(8.0, |p| range(p).lo));
-            // The stretch divides the plain estimate (at least 0.6 × the distance to the box) by at most the power,
-            // below 4 (measured: 0.58 at power 3, 0.21 at powers just below 4).
-            match stretched_bulb(f) {
-                true => radius.map(|r| PrimBound { aabb: Aabb::cube(r), reach: 0.15 * f.step_factor() }),
-                false => escape_time_bound(f, radius),
-            }
+            // The stretch divides the plain estimate by at most the power, below 4 (measured outside the box: 0.58
+            // at power 3, 0.21 just below 4).
+            let outside = if stretched_bulb(f) { PLAIN_OUTSIDE / 4.0 } else { PLAIN_OUTSIDE };
+            escape_time_bound(f, mandelbulb_radius(bulb_powers(f).lo), outside)
         },
         membership: Membership {
             leaves: &[
@@ -187,7 +181,7 @@ pub mod families {
         step_factor: |_| 0.85,
         bound: |f| {
             let norm = f.arg_exprs().iter().map(|e| range(e).max_abs().powi(2)).sum::<f64>().sqrt();
-            escape_time_bound(f, julia_radius(norm))
+            escape_time_bound(f, julia_radius(norm), PLAIN_OUTSIDE)
         },
         membership: Membership { leaves: &[(Leaf::DeJulia, Leaf::InJulia)], approaches_limit: true },
     };
@@ -240,7 +234,7 @@ pub mod families {
         step_factor: |f| juliabulb_step_factor(range(&f.setting_or_default(Setting::Power)).lo),
         bound: |f| {
             let norm = f.arg_exprs().iter().map(|e| range(e).max_abs().powi(2)).sum::<f64>().sqrt();
-            escape_time_bound(f, juliabulb_radius(range(&f.setting_or_default(Setting::Power)).lo, norm))
+            escape_time_bound(f, juliabulb_radius(range(&f.setting_or_default(Setting::Power)).lo, norm), PLAIN_OUTSIDE)
         },
         membership: Membership { leaves: &[(Leaf::DeJuliabulb, Leaf::InJuliabulb)], approaches_limit: true },
     };
@@ -317,7 +311,12 @@ pub mod families {
     /// up to the power near the poles, so a power that can grow past it keeps the plain estimate (over a range
     /// reaching power 9 the stretched one fell to 0.17 × the distance to the bound, against 0.83 plain).
     fn stretched_bulb(f: &Fractal) -> bool {
-        f.number().is_some_and(|p| range(p).hi < 4.0)
+        f.number().is_some() && bulb_powers(f).hi < 4.0
+    }
+
+    /// The powers the Mandelbulb's expression can take (8 when it has none).
+    fn bulb_powers(f: &Fractal) -> Interval {
+        f.number().map_or(Interval::point(8.0), range)
     }
 
     /// The plain Mandelbulb estimate's step factor for its lowest power (measured, see the module comment).

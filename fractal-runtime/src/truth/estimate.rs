@@ -77,8 +77,8 @@ pub struct RatioStudy {
 }
 
 /// The fractals the study covers: every family, the Mandelbulb in its three estimators (power 8 trig-free, power 8
-/// by the trigonometric form as an animated power takes it, the stretched estimate of the low powers), the Mandelbox with a
-/// positive and a negative scale, the Juliabulb at two constants.
+/// by the trigonometric form as an animated power takes it, the stretched estimate of the low powers), the Mandelbox
+/// with a positive and a negative scale, the Juliabulb at two constants.
 pub fn studied() -> Vec<(String, Fractal)> {
     let named = |name: &str, f: Fractal| (name.to_string(), f);
     vec![
