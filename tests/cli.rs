@@ -729,48 +729,72 @@ fn exr_channels(path: &Path) -> BTreeMap<String, Vec<f32>> {
 }
 
 /// `--aov` writes depth (+inf on misses), unit normals (0 on misses) and steps beside the PNG, and they describe the
-/// same pixels: a pixel has a depth exactly where it has a normal, and where the PNG is not the background.
+/// same pixels: a pixel has a depth exactly where it has a normal, and where the PNG is not the background. The CPU
+/// writes them from its traces, wgpu from its trace kernel; both describe the same frame.
 #[test]
 fn aovs_are_written_beside_the_image_and_agree_with_it() {
     let dir = scratch("aov");
     let size = (40u32, 24u32);
-    let out = run_in(
-        &dir,
-        &["render", "hello_world", "--backend", "cpu", "--size", "40x24", "--aov", "depth,normal,steps", "-o", "s.png"],
-    );
-    assert_ok(&out);
-    let png = read_png(&dir.join("s.png")).unwrap();
-    let depth = exr_channels(&dir.join("s.depth.exr"));
-    let normal = exr_channels(&dir.join("s.normal.exr"));
-    let steps = exr_channels(&dir.join("s.steps.exr"));
-    assert_eq!(depth.keys().collect::<Vec<_>>(), ["Z"]);
-    assert_eq!(normal.keys().collect::<Vec<_>>(), ["B", "G", "R"]);
-    assert_eq!(steps.keys().collect::<Vec<_>>(), ["Y"]);
-    let z = &depth["Z"];
-    assert_eq!(z.len(), (size.0 * size.1) as usize);
-    let background = png.rgba(0, 0).unwrap();
-    let mut hits = 0;
-    for (i, &t) in z.iter().enumerate() {
-        let n = [normal["R"][i], normal["G"][i], normal["B"][i]];
-        let length = n.iter().map(|c| c * c).sum::<f32>().sqrt();
-        let (x, y) = (i as u32 % size.0, i as u32 / size.0);
-        if t.is_finite() {
-            hits += 1;
-            assert!(t > 0.0 && (length - 1.0).abs() < 1e-3, "pixel {i}: depth {t}, normal {n:?}");
-            assert!(steps["Y"][i] >= 1.0, "pixel {i} hit in {} steps", steps["Y"][i]);
-            assert_ne!(png.rgba(x, y).unwrap(), background, "pixel {i} hit but shows the background");
-        } else {
-            assert_eq!((t, length), (f32::INFINITY, 0.0), "pixel {i}");
-            assert_eq!(png.rgba(x, y).unwrap(), background, "pixel {i} missed but is not the background");
+    let mut depths = Vec::new();
+    for backend in ["cpu", "wgpu"] {
+        let out = run_in(
+            &dir,
+            &[
+                "render",
+                "hello_world",
+                "--backend",
+                backend,
+                "--size",
+                "40x24",
+                "--aov",
+                "depth,normal,steps",
+                "-o",
+                &format!("{backend}.png"),
+            ],
+        );
+        if backend == "wgpu" && !out.status.success() {
+            let message = stderr(&out);
+            assert!(!backends_required(), "wgpu is required (FRACTAL_REQUIRE_GPU_BACKENDS=1) but failed:\n{message}");
+            assert!(
+                message.contains("no wgpu device"),
+                "wgpu failed for another reason than a missing device:\n{message}"
+            );
+            eprintln!("note: skipping the wgpu AOVs, no adapter: {message}");
+            break;
         }
+        assert_ok(&out);
+        let png = read_png(&dir.join(format!("{backend}.png"))).unwrap();
+        let depth = exr_channels(&dir.join(format!("{backend}.depth.exr")));
+        let normal = exr_channels(&dir.join(format!("{backend}.normal.exr")));
+        let steps = exr_channels(&dir.join(format!("{backend}.steps.exr")));
+        assert_eq!(depth.keys().collect::<Vec<_>>(), ["Z"]);
+        assert_eq!(normal.keys().collect::<Vec<_>>(), ["B", "G", "R"]);
+        assert_eq!(steps.keys().collect::<Vec<_>>(), ["Y"]);
+        let z = &depth["Z"];
+        assert_eq!(z.len(), (size.0 * size.1) as usize);
+        let background = png.rgba(0, 0).unwrap();
+        let mut hits = 0;
+        for (i, &t) in z.iter().enumerate() {
+            let n = [normal["R"][i], normal["G"][i], normal["B"][i]];
+            let length = n.iter().map(|c| c * c).sum::<f32>().sqrt();
+            let (x, y) = (i as u32 % size.0, i as u32 / size.0);
+            if t.is_finite() {
+                hits += 1;
+                assert!(t > 0.0 && (length - 1.0).abs() < 1e-3, "{backend} pixel {i}: depth {t}, normal {n:?}");
+                assert!(steps["Y"][i] >= 1.0, "{backend} pixel {i} hit in {} steps", steps["Y"][i]);
+                assert_ne!(png.rgba(x, y).unwrap(), background, "{backend} pixel {i} hit but shows the background");
+            } else {
+                assert_eq!((t, length), (f32::INFINITY, 0.0), "{backend} pixel {i}");
+                assert_eq!(png.rgba(x, y).unwrap(), background, "{backend} pixel {i} missed but is not the background");
+            }
+        }
+        assert!(hits > 0 && hits < z.len(), "{backend}: {hits} of {} pixels hit", z.len());
+        depths.push(z.clone());
     }
-    assert!(hits > 0 && hits < z.len(), "{hits} of {} pixels hit", z.len());
-
-    // The AOVs come from the CPU renderer: asked of another backend, the command says so and writes nothing.
-    let out = run_in(&dir, &["render", "hello_world", "--backend", "wgpu", "--aov", "depth", "-o", "g.png"]);
-    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
-    assert!(stderr(&out).contains("add --backend cpu"), "{}", stderr(&out));
-    assert!(!dir.join("g.png").exists() && !dir.join("g.depth.exr").exists());
+    if let [cpu, gpu] = &depths[..] {
+        let same = cpu.iter().zip(gpu).filter(|(a, b)| a == b || (*a - *b).abs() <= 1e-3 * a.abs()).count();
+        assert!(same as f64 >= 0.99 * cpu.len() as f64, "depths agree on {same} of {} pixels", cpu.len());
+    }
 }
 
 /// `--camera-pos`, `--camera-target` and `--fov` replace the scene's camera (or camera path) for one render.

@@ -67,8 +67,9 @@ fn validate_wgsl(label: &str, src: &str) {
 fn every_wgsl_module_validates_with_naga() {
     for (name, scene) in scenes::ALL {
         validate_wgsl(name, scene.wgsl());
-        let probe = wgsl::write(&lower(scene.scene()), Entry::Probe);
-        validate_wgsl(&format!("{name} probe"), &probe);
+        let program = lower(scene.scene());
+        validate_wgsl(&format!("{name} probe"), &wgsl::write(&program, Entry::Probe));
+        validate_wgsl(&format!("{name} trace"), &wgsl::write(&program, Entry::Trace));
     }
 }
 
@@ -134,10 +135,17 @@ fn effects_appear_only_when_enabled() {
 }
 
 #[test]
-fn opencl_render_and_probe_kernels_exist_for_every_scene() {
+fn opencl_render_probe_and_trace_kernels_exist_for_every_scene() {
     for (name, scene) in scenes::ALL {
         assert!(scene.opencl().contains("__kernel void render(__global uint* out, __constant const Frame* frame)"));
-        let probe = opencl::write(&lower(scene.scene()), Entry::Probe);
-        assert!(probe.contains("__kernel void probe("), "{name}");
+        let program = lower(scene.scene());
+        assert!(opencl::write(&program, Entry::Probe).contains("__kernel void probe("), "{name}");
+        let trace = opencl::write(&program, Entry::Trace);
+        assert!(
+            trace.contains(
+                "__kernel void trace(__global uint* out, __constant const Frame* frame, __global float4* traces)"
+            ),
+            "{name}"
+        );
     }
 }

@@ -207,6 +207,18 @@ pub struct Kernels {
     pub program: crate::lower::Program,
 }
 
+impl Kernels {
+    /// The same scene's `trace` kernels ([`crate::back::Entry::Trace`]) in place of the render kernels: the render
+    /// that also writes each pixel's depth, normal and march, for measuring a GPU's render and for depth images.
+    pub fn tracing(&self) -> Kernels {
+        Kernels {
+            opencl: crate::back::opencl::write(&self.program, crate::back::Entry::Trace),
+            wgsl: crate::back::wgsl::write(&self.program, crate::back::Entry::Trace),
+            ..self.clone()
+        }
+    }
+}
+
 /// Compiles a scene: validates it, lowers it once and spells the render kernels in both GPU languages.
 pub fn compile(scene: &Scene) -> Result<Kernels, crate::validate::InvalidScene> {
     crate::validate::checked(scene)?;

@@ -75,5 +75,5 @@ pub use device::{Backend, DeviceInfo};
 pub use error::{CameraError, FrameError, RenderError};
 pub use frame::{Frame, LightSlot, ParamValues, MAX_IMAGE_SIDE};
 pub use image::Image;
-pub use renderer::{CpuKernel, KernelSources, ProbeSample, RenderJob, Renderer};
+pub use renderer::{CpuKernel, KernelSources, PixelTrace, ProbeSample, RenderJob, Renderer, Traced};
 pub use select::{select, AutoRenderer, BackendChoice, RendererOptions, UnknownBackend};

@@ -80,10 +80,78 @@ impl<'a> RenderJob<'a> {
     }
 }
 
+/// What the render algorithm did at one pixel, beside its colour: the figures accuracy work compares with the truth,
+/// and the depth and normal images a render writes beside its colours.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PixelTrace {
+    /// Linear colour before clamping and gamma (NaN or Inf here is a broken pixel even when packing hides it).
+    pub colour: [f64; 3],
+    /// Whether the march hit the surface.
+    pub hit: bool,
+    /// Where the march stopped: the hit, or the last t of a miss (past the end of the ray, or where the steps ran
+    /// out); NaN for a ray that misses the scene bound.
+    pub t: f64,
+    /// March steps taken.
+    pub steps: u32,
+    /// The march used all its steps without hitting or leaving the ray.
+    pub out_of_steps: bool,
+    /// The shading normal at a hit.
+    pub normal: Option<[f64; 3]>,
+    /// Distance evaluations for the whole pixel (march, normal, occlusion, shadows), where the renderer counts them
+    /// (the CPU's; a kernel does not).
+    pub evaluations: Option<u64>,
+}
+
+impl Default for PixelTrace {
+    fn default() -> Self {
+        PixelTrace {
+            colour: [0.0; 3],
+            hit: false,
+            t: f64::NAN,
+            steps: 0,
+            out_of_steps: false,
+            normal: None,
+            evaluations: None,
+        }
+    }
+}
+
+impl PixelTrace {
+    /// Words per pixel of a `trace` kernel's output ([`fractal_dsl::back::Entry::Trace`]): three float4 slots.
+    pub const KERNEL_WORDS: usize = 12;
+
+    /// A pixel as a `trace` kernel wrote it: (normal, t), (steps, hit, out of steps, 0), (colour, 0).
+    pub fn from_kernel(words: &[f32]) -> PixelTrace {
+        let w = |i: usize| f64::from(words[i]);
+        let (hit, steps) = (words[5] > 0.5, words[4] as u32);
+        PixelTrace {
+            colour: [w(8), w(9), w(10)],
+            hit,
+            // A ray that misses the scene's bound takes no step; the CPU's trace has no t for it either.
+            t: if hit || steps > 0 { w(3) } else { f64::NAN },
+            steps,
+            out_of_steps: words[6] > 0.5,
+            normal: hit.then(|| [w(0), w(1), w(2)]),
+            evaluations: None,
+        }
+    }
+}
+
+/// A render with every pixel's march ([`Renderer::trace`]).
+#[derive(Clone, Debug)]
+pub struct Traced {
+    pub image: Image,
+    /// Row-major, one per pixel of the image.
+    pub pixels: Vec<PixelTrace>,
+}
+
 /// A renderer: draws jobs on one device. `Send`, so a viewer can keep it on a render thread.
 pub trait Renderer: Send {
     /// Renders the job's scene into an image of the frame's size.
     fn render(&mut self, job: &RenderJob) -> Result<Image, RenderError>;
+    /// Renders the job's scene and keeps what the march did at each pixel. A GPU renderer runs the job's `trace`
+    /// kernels ([`fractal_dsl::Kernels::tracing`]) in place of its render kernels; the CPU renderer its evaluator.
+    fn trace(&mut self, job: &RenderJob) -> Result<Traced, RenderError>;
     /// The device this renderer draws on.
     fn device(&self) -> DeviceInfo;
     /// Messages about backend changes since the last call (a fallback chain reports which backend failed and why).
@@ -95,6 +163,9 @@ pub trait Renderer: Send {
 impl<R: Renderer + ?Sized> Renderer for Box<R> {
     fn render(&mut self, job: &RenderJob) -> Result<Image, RenderError> {
         (**self).render(job)
+    }
+    fn trace(&mut self, job: &RenderJob) -> Result<Traced, RenderError> {
+        (**self).trace(job)
     }
     fn device(&self) -> DeviceInfo {
         (**self).device()

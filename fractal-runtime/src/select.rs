@@ -10,7 +10,7 @@ use crate::backend::wgpu::WgpuRenderer;
 use crate::device::{Backend, DeviceInfo};
 use crate::error::RenderError;
 use crate::image::Image;
-use crate::renderer::{RenderJob, Renderer};
+use crate::renderer::{RenderJob, Renderer, Traced};
 
 /// The `--backend` choice.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -134,12 +134,16 @@ fn next_renderer(
     None
 }
 
-impl Renderer for AutoRenderer {
-    fn render(&mut self, job: &RenderJob) -> Result<Image, RenderError> {
+impl AutoRenderer {
+    /// Runs `draw` on the current backend, moving to the next one while the failure is the backend's.
+    fn with_fallback<T>(
+        &mut self,
+        mut draw: impl FnMut(&mut dyn Renderer) -> Result<T, RenderError>,
+    ) -> Result<T, RenderError> {
         let mut failures = Vec::new();
         loop {
-            match self.current.render(job) {
-                Ok(image) => return Ok(image),
+            match draw(self.current.as_mut()) {
+                Ok(drawn) => return Ok(drawn),
                 Err(e) if e.is_backend_specific() => {
                     let backend = self.current.device().backend;
                     self.notes.push(format!("{backend} failed, falling back: {e}"));
@@ -152,6 +156,16 @@ impl Renderer for AutoRenderer {
                 Err(e) => return Err(e),
             }
         }
+    }
+}
+
+impl Renderer for AutoRenderer {
+    fn render(&mut self, job: &RenderJob) -> Result<Image, RenderError> {
+        self.with_fallback(|r| r.render(job))
+    }
+
+    fn trace(&mut self, job: &RenderJob) -> Result<Traced, RenderError> {
+        self.with_fallback(|r| r.trace(job))
     }
 
     fn device(&self) -> DeviceInfo {

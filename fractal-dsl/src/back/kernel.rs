@@ -130,9 +130,9 @@ pub trait Dialect {
 pub trait KernelDialect: Dialect {
     /// Type definitions and resource bindings, written before the helpers.
     fn declarations(&self, out: &mut String, layout: FrameLayout, entry: Entry);
-    /// Writes the `render` entry point's first lines, through its `{` and the statements naming the invocation's
-    /// pixel; returns the pixel's x and y, whose type is [`Self::pixel_index_type`].
-    fn render_open(&self, out: &mut String) -> [&'static str; 2];
+    /// Writes the `render` or `trace` entry point's first lines, through its `{` and the statements naming the
+    /// invocation's pixel; returns the pixel's x and y, whose type is [`Self::pixel_index_type`].
+    fn render_open(&self, out: &mut String, entry: Entry) -> [&'static str; 2];
     fn pixel_index_type(&self) -> &'static str;
     /// The statements that pack `col` into RGBA8 and store it at the pixel.
     fn pack_pixel(&self) -> &'static [&'static str];
@@ -247,10 +247,11 @@ pub fn write_functions<D: Dialect>(functions: &[Function], dialect: &D) -> Strin
 
 /// Writes the complete GPU program for `entry` in `dialect`.
 pub fn write<D: KernelDialect>(program: &Program, entry: Entry, dialect: &D) -> String {
-    let mut k = Kernel { p: program, d: dialect, lib: None, out: String::new() };
+    let mut k = Kernel { p: program, d: dialect, lib: None, traced: entry == Entry::Trace, out: String::new() };
     let what = match entry {
         Entry::Render => "render kernel",
         Entry::Probe => "probe kernel",
+        Entry::Trace => "trace kernel",
     };
     let _ = writeln!(
         k.out,
@@ -261,7 +262,7 @@ pub fn write<D: KernelDialect>(program: &Program, entry: Entry, dialect: &D) -> 
     k.leaf_functions();
     k.scene_functions();
     match entry {
-        Entry::Render => {
+        Entry::Render | Entry::Trace => {
             k.normal();
             if let Some(strength) = program.settings.ambient_occlusion {
                 k.ambient_occlusion(strength);
@@ -269,7 +270,7 @@ pub fn write<D: KernelDialect>(program: &Program, entry: Entry, dialect: &D) -> 
             if program.settings.shadows != Shadows::None {
                 k.shadow();
             }
-            k.render(dialect);
+            k.render(dialect, entry);
         }
         Entry::Probe => k.probe(dialect),
     }
@@ -340,7 +341,7 @@ pub mod library {
 /// host values `lib` names. The program should be lowered without a perturbation reference (a library has no frame
 /// to hold its orbit).
 pub fn write_library<D: Dialect>(program: &Program, lib: &Library, dialect: &D) -> String {
-    let mut k = Kernel { p: program, d: dialect, lib: Some(lib), out: String::new() };
+    let mut k = Kernel { p: program, d: dialect, lib: Some(lib), traced: false, out: String::new() };
     let _ = writeln!(
         k.out,
         "// fractal: {} SDF library, generated from a scene description. Edit the scene, not this file.\n",
@@ -392,8 +393,13 @@ struct Kernel<'a, D> {
     d: &'a D,
     /// Where the program's host values come from in a library; `None` in a kernel (the frame).
     lib: Option<&'a Library>,
+    /// Whether the render kernel also writes each pixel's march to [`TRACES`] ([`Entry::Trace`]).
+    traced: bool,
     out: String,
 }
+
+/// The `trace` kernel's per-pixel output array ([`Entry::Trace`]).
+const TRACES: &str = "traces";
 
 impl<D: Dialect> Kernel<'_, D> {
     fn line(&mut self, level: Level, text: &str) {
@@ -553,6 +559,11 @@ impl<D: Dialect> Kernel<'_, D> {
         self.function_close();
     }
 
+    /// Whether the march used all its steps without hitting or leaving the ray: the trace kernel's flag.
+    fn out_of_steps(&self) -> String {
+        format!("!hit && steps_taken >= {} && t <= t_far", self.lit(f64::from(self.p.settings.max_steps)))
+    }
+
     /// Pixel footprint per unit distance: the frame's, or a library function's argument `footprint`.
     fn footprint(&self) -> String {
         match self.lib {
@@ -571,20 +582,23 @@ impl<D: Dialect> Kernel<'_, D> {
         }
     }
 
-    fn render<K: KernelDialect>(&mut self, kernel: &K) {
+    fn render<K: KernelDialect>(&mut self, kernel: &K, entry: Entry) {
         let d = self.d;
         let float = self.float();
         let (l1, l2) = (Level(1), Level(2));
         let (two, half) = (self.lit(2.0), self.lit(0.5));
 
         // 1. The ray through the pixel's centre.
-        let [px, py] = kernel.render_open(&mut self.out);
+        let [px, py] = kernel.render_open(&mut self.out, entry);
         let index = kernel.pixel_index_type();
         self.line(l1, &self.constant("w", index, &d.cast(index, &d.frame_field("right.w"))));
         self.line(l1, &self.constant("h", index, &d.cast(index, &d.frame_field("up.w"))));
         self.line(l1, &format!("if ({px} >= w || {py} >= h) {{"));
         self.line(l2, "return;");
         self.line(l1, "}");
+        if self.traced {
+            self.line(l1, &self.constant("pixel", index, &format!("{} * ({py} * w + {px})", d.index_lit(3))));
+        }
         let (w, h) = (d.cast(float, "w"), d.cast(float, "h"));
         let u = format!("({two} * ({} + {half}) - {w}) / {h}", d.cast(float, px));
         let v = format!("-({two} * ({} + {half}) - {h}) / {h}", d.cast(float, py));
@@ -601,7 +615,20 @@ impl<D: Dialect> Kernel<'_, D> {
 
         // 2.–6. March and shade.
         self.march();
+        if self.traced {
+            let (zero, one) = (self.lit(0.0), self.lit(1.0));
+            let flag = |cond: &str| d.select(cond, &one, &zero);
+            let vec4 = d.vec4_type();
+            let position = d.construct(vec4, &format!("{}, t", d.construct(self.vec3(), &zero)));
+            self.line(l1, &format!("{TRACES}[pixel] = {position};"));
+            let march = format!("steps_taken, {}, {}, {zero}", flag("hit"), flag(&self.out_of_steps()));
+            self.line(l1, &format!("{TRACES}[pixel + {}] = {};", d.index_lit(1), d.construct(vec4, &march)));
+        }
         self.shade();
+        if self.traced {
+            let colour = d.construct(d.vec4_type(), &format!("col, {}", self.lit(0.0)));
+            self.line(l1, &format!("{TRACES}[pixel + {}] = {colour};", d.index_lit(2)));
+        }
 
         // 7. Output.
         self.display();
@@ -666,8 +693,14 @@ impl<D: Dialect> Kernel<'_, D> {
             self.line(l1, &self.variable("t_last", float, "t"));
             self.line(l1, &self.variable("d_last", float, &zero));
         }
+        if self.traced {
+            self.line(l1, &self.variable("steps_taken", float, &zero));
+        }
         self.line(l1, &d.counted_loop(&format!("{} && t <= t_far", s.max_steps)));
         self.line(l2, &self.constant("d", float, &self.de("ro + rd * t")));
+        if self.traced {
+            self.line(l2, &format!("steps_taken = steps_taken + {one};"));
+        }
         let spacing = format!("{} * t", self.lit(T_SPACING));
         self.line(l2, &format!("eps = {};", self.math(MathFn::Max, &[&eps, &spacing])));
         let abs_d = self.math(MathFn::Abs, &["d"]);
@@ -787,6 +820,10 @@ impl<D: Dialect> Kernel<'_, D> {
         let tap = if p.refine { format!("eps * {}", self.lit(REFINED_NORMAL_SHARE)) } else { "eps".to_string() };
         let n = self.call("scene_normal", &format!("p, {tap}"), distance_frame);
         self.line(l2, &self.constant("n", vec3, &n));
+        if self.traced {
+            let normal = d.construct(d.vec4_type(), "n, t");
+            self.line(l2, &format!("{TRACES}[pixel] = {normal};"));
+        }
         // A perturbed pattern reads the hit relative to the camera, rd·t: exact to t's precision at any zoom.
         let sample_args = if p.reference.is_some() { "p, rd * t" } else { "p" };
         let sample = self.call("scene_sample", sample_args, p.sample_reads_frame);

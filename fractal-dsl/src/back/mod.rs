@@ -123,6 +123,25 @@ pub enum Entry {
     /// uint n)`. WGSL: `@compute @workgroup_size(64) fn probe`, binding 0 = out `array<vec4<f32>>`, binding 1 = frame,
     /// binding 2 = points `array<vec4<f32>>` (read-only storage); n = arrayLength(points).
     Probe,
+    /// `trace`: the `render` kernel that also writes what its march did at each pixel, for measuring a GPU's render
+    /// against the ground truth and for depth and normal images. Pixel i = y·w + x writes, beside `out[i]`,
+    /// `traces[3i] = (normal, t)` (the normal 0 at a miss; t where the march stopped), `traces[3i + 1] = (steps,
+    /// hit, out of steps, 0)` (the flags 1 or 0) and `traces[3i + 2] = (colour, 0)`, the linear colour before
+    /// clamping and gamma. OpenCL: `__kernel void trace(__global uint* out, __constant Frame* frame, __global float4*
+    /// traces)`. WGSL: `@compute @workgroup_size(8, 8, 1) fn trace`, the render kernel's bindings and binding 2 =
+    /// `traces`, `array<vec4<f32>>` (read_write storage).
+    Trace,
+}
+
+impl Entry {
+    /// The entry point's name in both GPU languages.
+    pub fn name(self) -> &'static str {
+        match self {
+            Entry::Render => "render",
+            Entry::Probe => "probe",
+            Entry::Trace => "trace",
+        }
+    }
 }
 
 impl Program {

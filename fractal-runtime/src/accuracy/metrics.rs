@@ -103,7 +103,8 @@ pub struct TracedError {
     pub out_of_steps: f64,
     /// Fraction of pixels that are false misses out of steps.
     pub false_misses_out_of_steps: f64,
-    pub evaluations_per_pixel: f64,
+    /// Where the renderer counts them (the CPU's; a kernel does not).
+    pub evaluations_per_pixel: Option<f64>,
 }
 
 /// A render's true error.
@@ -157,7 +158,7 @@ impl TrueError {
             s += &format!(
                 "; depth error (footprints) median {:.2}, p99 {:.2} thin-ray / {:.2} cone-consistent, interior p99 \
                  {:.2} cone-consistent; overshoot {:.3} % thin-ray / {:.3} % cone-consistent; normal error median {:.1}°, p99 {:.1}° (on {:.0} % of \
-                 hits); {:.3} % out of steps; {} NaN/Inf pixels; {:.1} distance evaluations per pixel",
+                 hits); {:.3} % out of steps; {} NaN/Inf pixels{}",
                 t.depth_thin.median,
                 t.depth_thin.p99,
                 t.depth_cone.p99,
@@ -169,7 +170,7 @@ impl TrueError {
                 100.0 * t.normal_measured,
                 100.0 * t.out_of_steps,
                 t.non_finite,
-                t.evaluations_per_pixel
+                t.evaluations_per_pixel.map_or(String::new(), |e| format!("; {e:.1} distance evaluations per pixel"))
             );
         }
         s
@@ -310,6 +311,10 @@ fn traced_error(truth: &Truth, traces: &[PixelTrace]) -> TracedError {
             .filter(|(r, t)| !r.hit && r.out_of_steps && t.hit())
             .count() as f64
             / n,
-        evaluations_per_pixel: traces.iter().map(|r| r.evaluations as f64).sum::<f64>() / n,
+        evaluations_per_pixel: traces
+            .iter()
+            .map(|r| r.evaluations.map(|e| e as f64))
+            .sum::<Option<f64>>()
+            .map(|e| e / n),
     }
 }

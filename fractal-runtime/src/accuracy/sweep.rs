@@ -2,9 +2,9 @@
 //! error budget the recommended setting must meet.
 //!
 //! The CPU backend renders with the f32 interpreter of the scene with the setting applied (the same evaluator for
-//! every setting, so times compare) and gives every figure; wgpu and OpenCL render the kernels compiled for the
-//! setting and give what an image holds (hit mask, colour; for a scene with glow the mask of the same march drawn
-//! without glow), and cannot scale the step factor. OpenCL also sweeps its
+//! every setting, so times compare) and gives every figure; wgpu and OpenCL time the render kernels compiled for the
+//! setting and measure the same march through its trace kernels (every figure but the count of distance
+//! evaluations), and cannot scale the step factor. OpenCL also sweeps its
 //! math: the kernels built with and without `-cl-fast-relaxed-math`.
 
 use std::time::Instant;
@@ -14,7 +14,6 @@ use fractal_dsl::{HitEpsilon, Node, Scene};
 
 use crate::accuracy::metrics::{measure, Observed, TrueError};
 use crate::backend::cpu::{trace_scene_with, MarchLevers};
-use crate::bench::precision::scene_hits;
 use crate::device::Backend;
 use crate::error::RenderError;
 use crate::frame::Frame;
@@ -198,24 +197,17 @@ fn run_kernels(
     let kernels = fractal_dsl::compile(&applied)?;
     let job = RenderJob::new(KernelSources::compiled(&kernels), frame);
     // The first render builds the kernel; it is not timed.
-    let mut image = renderer.render(&job)?;
+    renderer.render(&job)?;
     let mut times = Vec::new();
     for _ in 0..TIMING_RUNS {
         let start = Instant::now();
-        image = renderer.render(&job)?;
+        renderer.render(&job)?;
         times.push(start.elapsed().as_secs_f64() * 1e3);
     }
-    let mut error = measure(&applied, truth, Observed::Image(&image));
-    if applied.settings.glow.is_some() {
-        // Glow tints the misses, so the hit mask is read from the same march drawn without it (glow is summed along
-        // the march and never changes a step).
-        let glowless =
-            Scene { settings: fractal_dsl::RenderSettings { glow: None, ..applied.settings.clone() }, ..applied };
-        let kernels = fractal_dsl::compile(&glowless)?;
-        let image = renderer.render(&RenderJob::new(KernelSources::compiled(&kernels), frame))?;
-        let hits = scene_hits(&glowless, &image).expect("a scene without glow has a hit mask");
-        error = error.with_hit_mask(truth, &hits);
-    }
+    // The render kernel's march, read back by its trace kernel: the same steps, with depth, normal and steps kept.
+    let tracing = kernels.tracing();
+    let traced = renderer.trace(&RenderJob::new(KernelSources::compiled(&tracing), frame))?;
+    let error = measure(&applied, truth, Observed::Traced(&traced.pixels));
     Ok(SweepPoint { quality: *quality, time_ms: median(times), error })
 }
 
@@ -302,7 +294,7 @@ mod tests {
         assert_eq!(unclipped.quality.to_string(), "no bounds");
         assert_eq!(clipped.error.hit_mismatch(), 0.0);
         assert_eq!(unclipped.error.hit_mismatch(), 0.0);
-        let evaluations = |p: &SweepPoint| p.error.traced.as_ref().unwrap().evaluations_per_pixel;
+        let evaluations = |p: &SweepPoint| p.error.traced.as_ref().unwrap().evaluations_per_pixel.unwrap();
         assert!(
             evaluations(&unclipped) > evaluations(&clipped),
             "{} vs {}",
@@ -311,10 +303,10 @@ mod tests {
         );
     }
 
-    /// Glow tints the misses of an image; a kernel render's hit mask is then read from the same march drawn without
-    /// glow, so a backend that returns images alone is still judged on its hits.
+    /// A kernel render is judged on its trace kernel's march: every figure but the evaluation count, and its hit mask
+    /// even where glow tints the misses of its image.
     #[test]
-    fn a_kernel_render_with_glow_still_has_a_hit_mask() {
+    fn a_kernel_render_is_judged_on_its_traced_march() {
         let glowing = scene(sphere(1.0)).camera(camera([0.0, 0.0, -3.0], [0.0; 3])).glow(rgb(0.2, 0.4, 1.0));
         let pose = Pose::from_camera(&glowing.camera, 0.0, &|p| p.default).unwrap();
         let frame = Frame::new(&glowing, &pose, 0.0, 24, 16, &ParamValues::defaults(&glowing)).unwrap();
@@ -328,6 +320,9 @@ mod tests {
         };
         let point = run_kernels(renderer.as_mut(), &glowing, &Quality::default(), &frame, &truth).unwrap();
         assert!(point.error.psnr.is_finite() && point.error.hit_mismatch() < 0.01, "{}", point.error.describe());
+        let traced = point.error.traced.as_ref().expect("the trace kernel's figures");
+        assert!(traced.normal.count > 0 && traced.normal.p99 < 5.0, "{}", point.error.describe());
+        assert!(traced.depth_thin.p99 < 1.0 && traced.evaluations_per_pixel.is_none(), "{}", point.error.describe());
         let blunt = Quality { epsilon: Some(HitEpsilon::Pixel(4.0)), ..Quality::default() };
         let point = run_kernels(renderer.as_mut(), &glowing, &blunt, &frame, &truth).unwrap();
         assert!(point.error.false_hits > 0.01, "{}", point.error.describe());
@@ -349,7 +344,7 @@ mod tests {
         let frame = Frame::new(&thin, &pose, 0.0, 32, 24, &ParamValues::defaults(&thin)).unwrap();
         let truth = Truth::compute(&thin, &frame, TruthSettings::default()).unwrap();
         let plain = run_cpu(&thin, &Quality::default(), &frame, &truth).unwrap();
-        let evaluations = |p: &SweepPoint| p.error.traced.as_ref().unwrap().evaluations_per_pixel;
+        let evaluations = |p: &SweepPoint| p.error.traced.as_ref().unwrap().evaluations_per_pixel.unwrap();
         for omega in [1.2, 2.0] {
             let relaxed =
                 run_cpu(&thin, &Quality { over_relaxation: Some(omega), ..Quality::default() }, &frame, &truth)

@@ -21,7 +21,10 @@ fn traced<T>(e: &TrueError, f: impl Fn(&crate::accuracy::metrics::TracedError) -
 const COLUMNS: &[Column] = &[
     Column { header: "setting", cell: |p| Some(p.quality.to_string()) },
     Column { header: "ms", cell: |p| Some(format!("{:.1}", p.time_ms)) },
-    Column { header: "evals/px", cell: |p| traced(&p.error, |t| format!("{:.1}", t.evaluations_per_pixel)) },
+    Column {
+        header: "evals/px",
+        cell: |p| traced(&p.error, |t| t.evaluations_per_pixel.map(|e| format!("{e:.1}"))).flatten(),
+    },
     Column { header: "false hit % thin", cell: |p| pct(p.error.false_hits) },
     Column { header: "false hit % cone", cell: |p| pct(p.error.false_hits_cone) },
     Column { header: "false miss %", cell: |p| pct(p.error.false_misses) },

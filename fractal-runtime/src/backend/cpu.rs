@@ -24,7 +24,8 @@ use crate::device::{Backend, DeviceInfo};
 use crate::error::{FrameError, RenderError};
 use crate::frame::{Frame, LightSlot};
 use crate::image::Image;
-use crate::renderer::{RenderJob, Renderer};
+pub use crate::renderer::PixelTrace;
+use crate::renderer::{RenderJob, Renderer, Traced};
 
 /// Renders with the job's CPU evaluator on all cores.
 #[derive(Clone, Debug, Default)]
@@ -46,6 +47,16 @@ impl Renderer for CpuRenderer {
             Some(packets) => render_packets(kernel.evaluator, packets, kernel.scene, job.frame),
             None => render_scene::<f32, _>(kernel.evaluator, kernel.scene, job.frame),
         }
+    }
+
+    fn trace(&mut self, job: &RenderJob) -> Result<Traced, RenderError> {
+        let kernel =
+            job.kernels.cpu.ok_or(RenderError::MissingKernel { backend: Backend::Cpu, what: "CPU evaluator" })?;
+        let pixels = trace_scene::<f32, _>(kernel.evaluator, kernel.scene, job.frame)?;
+        let gamma = kernel.scene.settings.gamma;
+        let packed = pixels.iter().map(|p| pack(v3(p.colour[0] as f32, p.colour[1] as f32, p.colour[2] as f32), gamma));
+        let image = Image { width: job.width(), height: job.height(), pixels: packed.collect() };
+        Ok(Traced { image, pixels })
     }
 
     fn device(&self) -> DeviceInfo {
@@ -145,26 +156,6 @@ pub fn render_packets<E: Evaluator<f32> + ?Sized>(
     Ok(Image { width: frame.width(), height: frame.height(), pixels })
 }
 
-/// What the render algorithm did at one pixel, beside its colour: the figures accuracy work compares with the truth.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PixelTrace {
-    /// Linear colour before clamping and gamma (NaN or Inf here is a broken pixel even when packing hides it).
-    pub colour: [f64; 3],
-    /// Whether the march hit the surface.
-    pub hit: bool,
-    /// Where the march stopped: the hit, or the last t of a miss (past the end of the ray, or where the steps ran
-    /// out); NaN for a ray that misses the scene bound.
-    pub t: f64,
-    /// March steps taken.
-    pub steps: u32,
-    /// The march used all its steps without hitting or leaving the ray.
-    pub out_of_steps: bool,
-    /// The shading normal at a hit.
-    pub normal: Option<[f64; 3]>,
-    /// Distance evaluations for the whole pixel (march, normal, occlusion, shadows).
-    pub evaluations: u64,
-}
-
 /// Renders like [`render_scene`] but keeps every pixel's [`PixelTrace`], in row-major order.
 pub fn trace_scene<F: Real, E: Evaluator<F> + ?Sized>(
     evaluator: &E,
@@ -204,25 +195,11 @@ pub fn trace_scene_with<F: Real, E: Evaluator<F> + ?Sized>(
                 steps: pixel.steps,
                 out_of_steps: pixel.out_of_steps,
                 normal: pixel.normal.map(|n| [n.x.f64(), n.y.f64(), n.z.f64()]),
-                evaluations: EVALUATIONS.with(Cell::get) - before,
+                evaluations: Some(EVALUATIONS.with(Cell::get) - before),
             };
         }
     });
     Ok(traces)
-}
-
-impl Default for PixelTrace {
-    fn default() -> Self {
-        PixelTrace {
-            colour: [0.0; 3],
-            hit: false,
-            t: f64::NAN,
-            steps: 0,
-            out_of_steps: false,
-            normal: None,
-            evaluations: 0,
-        }
-    }
 }
 
 thread_local! {

@@ -1,5 +1,5 @@
 //! The OpenCL renderer (cargo feature `opencl`): builds a scene's OpenCL C program on the first device of the first
-//! platform and runs its `render` or `probe` kernel ([`fractal_dsl::back::Entry`]).
+//! platform and runs its `render`, `trace` or `probe` kernel ([`fractal_dsl::back::Entry`]).
 //!
 //! Programs are built with `-cl-fast-relaxed-math` unless the renderer is precise; a build failure returns the
 //! driver's build log. Programs are cached per source text and precision.
@@ -14,7 +14,7 @@ use crate::device::{Backend, DeviceInfo};
 use crate::error::RenderError;
 use crate::frame::Frame;
 use crate::image::Image;
-use crate::renderer::{ProbeSample, RenderJob, Renderer};
+use crate::renderer::{PixelTrace, ProbeSample, RenderJob, Renderer, Traced};
 
 /// The build option that trades strict IEEE semantics for speed; off in precise mode.
 pub const FAST_MATH: &str = "-cl-fast-relaxed-math";
@@ -53,13 +53,6 @@ pub(crate) fn brief(e: &ocl::Error) -> String {
             let lines: Vec<&str> = text.lines().filter(|l| !l.trim_start().starts_with("####")).collect();
             lines.join("\n").trim().to_string()
         }
-    }
-}
-
-fn entry_name(entry: Entry) -> &'static str {
-    match entry {
-        Entry::Render => "render",
-        Entry::Probe => "probe",
     }
 }
 
@@ -179,7 +172,7 @@ impl OpenClRenderer {
         let frame_buffer = self.frame_buffer(frame)?;
         let kernel = Kernel::builder()
             .program(&program)
-            .name(entry_name(Entry::Probe))
+            .name(Entry::Probe.name())
             .queue(self.queue.clone())
             .global_work_size(points.len())
             .arg(&input)
@@ -196,8 +189,10 @@ impl OpenClRenderer {
     }
 }
 
-impl Renderer for OpenClRenderer {
-    fn render(&mut self, job: &RenderJob) -> Result<Image, RenderError> {
+impl OpenClRenderer {
+    /// Runs the job's `entry` kernel (`render` or `trace`) over the frame's pixels: the image, and the trace
+    /// kernel's [`PixelTrace::KERNEL_WORDS`] words per pixel.
+    fn run_pixels(&mut self, job: &RenderJob, entry: Entry) -> Result<(Image, Vec<f32>), RenderError> {
         let source =
             job.kernels.opencl.ok_or(RenderError::MissingKernel { backend: Backend::OpenCl, what: "OpenCL kernel" })?;
         let (width, height) = (job.width(), job.height());
@@ -205,20 +200,51 @@ impl Renderer for OpenClRenderer {
         let program = self.program(source)?;
         let out = image_buffer(&self.queue, width, height)?;
         let frame_buffer = self.frame_buffer(job.frame)?;
-        let kernel = Kernel::builder()
+        let words = if entry == Entry::Trace { count * PixelTrace::KERNEL_WORDS } else { 0 };
+        let traces = (words > 0)
+            .then(|| Buffer::<f32>::builder().queue(self.queue.clone()).flags(flags::MEM_WRITE_ONLY).len(words).build())
+            .transpose()
+            .map_err(|e| RenderError::TooLarge {
+                backend: Backend::OpenCl,
+                what: format!("the traces of a {width}x{height} image"),
+                detail: brief(&e),
+            })?;
+        let mut builder = Kernel::builder();
+        builder
             .program(&program)
-            .name(entry_name(Entry::Render))
+            .name(entry.name())
             .queue(self.queue.clone())
             .global_work_size((width as usize, height as usize))
             .arg(&out)
-            .arg(&frame_buffer)
-            .build()
-            .map_err(rejected)?;
-        // Safety: `out` holds one u32 per pixel and the kernel writes only pixels inside the frame's size.
+            .arg(&frame_buffer);
+        if let Some(traces) = &traces {
+            builder.arg(traces);
+        }
+        let kernel = builder.build().map_err(rejected)?;
+        // Safety: `out` holds one u32 per pixel, `traces` (the trace kernel's) twelve floats per pixel, and the
+        // kernel writes only pixels inside the frame's size.
         unsafe { kernel.enq() }.map_err(device_error)?;
         let mut pixels = vec![0u32; count];
         out.read(&mut pixels).enq().map_err(device_error)?;
-        Ok(Image { width, height, pixels })
+        let mut floats = vec![0.0f32; words];
+        if let Some(traces) = &traces {
+            traces.read(&mut floats).enq().map_err(device_error)?;
+        }
+        Ok((Image { width, height, pixels }, floats))
+    }
+}
+
+impl Renderer for OpenClRenderer {
+    fn render(&mut self, job: &RenderJob) -> Result<Image, RenderError> {
+        Ok(self.run_pixels(job, Entry::Render)?.0)
+    }
+
+    fn trace(&mut self, job: &RenderJob) -> Result<Traced, RenderError> {
+        let (image, words) = self.run_pixels(job, Entry::Trace)?;
+        Ok(Traced {
+            image,
+            pixels: words.chunks_exact(PixelTrace::KERNEL_WORDS).map(PixelTrace::from_kernel).collect(),
+        })
     }
 
     fn device(&self) -> DeviceInfo {

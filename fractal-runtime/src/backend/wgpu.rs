@@ -2,7 +2,7 @@
 //!
 //! Bindings follow [`fractal_dsl::back::Entry`]: `render` writes packed pixels to binding 0 and reads the frame
 //! uniform at binding 1, in 8×8 workgroups; `probe` writes two vec4 per point to binding 0, reads the frame at 1 and
-//! the points at 2, in workgroups of 64. Every wgpu call that can fail runs inside error scopes, so a kernel the
+//! the points at 2, in workgroups of 64; `trace` is `render` that also writes each pixel's march to binding 2. Every wgpu call that can fail runs inside error scopes, so a kernel the
 //! driver refuses, or a device that cannot allocate, is a [`RenderError`] and never a panic. Pipelines are cached
 //! per source text; output buffers are reused while the image size stays the same.
 
@@ -15,7 +15,7 @@ use crate::device::{Backend, DeviceInfo};
 use crate::error::RenderError;
 use crate::frame::Frame;
 use crate::image::Image;
-use crate::renderer::{ProbeSample, RenderJob, Renderer};
+use crate::renderer::{PixelTrace, ProbeSample, RenderJob, Renderer, Traced};
 
 /// Workgroup edge of the `render` entry point (8×8).
 pub const RENDER_WORKGROUP: u32 = 8;
@@ -33,6 +33,7 @@ pub struct WgpuRenderer {
     info: wgpu::AdapterInfo,
     render_layout: (wgpu::BindGroupLayout, wgpu::PipelineLayout),
     probe_layout: (wgpu::BindGroupLayout, wgpu::PipelineLayout),
+    trace_layout: (wgpu::BindGroupLayout, wgpu::PipelineLayout),
     pipelines: Vec<(Entry, String, wgpu::ComputePipeline)>,
     targets: Option<Targets>,
     /// Errors raised outside any error scope (wgpu would otherwise panic on them).
@@ -48,13 +49,6 @@ struct Targets {
 
 fn device_error(message: impl ToString) -> RenderError {
     RenderError::Device { backend: Backend::Wgpu, message: message.to_string() }
-}
-
-fn entry_name(entry: Entry) -> &'static str {
-    match entry {
-        Entry::Render => "render",
-        Entry::Probe => "probe",
-    }
 }
 
 impl WgpuRenderer {
@@ -104,6 +98,7 @@ impl WgpuRenderer {
         }));
         let render_layout = pipeline_layout(&device, Entry::Render);
         let probe_layout = pipeline_layout(&device, Entry::Probe);
+        let trace_layout = pipeline_layout(&device, Entry::Trace);
         Ok(WgpuRenderer {
             instance,
             adapter,
@@ -112,6 +107,7 @@ impl WgpuRenderer {
             info,
             render_layout,
             probe_layout,
+            trace_layout,
             pipelines: Vec::new(),
             targets: None,
             uncaptured,
@@ -146,6 +142,7 @@ impl WgpuRenderer {
         let layout = match entry {
             Entry::Render => &self.render_layout.1,
             Entry::Probe => &self.probe_layout.1,
+            Entry::Trace => &self.trace_layout.1,
         };
         let ((module, pipeline), error) = capture(&self.device, || {
             let module = self.device.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -153,10 +150,10 @@ impl WgpuRenderer {
                 source: wgpu::ShaderSource::Wgsl(source.into()),
             });
             let pipeline = self.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some(entry_name(entry)),
+                label: Some(entry.name()),
                 layout: Some(layout),
                 module: &module,
-                entry_point: Some(entry_name(entry)),
+                entry_point: Some(entry.name()),
                 compilation_options: Default::default(),
                 cache: None,
             });
@@ -342,42 +339,39 @@ fn pipeline_layout(device: &wgpu::Device, entry: Entry) -> (wgpu::BindGroupLayou
     let entries = match entry {
         Entry::Render => vec![out, frame],
         Entry::Probe => vec![out, frame, buffer(2, wgpu::BufferBindingType::Storage { read_only: true })],
+        Entry::Trace => vec![out, frame, buffer(2, wgpu::BufferBindingType::Storage { read_only: false })],
     };
-    let bind_group_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some(entry_name(entry)),
-        entries: &entries,
-    });
+    let bind_group_layout = device
+        .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(entry.name()), entries: &entries });
     let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some(entry_name(entry)),
+        label: Some(entry.name()),
         bind_group_layouts: &[Some(&bind_group_layout)],
         immediate_size: 0,
     });
     (bind_group_layout, layout)
 }
 
-impl Renderer for WgpuRenderer {
-    fn render(&mut self, job: &RenderJob) -> Result<Image, RenderError> {
+impl WgpuRenderer {
+    /// Runs the job's `entry` kernel (`render` or `trace`) over the frame's pixels: the image, and the trace
+    /// kernel's [`PixelTrace::KERNEL_WORDS`] words per pixel.
+    fn run_pixels(&mut self, job: &RenderJob, entry: Entry) -> Result<(Image, Vec<f32>), RenderError> {
         let source =
             job.kernels.wgsl.ok_or(RenderError::MissingKernel { backend: Backend::Wgpu, what: "WGSL kernel" })?;
         let (width, height) = (job.width(), job.height());
         let bytes = width as u64 * height as u64 * 4;
+        let trace_bytes = if entry == Entry::Trace { bytes * PixelTrace::KERNEL_WORDS as u64 } else { 0 };
         let limits = self.device.limits();
         let groups = (width.div_ceil(RENDER_WORKGROUP), height.div_ceil(RENDER_WORKGROUP));
         let max_groups = limits.max_compute_workgroups_per_dimension;
-        if bytes > limits.max_storage_buffer_binding_size.min(limits.max_buffer_size)
-            || groups.0 > max_groups
-            || groups.1 > max_groups
-        {
+        let max_bytes = limits.max_storage_buffer_binding_size.min(limits.max_buffer_size);
+        if bytes.max(trace_bytes) > max_bytes || groups.0 > max_groups || groups.1 > max_groups {
             return Err(RenderError::TooLarge {
                 backend: Backend::Wgpu,
                 what: format!("a {width}x{height} image"),
-                detail: format!(
-                    "storage buffers up to {} bytes, {max_groups} workgroups per dimension",
-                    limits.max_storage_buffer_binding_size.min(limits.max_buffer_size)
-                ),
+                detail: format!("storage buffers up to {max_bytes} bytes, {max_groups} workgroups per dimension"),
             });
         }
-        let pipeline = self.pipeline(Entry::Render, source)?;
+        let pipeline = self.pipeline(entry, source)?;
         if self.targets.as_ref().is_none_or(|t| t.bytes != bytes) {
             self.targets = None;
             let (targets, error) = capture(&self.device, || Targets {
@@ -391,21 +385,50 @@ impl Renderer for WgpuRenderer {
         let Some(targets) = self.targets.as_ref() else {
             return Err(device_error("output buffers were not created"));
         };
-        let ((), error) = capture(&self.device, || {
+        // The traces are rare (accuracy and depth images): their buffers are made per call, not kept.
+        let (traces, error) = capture(&self.device, || {
             let uniform = self.uniform_buffer(job.frame);
+            let traces = (trace_bytes > 0)
+                .then(|| (self.storage_buffer("traces", trace_bytes), self.readback_buffer(trace_bytes)));
+            let mut entries = vec![
+                wgpu::BindGroupEntry { binding: 0, resource: targets.out.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 1, resource: uniform.as_entire_binding() },
+            ];
+            if let Some((buffer, _)) = &traces {
+                entries.push(wgpu::BindGroupEntry { binding: 2, resource: buffer.as_entire_binding() });
+            }
+            let layout = if traces.is_some() { &self.trace_layout.0 } else { &self.render_layout.0 };
             let bind_group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("render"),
-                layout: &self.render_layout.0,
-                entries: &[
-                    wgpu::BindGroupEntry { binding: 0, resource: targets.out.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 1, resource: uniform.as_entire_binding() },
-                ],
+                label: Some(entry.name()),
+                layout,
+                entries: &entries,
             });
             self.dispatch(&pipeline, &bind_group, groups);
+            traces
         });
         self.check(error)?;
         let pixels = self.read(&targets.out, &targets.readback, bytes)?;
-        Ok(Image { width, height, pixels })
+        let words = match &traces {
+            Some((buffer, readback)) => {
+                self.read(buffer, readback, trace_bytes)?.into_iter().map(f32::from_bits).collect()
+            }
+            None => Vec::new(),
+        };
+        Ok((Image { width, height, pixels }, words))
+    }
+}
+
+impl Renderer for WgpuRenderer {
+    fn render(&mut self, job: &RenderJob) -> Result<Image, RenderError> {
+        Ok(self.run_pixels(job, Entry::Render)?.0)
+    }
+
+    fn trace(&mut self, job: &RenderJob) -> Result<Traced, RenderError> {
+        let (image, words) = self.run_pixels(job, Entry::Trace)?;
+        Ok(Traced {
+            image,
+            pixels: words.chunks_exact(PixelTrace::KERNEL_WORDS).map(PixelTrace::from_kernel).collect(),
+        })
     }
 
     fn device(&self) -> DeviceInfo {

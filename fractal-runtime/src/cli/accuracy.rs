@@ -191,7 +191,7 @@ fn default_on(
     let point = &sweep::run(scene, frame, truth, backend, Some(&mut renderer), &[Quality::default()], &mut |_| {})?[0];
     let violations = budget.violations(&point.error);
     let verdict = if violations.is_empty() {
-        "within budget on the figures an image holds".to_string()
+        "within budget".to_string()
     } else {
         format!("not within budget: {}", violations.join("; "))
     };

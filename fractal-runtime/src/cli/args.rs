@@ -229,7 +229,7 @@ pub struct AccuracyArgs {
     /// Image size, WIDTHxHEIGHT
     #[arg(long, value_name = "WxH", default_value = "192x108", value_parser = parse_size)]
     pub size: (u32, u32),
-    /// Backend the settings are rendered on: cpu gives every figure, wgpu and opencl what an image holds
+    /// Backend the settings are rendered on: cpu gives every figure, wgpu and opencl all but the evaluation count
     #[arg(long, value_name = "cpu|wgpu|opencl", default_value = "cpu", value_parser = parse_backend)]
     pub backend: BackendChoice,
     /// OpenCL: build without -cl-fast-relaxed-math

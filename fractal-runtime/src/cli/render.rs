@@ -8,13 +8,11 @@ use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
-use crate::backend::cpu::trace_scene;
 use crate::camera::Pose;
 use crate::cli::args::{RenderArgs, RenderOptions};
 use crate::cli::error::CliError;
 use crate::cli::scene::LoadedScene;
 use crate::cli::SceneLibrary;
-use crate::device::Backend;
 use crate::error::RenderError;
 use crate::frame::{Frame, ParamValues};
 use crate::image::Image;
@@ -22,7 +20,7 @@ use crate::output::aov::write_aov;
 use crate::output::png::{prepare_output, write_png};
 use crate::output::sequence::{plan, FramePattern, Shard};
 use crate::output::video::{Container, VideoWriter};
-use crate::renderer::{RenderJob, Renderer};
+use crate::renderer::{KernelSources, RenderJob, Renderer, Traced};
 use crate::select::{select, BackendChoice, RendererOptions};
 
 /// What `-o` and `--frames` ask for.
@@ -141,16 +139,31 @@ fn check_frames(args: &RenderArgs, loaded: &LoadedScene, params: &ParamValues) -
     Ok(())
 }
 
-/// The `--aov` images beside the PNG at `png`, from the CPU renderer's per-pixel traces of the same frame.
-fn write_aovs(args: &RenderArgs, loaded: &LoadedScene, params: &ParamValues, png: &Path) -> Result<(), CliError> {
-    if args.aov.is_empty() {
-        return Ok(());
+/// One frame at `time` and every pixel's march, from the trace kernels (the render kernels that also keep depth,
+/// normal and steps), so the `--aov` images are of the march that drew the image.
+fn trace_frame(
+    renderer: &mut dyn Renderer,
+    loaded: &LoadedScene,
+    params: &ParamValues,
+    time: f64,
+    size: (u32, u32),
+) -> Result<Traced, CliError> {
+    let frame = frame_at(loaded, params, time, size)?;
+    let tracing = loaded.tracing()?;
+    let sources = KernelSources::compiled(&tracing).with_cpu(loaded.evaluator(), &loaded.scene);
+    let traced = renderer.trace(&RenderJob::new(sources, &frame));
+    for n in renderer.take_notes() {
+        note(&n);
     }
-    let frame = frame_at(loaded, params, args.time, args.render.size)?;
-    let traces = trace_scene::<f32, _>(loaded.evaluator(), &loaded.scene, &frame)?;
+    Ok(traced?)
+}
+
+/// The `--aov` images of `traced` beside the PNG at `png`.
+fn write_aovs(args: &RenderArgs, traced: &Traced, png: &Path) -> Result<(), CliError> {
+    let (width, height) = (traced.image.width, traced.image.height);
     for &aov in &args.aov {
         let path = aov.path_beside(png);
-        write_aov(&path, aov, frame.width(), frame.height(), &traces)?;
+        write_aov(&path, aov, width, height, &traced.pixels)?;
         eprintln!("wrote {} ({})", path.display(), aov.name());
     }
     Ok(())
@@ -176,11 +189,6 @@ pub fn render(args: &RenderArgs, library: &SceneLibrary) -> Result<(), CliError>
     let mut loaded = LoadedScene::load(&args.scene, library)?;
     args.camera.apply(&mut loaded.scene.camera);
     let params = loaded.params(&args.render.params)?;
-    if !args.aov.is_empty() && !matches!(args.render.device.backend, BackendChoice::Only(Backend::Cpu)) {
-        return Err(CliError::usage(
-            "--aov is computed by the CPU renderer, whose depth, normals and steps match its image: add --backend cpu",
-        ));
-    }
     let size = args.render.size;
     check_frames(args, &loaded, &params)?;
     match decide_output(args, &loaded.name)? {
@@ -188,11 +196,19 @@ pub fn render(args: &RenderArgs, library: &SceneLibrary) -> Result<(), CliError>
             prepare_output(&path)?;
             let mut renderer = open_renderer(&args.render)?;
             let start = Instant::now();
-            let image = render_frame(renderer.as_mut(), &loaded, &params, args.time, size)?;
+            let traced = if args.aov.is_empty() {
+                None
+            } else {
+                Some(trace_frame(renderer.as_mut(), &loaded, &params, args.time, size)?)
+            };
+            let image = match &traced {
+                Some(traced) => traced.image.clone(),
+                None => render_frame(renderer.as_mut(), &loaded, &params, args.time, size)?,
+            };
             let elapsed = start.elapsed().as_secs_f64();
             write_png(&path, &image)?;
             eprintln!("wrote {} ({}x{}, t = {}, {elapsed:.2} s)", path.display(), size.0, size.1, args.time);
-            write_aovs(args, &loaded, &params, &path)
+            traced.map_or(Ok(()), |traced| write_aovs(args, &traced, &path))
         }
         Output::Sequence(pattern) => render_sequence(args, &loaded, &params, &pattern),
         Output::Video(path) => render_video(args, &loaded, &params, &path),

@@ -14,7 +14,7 @@ use fractal_dsl::Scene;
 
 use crate::cli::error::CliError;
 use crate::cli::SceneLibrary;
-use crate::error::FrameError;
+use crate::error::{FrameError, RenderError};
 use crate::export::{export, export_compiled, ExportError, Exported, Target};
 use crate::frame::ParamValues;
 use crate::renderer::KernelSources;
@@ -83,6 +83,15 @@ impl<'a> LoadedScene<'a> {
                 .with_opencl(compiled.opencl())
                 .with_cpu(self.evaluator(), &self.scene),
             Forms::File { kernels, .. } => KernelSources::compiled(kernels).with_cpu(self.evaluator(), &self.scene),
+        }
+    }
+
+    /// The scene's trace kernels ([`Kernels::tracing`]), which a render with depth and normal images runs: a
+    /// built-in's are compiled here, as only those renders need them.
+    pub fn tracing(&self) -> Result<Kernels, CliError> {
+        match &self.forms {
+            Forms::BuiltIn { .. } => Ok(fractal_dsl::compile(&self.scene).map_err(RenderError::from)?.tracing()),
+            Forms::File { kernels, .. } => Ok(kernels.tracing()),
         }
     }
 

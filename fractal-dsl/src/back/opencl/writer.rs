@@ -95,8 +95,13 @@ impl KernelDialect for OpenCl {
         out.push_str("} Frame;\n\n");
         out.push_str(&self.sample_struct());
     }
-    fn render_open(&self, out: &mut String) -> [&'static str; 2] {
-        out.push_str("__kernel void render(__global uint* out, __constant const Frame* frame) {\n");
+    fn render_open(&self, out: &mut String, entry: Entry) -> [&'static str; 2] {
+        let traces = if entry == Entry::Trace { ", __global float4* traces" } else { "" };
+        let _ = writeln!(
+            out,
+            "__kernel void {}(__global uint* out, __constant const Frame* frame{traces}) {{",
+            entry.name()
+        );
         for (axis, name) in ["x", "y"].into_iter().enumerate() {
             let _ = writeln!(out, "{}const int {name} = (int)get_global_id({axis});", Level(1));
         }

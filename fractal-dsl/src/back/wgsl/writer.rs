@@ -125,6 +125,11 @@ impl KernelDialect for Wgsl {
                 out.push_str("@group(0) @binding(0) var<storage, read_write> out_px: array<u32>;\n");
                 out.push_str("@group(0) @binding(1) var<uniform> frame: Frame;\n\n");
             }
+            Entry::Trace => {
+                out.push_str("@group(0) @binding(0) var<storage, read_write> out_px: array<u32>;\n");
+                out.push_str("@group(0) @binding(1) var<uniform> frame: Frame;\n");
+                out.push_str("@group(0) @binding(2) var<storage, read_write> traces: array<vec4<f32>>;\n\n");
+            }
             Entry::Probe => {
                 out.push_str("@group(0) @binding(0) var<storage, read_write> probe_out: array<vec4<f32>>;\n");
                 out.push_str("@group(0) @binding(1) var<uniform> frame: Frame;\n");
@@ -132,9 +137,9 @@ impl KernelDialect for Wgsl {
             }
         }
     }
-    fn render_open(&self, out: &mut String) -> [&'static str; 2] {
+    fn render_open(&self, out: &mut String, entry: Entry) -> [&'static str; 2] {
         out.push_str("@compute @workgroup_size(8, 8, 1)\n");
-        out.push_str("fn render(@builtin(global_invocation_id) gid: vec3<u32>) {\n");
+        let _ = writeln!(out, "fn {}(@builtin(global_invocation_id) gid: vec3<u32>) {{", entry.name());
         ["gid.x", "gid.y"]
     }
     fn pixel_index_type(&self) -> &'static str {
