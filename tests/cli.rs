@@ -221,6 +221,10 @@ fn bench_against_the_baseline(backend: &str) {
     {
         assert!(report.contains(word), "no `{word}` in the report:\n{report}");
     }
+    // The true error of the timed march comes from the same backend's trace kernel: depths and normals too.
+    for word in ["true error (vs ground truth", "depth error (footprints)", "normal error"] {
+        assert!(report.contains(word), "no `{word}` in the report:\n{report}");
+    }
     assert!(report.contains("device time"), "{backend} kernel times do not come from the device:\n{report}");
     let json = fs::read_to_string(dir.join("b.json")).unwrap();
     assert!(json.contains("\"kernel_ratio\":") && json.contains("\"camera\":\"static\""), "{json}");
@@ -476,9 +480,14 @@ fn bench_appends_a_csv_row_and_a_json_line() {
         let out = run_in(&dir, &args);
         assert_ok(&out);
         let report = stdout(&out);
-        for word in
-            ["median", "FPS", "precision (vs f64 interpreter", "hit/miss differs", "true error (vs ground truth"]
-        {
+        for word in [
+            "median",
+            "FPS",
+            "precision (vs f64 interpreter",
+            "hit/miss differs",
+            "true error (vs ground truth",
+            "depth error",
+        ] {
             assert!(report.contains(word), "no `{word}` in the report:\n{report}");
         }
     }

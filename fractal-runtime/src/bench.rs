@@ -23,7 +23,8 @@
 //! when it has the background colour; not available when the scene has glow, which tints misses) and the mean
 //! absolute colour difference in 8-bit levels over all pixels and RGB channels. That is the *precision* (f32 rounding
 //! alone). The same image is also measured against the ground truth ([`crate::truth`], which trusts no distance
-//! estimate): the *true error* of the setting timed — hit mask and colour, what an image holds.
+//! estimate): the *true error* of the setting timed, from the same backend's trace kernel (the render kernel that
+//! also keeps each pixel's depth, normal and steps), or from the image alone where no trace kernel runs.
 
 mod baseline_cpu;
 pub mod precision;
@@ -288,6 +289,16 @@ fn open_timer(
     Err(RenderError::AllBackendsFailed(failures))
 }
 
+/// The true error of the timed march at `frame`: the same backend runs the scene's trace kernel, which keeps each
+/// pixel's depth, normal and steps beside the image.
+fn traced_error(spec: &BenchSpec, backend: Backend, frame: &Frame, truth: &Truth) -> Result<TrueError, RenderError> {
+    let mut renderer = crate::select::open(backend, &spec.options)?;
+    let tracing = fractal_dsl::compile(spec.scene)?.tracing();
+    let sources = KernelSources { cpu: spec.kernels.cpu, ..KernelSources::compiled(&tracing) };
+    let traced = renderer.trace(&RenderJob::new(sources, frame))?;
+    Ok(measure(spec.scene, truth, Observed::Traced(&traced.pixels)))
+}
+
 /// Runs the benchmark. `progress` is called after every timed frame with (frames done, elapsed seconds).
 pub fn run(spec: &BenchSpec, progress: &mut dyn FnMut(u64, f64)) -> Result<BenchReport, RenderError> {
     let motion = motion_for(spec);
@@ -336,7 +347,13 @@ pub fn run(spec: &BenchSpec, progress: &mut dyn FnMut(u64, f64)) -> Result<Bench
     let reference = precision::reference(spec.scene, &small)?;
     let accuracy = precision::compare_scene(spec.scene, &image, &reference);
     let truth = Truth::compute(spec.scene, &small, TruthSettings { step_footprints: TRUTH_STEP, iteration_factor: 1 })?;
-    let true_error = measure(spec.scene, &truth, Observed::Image(&image));
+    let true_error = match traced_error(spec, timer.device().backend, &small, &truth) {
+        Ok(error) => error,
+        Err(e) => {
+            notes.push(format!("no trace kernel ran ({e}): the true error is what the image holds"));
+            measure(spec.scene, &truth, Observed::Image(&image))
+        }
+    };
     let baseline = match baseline {
         Some(timings) => {
             let accuracy = if spec.baseline_comparable {
