@@ -1,5 +1,6 @@
 //! The one interface every renderer implements: a [`RenderJob`] (the scene's kernels plus the frame uniforms) in,
-//! an [`Image`] out, and a description of the device that drew it ([`DeviceInfo`], which lives with [`Backend`] in
+//! an [`Image`] out — or, from the scene's trace kernels, the image and each pixel's march ([`Traced`]: depth,
+//! normal, steps) — and a description of the device that drew it ([`DeviceInfo`], which lives with [`Backend`] in
 //! [`crate::device`] and is re-exported here).
 //!
 //! A job carries every form of the scene a caller has (WGSL, OpenCL C, a CPU evaluator); each renderer takes the one
@@ -143,6 +144,13 @@ pub struct Traced {
     pub image: Image,
     /// Row-major, one per pixel of the image.
     pub pixels: Vec<PixelTrace>,
+}
+
+impl Traced {
+    /// A trace kernel's image and its output words, [`PixelTrace::KERNEL_WORDS`] per pixel.
+    pub fn from_kernel(image: Image, words: &[f32]) -> Traced {
+        Traced { image, pixels: words.chunks_exact(PixelTrace::KERNEL_WORDS).map(PixelTrace::from_kernel).collect() }
+    }
 }
 
 /// A renderer: draws jobs on one device. `Send`, so a viewer can keep it on a render thread.

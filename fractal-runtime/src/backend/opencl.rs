@@ -187,9 +187,7 @@ impl OpenClRenderer {
         out.read(&mut floats).enq().map_err(device_error)?;
         Ok(floats.chunks_exact(8).map(|c| std::array::from_fn(|i| c[i])).collect())
     }
-}
 
-impl OpenClRenderer {
     /// Runs the job's `entry` kernel (`render` or `trace`) over the frame's pixels: the image, and the trace
     /// kernel's [`PixelTrace::KERNEL_WORDS`] words per pixel.
     fn run_pixels(&mut self, job: &RenderJob, entry: Entry) -> Result<(Image, Vec<f32>), RenderError> {
@@ -241,10 +239,7 @@ impl Renderer for OpenClRenderer {
 
     fn trace(&mut self, job: &RenderJob) -> Result<Traced, RenderError> {
         let (image, words) = self.run_pixels(job, Entry::Trace)?;
-        Ok(Traced {
-            image,
-            pixels: words.chunks_exact(PixelTrace::KERNEL_WORDS).map(PixelTrace::from_kernel).collect(),
-        })
+        Ok(Traced::from_kernel(image, &words))
     }
 
     fn device(&self) -> DeviceInfo {

@@ -425,10 +425,7 @@ impl Renderer for WgpuRenderer {
 
     fn trace(&mut self, job: &RenderJob) -> Result<Traced, RenderError> {
         let (image, words) = self.run_pixels(job, Entry::Trace)?;
-        Ok(Traced {
-            image,
-            pixels: words.chunks_exact(PixelTrace::KERNEL_WORDS).map(PixelTrace::from_kernel).collect(),
-        })
+        Ok(Traced::from_kernel(image, &words))
     }
 
     fn device(&self) -> DeviceInfo {
