@@ -339,7 +339,9 @@ fn report_text(args: &AccuracyArgs, backend: Backend, budget: &Budget, sections:
          `fractal-runtime/src/accuracy/metrics.rs`.\n\n\
          Normals are compared where render and truth stand on the same surface and the true surface has one normal \
          at the pixel's scale: no edge, rim, silhouette, hole or detail below the pixel within half a pixel of its \
-         centre (*normals measured*: their share of the pixels both hit).\n\n\
+         centre (*normals measured*: their share of the pixels both hit). A scene default's line on another backend \
+         times its render kernel and reads every figure but the evaluation count from its trace kernel, the render \
+         kernel that also writes each pixel's depth, normal and steps.\n\n\
          Budget: hit mismatch ≤ {:.1} %, overshoot ≤ {:.1} %, normal p99 ≤ {}° (judged over at least {} measured \
          normals: the p99 of fewer is their maximum), no ray out of steps, no NaN/Inf, interior depth p99 ≤ {} \
          footprint (cone-consistent).\n\n{sections}",
