@@ -259,3 +259,26 @@ fn gpu_traces_match_the_cpu_traces() {
         Err(e) => panic!("OpenCL is required (FRACTAL_REQUIRE_GPU_BACKENDS=1) but unavailable: {e}"),
     }
 }
+
+/// A job whose kernels have no `trace` entry (the render kernels handed to `trace`) is a clear error, not a panic.
+#[test]
+fn tracing_a_render_kernel_is_an_error() {
+    let compiled = compiled("hello_world");
+    let frame = frame_of(compiled.scene());
+    assert!(!require_gpu() || fractal::runtime::WgpuRenderer::new().is_ok(), "wgpu is required but unavailable");
+    if let Ok(mut r) = fractal::runtime::WgpuRenderer::new() {
+        let job = RenderJob::new(KernelSources::default().with_wgsl(compiled.wgsl()), &frame);
+        let e = r.trace(&job).expect_err("the render kernel has no trace entry");
+        eprintln!("wgpu: {e}");
+        assert!(matches!(e, fractal::runtime::RenderError::KernelRejected { .. }), "{e}");
+        assert!(r.render(&job).is_ok(), "the renderer still renders after the refusal");
+    }
+    #[cfg(feature = "opencl")]
+    if let Ok(mut r) = fractal::runtime::OpenClRenderer::new(false).map_err(|e| assert!(!require_gpu(), "{e}")) {
+        let job = RenderJob::new(KernelSources::default().with_opencl(compiled.opencl()), &frame);
+        let e = r.trace(&job).expect_err("the render kernel has no trace entry");
+        eprintln!("opencl: {e}");
+        assert!(matches!(e, fractal::runtime::RenderError::KernelRejected { .. }), "{e}");
+        assert!(r.render(&job).is_ok(), "the renderer still renders after the refusal");
+    }
+}
