@@ -204,7 +204,7 @@ impl OpenClRenderer {
             .transpose()
             .map_err(|e| RenderError::TooLarge {
                 backend: Backend::OpenCl,
-                what: format!("the traces of a {width}x{height} image"),
+                what: format!("the trace buffer of a {width}x{height} image"),
                 detail: brief(&e),
             })?;
         let mut builder = Kernel::builder();

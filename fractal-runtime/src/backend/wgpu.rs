@@ -367,7 +367,11 @@ impl WgpuRenderer {
         if bytes.max(trace_bytes) > max_bytes || groups.0 > max_groups || groups.1 > max_groups {
             return Err(RenderError::TooLarge {
                 backend: Backend::Wgpu,
-                what: format!("a {width}x{height} image"),
+                what: if trace_bytes > max_bytes {
+                    format!("the trace buffer of a {width}x{height} image ({trace_bytes} bytes)")
+                } else {
+                    format!("a {width}x{height} image")
+                },
                 detail: format!("storage buffers up to {max_bytes} bytes, {max_groups} workgroups per dimension"),
             });
         }
