@@ -118,7 +118,7 @@ impl CompiledScene {
     }
 
     /// Distances at many points by the native evaluator, eight at a time on the calling thread, at time 0 with the
-    /// parameters at their defaults: `out[i]` is the distance at (x[i], y[i], z[i]), the same as
+    /// parameters at their defaults: `out[i]` is the distance at `(x[i], y[i], z[i])`, the same as
     /// [`CompiledScene::distance`] gives. Panics if the four slices' lengths differ.
     pub fn distance_slice(&self, x: &[f32], y: &[f32], z: &[f32], out: &mut [f32]) {
         self.native.distance_slice(0.0, self.defaults.f32, x, y, z, out)

@@ -81,11 +81,11 @@ impl Interval {
     pub fn max(self, o: Interval) -> Interval {
         Interval::new(self.lo.max(o.lo), self.hi.max(o.hi))
     }
-    /// `max(x, lo).min(hi)`, as [`Func::Clamp`] evaluates.
+    /// `max(x, lo).min(hi)`, as [`crate::ir::Func::Clamp`] evaluates.
     pub fn clamp(self, lo: Interval, hi: Interval) -> Interval {
         self.max(lo).min(hi)
     }
-    /// `a + (b − a)·t`, as [`Func::Mix`] evaluates.
+    /// `a + (b − a)·t`, as [`crate::ir::Func::Mix`] evaluates.
     pub fn mix(self, b: Interval, t: Interval) -> Interval {
         self + (b - self) * t
     }

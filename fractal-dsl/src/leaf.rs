@@ -1,5 +1,5 @@
 //! What a table of leaf functions is made of: argument and result kinds, argument and result values, and the
-//! [`leaves!`] macro that writes the table — the `Leaf` enum with each function's name, typed parameters and result,
+//! `leaves!` macro that writes the table — the `Leaf` enum with each function's name, typed parameters and result,
 //! and one dispatcher that calls it in any [`Num`]. The table itself stands in `sdf.rs`, beside the functions.
 
 use crate::math::V3;

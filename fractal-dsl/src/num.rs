@@ -8,7 +8,7 @@
 //! - a loop with an early exit is [`Num::iterate`]: a fixed count and a mask of lanes still running;
 //! - work worth skipping when no lane needs it (a union child behind its bound) is [`Num::when`].
 //!
-//! How a leaf function is called (directly, or as a named kernel function) is [`crate::leaf::CallLeaf`].
+//! How a leaf function is called (directly, or as a named kernel function) is [`crate::sdf::CallLeaf`].
 //!
 //! The math is spelled as free functions (`sqrt(x)`, `max(a, b)`, `lt(a, b)`) so formulas read like the kernels they
 //! become, and so `f32`'s own methods (and `num_traits::Float`'s) never clash with the trait's.

@@ -275,7 +275,7 @@ pub fn de_mandelbulb<F: Num>(p: V3<F>, power: F, iterations: F::Count, bailout: 
     mandelbulb_trigonometric::<F, false>(p, power, iterations, bailout)
 }
 
-/// [`de_mandelbulb`] with the derivative taking the map's azimuthal stretch ([`bulb_power`]), as the Juliabulb's
+/// [`de_mandelbulb`] with the derivative taking the map's azimuthal stretch (`bulb_power`), as the Juliabulb's
 /// does: the estimate of the low powers. Below power 4 the plain derivative over-reaches near the coordinate axes
 /// (largest estimate / true distance 66 at power 2, 21 at power 3) and was stepped at the factor 0.35 everywhere.
 /// The stretched estimate is smaller wherever the azimuth stretches more than the radius and steps at the factor 1:
@@ -505,7 +505,7 @@ fn mandelbox_step<F: Num>(z: V3<F>, p: V3<F>, scale: F, min_r2: F, fold_limit: F
 
 /// Juliabulb: the Mandelbulb's map of `power` with the constant c = (cx, cy, cz) in place of the point, z ← z^power + c
 /// from z = p. The derivative has no + 1: c does not move with p, and takes the map's azimuthal stretch
-/// ([`bulb_power`]).
+/// (`bulb_power`).
 #[inline(always)]
 pub fn de_juliabulb<F: Num>(p: V3<F>, cx: F, cy: F, cz: F, power: F, iterations: F::Count, bailout: F) -> [F; 2] {
     // An orbit through 0 (p = 0 itself) has dr = 0 from then on; the floor keeps the estimate finite.

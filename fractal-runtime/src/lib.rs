@@ -3,7 +3,7 @@
 //! - [`frame`]: the uniforms every kernel reads (camera, time, lights, parameters), packed on the host.
 //! - [`camera`]: poses from a scene's camera, fixed or keyed path (Catmull-Rom / linear positions, slerped views).
 //! - [`Renderer`]: one interface, three implementations — [`WgpuRenderer`] (WGSL compute), `OpenClRenderer`
-//!   (OpenCL C, cargo feature `opencl`) and [`CpuRenderer`] (a scene evaluator on rayon) — plus [`select`], which
+//!   (OpenCL C, cargo feature `opencl`) and [`CpuRenderer`] (a scene evaluator on rayon) — plus [`select()`], which
 //!   picks one or chains them (`auto`).
 //! - probes ([`WgpuRenderer::probe`], `OpenClRenderer::probe`): a kernel's distance and material at points, for
 //!   agreement tests.

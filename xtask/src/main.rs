@@ -89,6 +89,10 @@ fn test(extra: &[String]) {
         "-D",
         "warnings",
     ]));
+    // Broken intra-doc links are errors: the docs name the code they describe.
+    run(Command::new("cargo")
+        .args(["doc", "--no-deps", "--workspace", "--features", "opencl"])
+        .env("RUSTDOCFLAGS", "-D warnings"));
     // The GPU-language tests fail rather than skip when their runtime is missing: this command asked for them.
     let mut tests = Command::new("cargo");
     tests.args(["test", "--workspace", "--features", "opencl", "--no-fail-fast"]).args(extra);

@@ -126,7 +126,7 @@ pub trait Dialect {
     fn global_constant(&self, name: &str, ty: &str, value: &str) -> String;
 }
 
-/// What a language's compute kernels spell their own way ([`write`]): resources, entry points and pixel output.
+/// What a language's compute kernels spell their own way ([`write()`]): resources, entry points and pixel output.
 pub trait KernelDialect: Dialect {
     /// Type definitions and resource bindings, written before the helpers.
     fn declarations(&self, out: &mut String, layout: FrameLayout, entry: Entry);

@@ -57,7 +57,7 @@ impl Interpreter {
     }
 
     /// Distances at many points, eight at a time ([`crate::eval::packet`]): `out[i]` is the distance at
-    /// (x[i], y[i], z[i]) at `time` with parameter values `params` (slot order). Panics if the lengths differ.
+    /// `(x[i], y[i], z[i])` at `time` with parameter values `params` (slot order). Panics if the lengths differ.
     pub fn distance_slice(&self, time: f32, params: &[f32], x: &[f32], y: &[f32], z: &[f32], out: &mut [f32]) {
         let walk = self.walk();
         crate::eval::packet::distance_slice(|p, env| walk.distance(p, env), time, params, x, y, z, out)

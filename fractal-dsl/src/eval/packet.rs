@@ -38,7 +38,7 @@ pub fn splat_params(params: &[f32]) -> Vec<F32x8> {
     params.iter().map(|&v| F32x8::splat(v)).collect()
 }
 
-/// `out[i]` = `distance` at (x[i], y[i], z[i]) at `time` with `params`. Panics if the lengths differ.
+/// `out[i]` = `distance` at `(x[i], y[i], z[i])` at `time` with `params`. Panics if the lengths differ.
 #[allow(clippy::too_many_arguments)]
 pub fn distance_slice(
     distance: impl Fn(V3<F32x8>, &Env<F32x8>) -> F32x8,
@@ -55,7 +55,7 @@ pub fn distance_slice(
     each_packet(|p| distance(p, &env), x, y, z, out);
 }
 
-/// `out[i]` = `distance` at (x[i], y[i], z[i]), eight points at a time, for slices of one length. Inlined into its
+/// `out[i]` = `distance` at `(x[i], y[i], z[i])`, eight points at a time, for slices of one length. Inlined into its
 /// caller, so the native evaluator compiles the whole loop into its AVX2 copy (no call per packet).
 #[inline(always)]
 pub fn each_packet(distance: impl Fn(V3<F32x8>) -> F32x8, x: &[f32], y: &[f32], z: &[f32], out: &mut [f32]) {
@@ -73,7 +73,7 @@ pub fn each_packet(distance: impl Fn(V3<F32x8>) -> F32x8, x: &[f32], y: &[f32], 
     }
 }
 
-/// `out[i]` = `sample` (distance and material) at (x[i], y[i], z[i]) at `time` with `params`. Panics if the lengths
+/// `out[i]` = `sample` (distance and material) at `(x[i], y[i], z[i])` at `time` with `params`. Panics if the lengths
 /// differ.
 #[allow(clippy::too_many_arguments)]
 pub fn sample_slice(

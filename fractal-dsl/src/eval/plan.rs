@@ -1,6 +1,6 @@
 //! The plan: a scene folded and prepared for evaluation, with everything that does not depend on the point settled
 //! ahead — union order and guard boxes, parameter slots, which leaf function each primitive and fractal calls,
-//! rotation constants. The walker ([`super::walk`]) runs a plan in any [`Num`]: the interpreter runs it in f32 and
+//! rotation constants. The walker ([`super::walk`]) runs a plan in any [`crate::num::Num`]: the interpreter runs it in f32 and
 //! f64, the lowering traces it into kernel code.
 
 use crate::analyse::{fold, guarded_bound, union_order};
@@ -25,7 +25,7 @@ pub enum Term {
     Bin(BinOp, Box<Term>, Box<Term>),
     Call(Func, Box<[Term]>),
     /// `mandelbrot(a, b, iterations)` of two point coordinates, in a world-coordinate material: computed by
-    /// perturbation around the environment's reference ([`crate::analyse::reference`]).
+    /// perturbation around the environment's reference ([`mod@crate::analyse::reference`]).
     PerturbedMandelbrot {
         axes: [u8; 2],
         iterations: u32,

@@ -1,6 +1,6 @@
 //! The lowered form every writer spells: typed SSA values in statement blocks with a little control flow (`if`,
 //! counted loops with an early exit), built with constant folding, algebraic identities and common-subexpression
-//! reuse so the kernels carry only work that matters. The tracer ([`super::trace`]) records into a [`Builder`].
+//! reuse so the kernels carry only work that matters. The tracer ([`mod@super::trace`]) records into a [`Builder`].
 
 use std::collections::HashMap;
 

@@ -5,7 +5,7 @@
 //!
 //! Nothing here restates a formula: the scene functions are the scene walker ([`crate::eval::walk`], the code the
 //! interpreter runs) traced on symbolic values, and each leaf function is its [`crate::sdf`] body traced once
-//! ([`trace`]).
+//! ([`mod@trace`]).
 
 pub mod code;
 pub mod trace;

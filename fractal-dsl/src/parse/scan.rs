@@ -9,7 +9,7 @@ use proc_macro2::{Delimiter, Spacing, Span, TokenStream, TokenTree};
 pub const MAX_TOKENS: usize = 500_000;
 /// Deepest parentheses may nest.
 pub const MAX_PAREN_NESTING: usize = 160;
-/// Bound on the nesting a scene can make syn build: a parenthesis counts [`PAREN_COST`], an operator 1.
+/// Bound on the nesting a scene can make syn build: a parenthesis counts `PAREN_COST`, an operator 1.
 pub const MAX_NESTING_COST: usize = 2048;
 const PAREN_COST: usize = 8;
 /// Most operators in a row (`a * -b` has two): longer runs of signs only serve to nest.

@@ -1,7 +1,7 @@
 //! Triangle meshes of a scene's surface (`fractal mesh`), for 3D printing, DCC tools and engines: the surface is
 //! extracted by surface nets ([`surface_nets`]) from the scene's distance function, streamed through the grid a
 //! layer at a time so memory holds two layers of samples and the mesh itself, and written as binary glTF, PLY, STL or
-//! OBJ ([`write`]).
+//! OBJ ([`mod@write`]).
 //!
 //! A fractal's estimate need not change sign at its surface, so scenes with one are meshed at a small positive level
 //! ([`default_level`]), the surface a sphere tracer's hit epsilon sees.

@@ -1,7 +1,7 @@
 //! Offline output of rendered images: PNG files written atomically ([`png`]), numbered frame sequences that resume
 //! after an interruption and split into shards across machines ([`sequence`]), video through ffmpeg ([`video`]),
 //! per-pixel depth, normals and steps as OpenEXR beside an image ([`aov`]), the gallery's contact sheet
-//! ([`contact_sheet`]), and a scene's camera as a glTF 2.0 animation for other tools ([`gltf_camera`]).
+//! ([`mod@contact_sheet`]), and a scene's camera as a glTF 2.0 animation for other tools ([`gltf_camera`]).
 
 pub mod aov;
 pub mod contact_sheet;

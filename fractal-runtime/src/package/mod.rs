@@ -5,8 +5,8 @@
 //! ([`fractal_dsl::back::kernel::write_library`]): `sdf(p)`, `sdf_normal(p)`, `sdf_material(p)`, the bound as
 //! constants, and `sdf_raymarch(ro, rd, footprint)`, the viewer's march and shading. The scene's parameters and time
 //! are the engine's uniforms or properties, named `sdf_<param>` and `sdf_time`; the lights are constants, their
-//! values at t = 0. On top sits a ready material for the engine ([`bevy`], [`godot`], [`unity`], [`unreal`],
-//! [`shadertoy`]; [`plain`] has the library alone) that marches from the camera, shades like the viewer and writes
+//! values at t = 0. On top sits a ready material for the engine (`bevy`, `godot`, `unity`, `unreal`,
+//! `shadertoy`; `plain` has the library alone) that marches from the camera, shades like the viewer and writes
 //! depth, so the fractal sits among the engine's meshes.
 //!
 //! Scenes are left-handed with y up (as Unity's world). Materials for right-handed engines (Bevy, Godot) mirror z

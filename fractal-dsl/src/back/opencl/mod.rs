@@ -1,4 +1,4 @@
-//! The OpenCL C backend: [`write`] spells a lowered scene as a complete OpenCL C program.
+//! The OpenCL C backend: [`write()`] spells a lowered scene as a complete OpenCL C program.
 
 mod writer;
 

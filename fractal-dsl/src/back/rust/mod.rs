@@ -1,4 +1,4 @@
-//! The Rust backend, for the `scene!` macro: [`write`] spells a lowered scene as the native evaluator's source, and
+//! The Rust backend, for the `scene!` macro: [`write()`] spells a lowered scene as the native evaluator's source, and
 //! [`ir_tokens`] spells the IR itself (and its parameters' defaults) as Rust that constructs it.
 
 pub mod ir_tokens;

@@ -98,7 +98,7 @@ impl Syntax for RustSyntax {
     }
 }
 
-/// The names of the two functions [`write`] emits.
+/// The names of the two functions [`write()`] emits.
 pub const DISTANCE_FN: &str = "__fractal_distance";
 pub const SAMPLE_FN: &str = "__fractal_sample";
 

@@ -1,4 +1,4 @@
-//! The WGSL backend: [`write`] spells a lowered scene as a complete WGSL module, [`library`] as a function library.
+//! The WGSL backend: [`write()`] spells a lowered scene as a complete WGSL module, [`library`] as a function library.
 
 mod writer;
 
