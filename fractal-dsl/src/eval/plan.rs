@@ -1,7 +1,7 @@
 //! The plan: a scene folded and prepared for evaluation, with everything that does not depend on the point settled
 //! ahead — union order and guard boxes, parameter slots, which leaf function each primitive and fractal calls,
-//! rotation constants. The walker ([`super::walk`]) runs a plan in any [`crate::num::Num`]: the interpreter runs it in f32 and
-//! f64, the lowering traces it into kernel code.
+//! rotation constants. The walker ([`super::walk`]) runs a plan in any [`crate::num::Num`]: the interpreter runs it
+//! in f32 and f64, the lowering traces it into kernel code.
 
 use crate::analyse::{fold, guarded_bound, union_order};
 use crate::eval::Env;

@@ -2,8 +2,9 @@
 //!
 //! Bindings follow [`fractal_dsl::back::Entry`]: `render` writes packed pixels to binding 0 and reads the frame
 //! uniform at binding 1, in 8×8 workgroups; `probe` writes two vec4 per point to binding 0, reads the frame at 1 and
-//! the points at 2, in workgroups of 64; `trace` is `render` that also writes each pixel's march to binding 2. Every wgpu call that can fail runs inside error scopes, so a kernel the
-//! driver refuses, or a device that cannot allocate, is a [`RenderError`] and never a panic. Pipelines are cached
+//! the points at 2, in workgroups of 64; `trace` is `render` that also writes each pixel's march to binding 2. Every
+//! wgpu call that can fail runs inside error scopes, so a kernel the driver refuses, or a device that cannot
+//! allocate, is a [`RenderError`] and never a panic. Pipelines are cached
 //! per source text; output buffers are reused while the image size stays the same.
 
 use std::sync::{mpsc, Arc, Mutex};
@@ -131,6 +132,15 @@ impl WgpuRenderer {
         &self.info
     }
 
+    /// The bind group and pipeline layouts of `entry`.
+    fn layouts(&self, entry: Entry) -> &(wgpu::BindGroupLayout, wgpu::PipelineLayout) {
+        match entry {
+            Entry::Render => &self.render_layout,
+            Entry::Probe => &self.probe_layout,
+            Entry::Trace => &self.trace_layout,
+        }
+    }
+
     /// Compiles (or finds in the cache) the pipeline of `entry` in `source`.
     pub fn pipeline(&mut self, entry: Entry, source: &str) -> Result<wgpu::ComputePipeline, RenderError> {
         if let Some(i) = self.pipelines.iter().position(|(e, s, _)| *e == entry && s == source) {
@@ -139,11 +149,7 @@ impl WgpuRenderer {
             self.pipelines.push(hit);
             return Ok(pipeline);
         }
-        let layout = match entry {
-            Entry::Render => &self.render_layout.1,
-            Entry::Probe => &self.probe_layout.1,
-            Entry::Trace => &self.trace_layout.1,
-        };
+        let layout = &self.layouts(entry).1;
         let ((module, pipeline), error) = capture(&self.device, || {
             let module = self.device.create_shader_module(wgpu::ShaderModuleDescriptor {
                 label: Some("fractal kernel"),
@@ -209,7 +215,7 @@ impl WgpuRenderer {
             let readback = self.readback_buffer(out_bytes);
             let bind_group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("probe"),
-                layout: &self.probe_layout.0,
+                layout: &self.layouts(Entry::Probe).0,
                 entries: &[
                     wgpu::BindGroupEntry { binding: 0, resource: out.as_entire_binding() },
                     wgpu::BindGroupEntry { binding: 1, resource: uniform.as_entire_binding() },
@@ -401,10 +407,9 @@ impl WgpuRenderer {
             if let Some((buffer, _)) = &traces {
                 entries.push(wgpu::BindGroupEntry { binding: 2, resource: buffer.as_entire_binding() });
             }
-            let layout = if traces.is_some() { &self.trace_layout.0 } else { &self.render_layout.0 };
             let bind_group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some(entry.name()),
-                layout,
+                layout: &self.layouts(entry).0,
                 entries: &entries,
             });
             self.dispatch(&pipeline, &bind_group, groups);

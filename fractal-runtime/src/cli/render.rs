@@ -152,10 +152,15 @@ fn trace_frame(
     let tracing = loaded.tracing()?;
     let sources = KernelSources::compiled(&tracing).with_cpu(loaded.evaluator(), &loaded.scene);
     let traced = renderer.trace(&RenderJob::new(sources, &frame));
+    with_notes(renderer, traced)
+}
+
+/// `drawn`, after printing what the renderer noted while drawing it (a fallback to another backend).
+fn with_notes<T>(renderer: &mut dyn Renderer, drawn: Result<T, RenderError>) -> Result<T, CliError> {
     for n in renderer.take_notes() {
         note(&n);
     }
-    Ok(traced?)
+    Ok(drawn?)
 }
 
 /// The `--aov` images of `traced` beside the PNG at `png`.
@@ -179,10 +184,7 @@ pub(super) fn render_frame(
 ) -> Result<Image, CliError> {
     let frame = frame_at(loaded, params, time, (width, height))?;
     let image = renderer.render(&RenderJob::new(loaded.sources(), &frame));
-    for n in renderer.take_notes() {
-        note(&n);
-    }
-    Ok(image?)
+    with_notes(renderer, image)
 }
 
 pub fn render(args: &RenderArgs, library: &SceneLibrary) -> Result<(), CliError> {
