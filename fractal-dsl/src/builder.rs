@@ -112,6 +112,12 @@ impl Fractal {
         self.iterations = Some(n);
         self
     }
+    /// The factor on the distance estimate a march steps by, for this scene, in place of the family's measured
+    /// factor: larger is faster and may step through the surface (`fractal accuracy` measures both).
+    pub fn step_factor(mut self, k: f64) -> Fractal {
+        self.step_factor = Some(k);
+        self
+    }
     /// Escape-time families: the escape radius.
     pub fn bailout(self, b: impl Into<Expr>) -> Fractal {
         self.with(Setting::Bailout, b)

@@ -80,7 +80,7 @@ pub mod families {
     /// the set the estimate is not a distance, so union guards over them are not exact (they stay safe: the box holds
     /// the surface).
     fn escape_time_bound(f: &Fractal, radius: Option<f64>, outside: f64) -> Option<PrimBound> {
-        radius.map(|r| PrimBound { aabb: Aabb::cube(r), reach: outside * f.step_factor() })
+        radius.map(|r| PrimBound { aabb: Aabb::cube(r), reach: outside * f.step_factor_or_default() })
     }
 
     /// The plain escape-time estimate outside its box, in distances to the box (measured at no less than 0.67).
@@ -158,7 +158,7 @@ pub mod families {
         step_factor: |_| 1.0,
         // The folds keep points in the tetrahedron's symmetry; far away the estimate is a plane distance, measured at
         // no less than 0.334 × the distance to the cube along the diagonals.
-        bound: |f| Some(PrimBound { aabb: Aabb::cube(1.0), reach: 0.32 * f.step_factor() }),
+        bound: |f| Some(PrimBound { aabb: Aabb::cube(1.0), reach: 0.32 * f.step_factor_or_default() }),
         membership: Membership { leaves: &[(Leaf::DeSierpinski, Leaf::InSierpinski)], approaches_limit: false },
     };
 
@@ -210,7 +210,7 @@ pub mod families {
             let e = mandelbox_half_extent(scale, fold)?;
             // Measured far-field ratio of estimate to box distance: (s − 1)/(s + 1) for s > 1, 1 for s < −1.
             let ratio = if scale.lo > 1.0 { (scale.lo - 1.0) / (scale.lo + 1.0) } else { 1.0 };
-            Some(PrimBound { aabb: Aabb::cube(e), reach: 0.95 * ratio * f.step_factor() })
+            Some(PrimBound { aabb: Aabb::cube(e), reach: 0.95 * ratio * f.step_factor_or_default() })
         },
         membership: Membership { leaves: &[(Leaf::DeMandelbox, Leaf::InMandelbox)], approaches_limit: true },
     };

@@ -221,6 +221,9 @@ fn fractal(f: &Fractal) -> String {
             let _ = write!(s, ".{}({})", setting.name(), expr(v));
         }
     }
+    if let Some(k) = f.step_factor {
+        let _ = write!(s, ".step_factor({})", lit(k));
+    }
     s
 }
 

@@ -15,7 +15,7 @@ use crate::analyse::fold::fold_expr;
 use crate::analyse::interval::{range, Interval};
 use crate::fractals::families::FRACTALS;
 use crate::ir::arg::{ArgDecl, ArgShape, Rule};
-use crate::ir::fractal::{FractalArg, FractalArgShape, FractalArgValue, FractalRule, Setting};
+use crate::ir::fractal::{FractalArg, FractalArgShape, FractalArgValue, FractalRule, Setting, STEP_FACTOR_RANGE};
 use crate::ir::op::{Meaning, Operands};
 use crate::ir::*;
 
@@ -623,6 +623,10 @@ pub fn check_fractal(f: &Fractal) -> Vec<Problem> {
         (FractalRule::AbsBetween(lo, hi), FractalArgValue::Num(e)) => abs_between(o, name, arg, e, lo, hi),
         (FractalRule::Finite, _) => finite(o, arg.name, arg.what, &f.arg_exprs().iter().collect::<Vec<_>>()),
         _ => {}
+    }
+    if let Some(k) = f.step_factor {
+        let (lo, hi) = STEP_FACTOR_RANGE;
+        constant(o, "factor", &format!("{name} step_factor"), k, within(lo, false, hi, true));
     }
     if let Some(n) = f.iterations {
         let it = decl.iterations;

@@ -193,9 +193,11 @@ fn fractal_leaves_call_the_leaf_functions_times_the_step_factor() {
         (sierpinski_tetrahedron(5), sdf::de_sierpinski(p, 5)[0]),
         (julia([-0.2, 0.6, 0.2, 0.0]), sdf::de_julia(p, -0.2, 0.6, 0.2, 0.0, 11, 4.0)[0]),
         (mandelbox(-1.5).min_radius(0.4).fold_limit(1.2), sdf::de_mandelbox(p, -1.5, 12, 0.4, 1.2)[0]),
+        // A scene's own factor replaces the family's.
+        (mandelbulb(8).step_factor(1.0), sdf::de_mandelbulb8(p, 8, 2.0)[0]),
     ];
     for (f, raw) in cases {
-        let step = f.step_factor() as f32;
+        let step = f.step_factor.unwrap_or_else(|| f.family_step_factor()) as f32;
         let i = Interpreter::new(&scene(f.clone())).unwrap();
         assert_eq!(i.distance_in(p, &env), raw * step, "{f:?}");
     }

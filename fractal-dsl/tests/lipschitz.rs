@@ -198,7 +198,7 @@ fn julia_escapes(p: [f64; 3], c: [f64; 4], iterations: u32, bailout: f64) -> boo
 /// largest ratio grow without limit as the sample count grows (measured: 49 at 1e-4 for the default Mandelbulb);
 /// at the step scale it settles.
 fn measured_ratio(fractal: Fractal, half: f64, exterior: &dyn Fn([f64; 3]) -> bool, pairs: usize, seed: u64) -> f64 {
-    let step = fractal.step_factor();
+    let step = fractal.step_factor_or_default();
     let interp = Interpreter::new(&scene(fractal)).unwrap();
     let mut rng = Rng(seed);
     let h = 0.01 * half;
@@ -239,7 +239,7 @@ fn variant(label: String, fractal: Fractal, half: f64, exterior: impl Fn([f64; 3
 }
 
 fn check_family(name: &str, variants: Vec<Variant>) {
-    let step = variants[0].fractal.step_factor();
+    let step = variants[0].fractal.step_factor_or_default();
     let mut worst = 0.0f64;
     for (i, Variant { label, fractal, half, exterior }) in variants.into_iter().enumerate() {
         let scaled = measured_ratio(fractal, half, &*exterior, 200_000, 0x5eed + i as u64);
@@ -286,7 +286,10 @@ fn mandelbulb_step_factor_keeps_the_estimate_within_the_lipschitz_bound() {
             50_000,
             7,
         );
-        eprintln!("mandelbulb power {power}: raw ratio {:.3} (not asserted)", ratio / mandelbulb(8).step_factor());
+        eprintln!(
+            "mandelbulb power {power}: raw ratio {:.3} (not asserted)",
+            ratio / mandelbulb(8).step_factor_or_default()
+        );
     }
 }
 
@@ -317,7 +320,7 @@ fn juliabulb_lipschitz_ratios_are_recorded() {
         [([0.45, 0.5, -0.15], 10), ([0.4, 0.5, -0.1], 8), ([-0.6, 0.2, 0.3], 6)].into_iter().enumerate()
     {
         let fractal = juliabulb(c).iterations(iterations);
-        let factor = fractal.step_factor();
+        let factor = fractal.step_factor_or_default();
         let scaled =
             measured_ratio(fractal, 1.4, &move |p| juliabulb_escapes(p, c, iterations), 50_000, 0x5eed + i as u64);
         eprintln!(
@@ -335,7 +338,7 @@ fn juliabulb_lipschitz_ratios_are_recorded() {
             50_000,
             7,
         );
-        let raw = ratio / juliabulb([0.45, 0.5, -0.15]).power(power).step_factor();
+        let raw = ratio / juliabulb([0.45, 0.5, -0.15]).power(power).step_factor_or_default();
         eprintln!("juliabulb power {power}: raw ratio {raw:.3} (not asserted)");
     }
 }
@@ -368,7 +371,7 @@ fn menger_sierpinski_and_kifs_estimators_are_1_lipschitz() {
         ("octahedral kifs 3, angle 0.4", octahedral_kifs(3.0).angle(0.4)),
         ("icosahedral kifs 2.618, angle 0.2", icosahedral_kifs(2.618).angle(0.2).iterations(8)),
     ] {
-        assert_eq!(fractal.step_factor(), 1.0);
+        assert_eq!(fractal.step_factor_or_default(), 1.0);
         let interp = Interpreter::new(&scene(fractal)).unwrap();
         let mut rng = Rng(42);
         let mut worst = 0.0f64;

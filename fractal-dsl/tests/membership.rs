@@ -147,7 +147,7 @@ fn membership_stays_in_the_bound_and_outside_where_the_estimate_is_far() {
                 apart.push((p, value(&f, p)));
             }
             // The estimate times the step factor is a lower bound on the distance to the surface.
-            if estimate(&f, p) * f.step_factor() > 0.05 * (hi[0] - lo[0]) {
+            if estimate(&f, p) * f.step_factor_or_default() > 0.05 * (hi[0] - lo[0]) {
                 far += 1;
                 assert!(!member, "{}: {p:?} is inside the set where the estimate is {}", f.name(), estimate(&f, p));
             }

@@ -94,6 +94,7 @@ fn cases() -> Vec<(&'static str, Scene)> {
         // fractals
         ("mandelbulb(8)", scene(mandelbulb(8))),
         ("mandelbulb(8.0).iterations(12).bailout(4.0)", scene(mandelbulb(8.0).iterations(12).bailout(4.0))),
+        ("mandelbulb(8).step_factor(1.0)", scene(mandelbulb(8).step_factor(1.0))),
         ("menger(3)", scene(menger(3))),
         ("sierpinski_tetrahedron(10)", scene(sierpinski_tetrahedron(10))),
         (
@@ -528,6 +529,7 @@ fn validation_errors_point_at_the_argument() {
         ("sphere(1.0).polar_repeat(2.5)", "1:26: polar_repeat count must be a whole number from 1 to 1000"),
         ("sphere(1.0).abs_fold(vec3(1, 2, 0))", "1:22: abs_fold axes y must be <= 1, found 2"),
         ("julia(vec4(0, 0, 0, 0)).bailout(-1.0)", "1:33: julia bailout must be > 0, found -1"),
+        ("menger(3).step_factor(0.0)", "1:23: menger step_factor must be in (0, 4], found 0"),
         ("torus(1.0, 0.0)", "1:12: torus minor radius must be > 0, found 0"),
         ("torus(-1.0, 0.5)", "1:7: torus major radius must be >= 0, found -1"),
         ("box3(vec3(1, -1, 1))", "1:6: box3 half extent y must be > 0, found -1"),

@@ -313,7 +313,13 @@ fn with(
 }
 
 fn shape() -> impl Strategy<Value = Node> {
-    let leaf = prop_oneof![3 => primitive(), 1 => fractal().prop_map(Node::from)];
+    let stepped = (fractal(), prop::option::of(0.1..2.0f64)).prop_map(|(f, k)| {
+        Node::from(match k {
+            Some(k) => f.step_factor(k),
+            None => f,
+        })
+    });
+    let leaf = prop_oneof![3 => primitive(), 1 => stepped];
     leaf.prop_recursive(5, 48, 4, |inner| {
         prop_oneof![
             6 => operator(inner.clone().boxed()),

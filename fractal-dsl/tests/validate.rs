@@ -109,6 +109,7 @@ fn rules_of_every_kind() {
         (scene(ellipsoid(vec3(1.0, 0.0, 1.0))), "ellipsoid: ellipsoid radius y must be > 0, found 0"),
         (scene(mandelbulb(65.0)), "mandelbulb: mandelbulb power must be <= 64, found 65"),
         (scene(mandelbulb(8).bailout(0.0)), "mandelbulb: mandelbulb bailout must be > 0, found 0"),
+        (scene(mandelbulb(8).step_factor(4.5)), "mandelbulb: mandelbulb step_factor must be in (0, 4], found 4.5"),
         (scene(menger(0)), "menger: menger levels must be in 1..=8, found 0"),
         (scene(menger(9)), "menger: menger levels must be in 1..=8, found 9"),
         (

@@ -566,7 +566,7 @@ mod tests {
     }
 
     #[test]
-    fn too_few_steps_are_reported_as_error_and_the_defaults_are_not() {
+    fn too_few_steps_a_blunt_epsilon_and_a_reckless_step_factor_are_reported_and_the_defaults_are_not() {
         let bulb = scene(mandelbulb(8).iterations(6)).camera(camera([1.2, 1.0, -2.2], [0.0; 3]));
         let f = frame(&bulb, 48, 27);
         let settings = TruthSettings { step_footprints: 1.0 / 32.0, iteration_factor: 1 };
@@ -587,6 +587,13 @@ mod tests {
         let blunt = error(&bulb.clone().epsilon(0.1));
         assert!(blunt.traced.unwrap().depth_thin.median > 3.0 * good_traced.depth_thin.median.max(0.1));
         assert!(blunt.false_hits > good.false_hits);
+        // A scene's step factor past what the estimate allows steps through the surface, where the family's has no
+        // overshoot.
+        let reckless = error(&scene(mandelbulb(8).iterations(6).step_factor(3.0)).camera(bulb.camera.clone()));
+        let reckless_traced = reckless.traced.as_ref().unwrap();
+        assert!(good_traced.overshoot == 0.0, "{}", good.describe());
+        assert!(reckless_traced.overshoot_cone > 0.01, "{}", reckless.describe());
+        assert!(reckless_traced.evaluations_per_pixel < good_traced.evaluations_per_pixel);
     }
 
     /// A displaced distance is divided by its slope bound (about 7 here), so a hit test on it alone stopped rays up

@@ -336,7 +336,7 @@ impl Compiler<'_> {
     fn node(&self, n: &Node, world: bool) -> Step {
         match n {
             Node::Prim(p) => Step::Leaf(self.prim(p)),
-            Node::Fractal(f) => Step::Fractal { call: self.fractal(f), step: f.step_factor() },
+            Node::Fractal(f) => Step::Fractal { call: self.fractal(f), step: f.step_factor_or_default() },
             Node::Op(op) if op.shapes.is_empty() => Step::Empty,
             Node::Op(op) => {
                 let meaning = op.decl().meaning;

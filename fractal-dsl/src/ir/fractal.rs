@@ -143,14 +143,20 @@ pub struct Fractal {
     pub iterations: Option<u32>,
     /// The chained settings by [`Setting::index`]; `None` for the family's default (or a setting it lacks).
     pub settings: [Option<Expr>; Setting::COUNT],
+    /// The factor on the estimate chosen for this scene (`.step_factor(k)`), in place of the family's measured one:
+    /// a constant, as the bound's reach and the kernels' steps take it.
+    pub step_factor: Option<f64>,
 }
+
+/// The range a chained step factor must lie in: above it a march steps several estimates at once.
+pub const STEP_FACTOR_RANGE: (f64, f64) = (0.0, 4.0);
 
 /// The cap on fractal iterations (validation refuses more).
 pub const MAX_ITERATIONS: u32 = 64;
 
 impl Fractal {
     pub fn new(decl: &'static FractalDecl, arg: FractalArgValue) -> Fractal {
-        Fractal { kind: FractalKind(decl), arg, iterations: None, settings: Default::default() }
+        Fractal { kind: FractalKind(decl), arg, iterations: None, settings: Default::default(), step_factor: None }
     }
     pub fn decl(&self) -> &'static FractalDecl {
         self.kind.0
@@ -216,8 +222,12 @@ impl Fractal {
     pub fn fold_limit_or_default(&self) -> Expr {
         self.setting_or_default(Setting::FoldLimit)
     }
-    /// Factor applied to the estimate so a step never overshoots the surface.
-    pub fn step_factor(&self) -> f64 {
+    /// Factor applied to the estimate so a step never overshoots the surface: the scene's choice, else the family's.
+    pub fn step_factor_or_default(&self) -> f64 {
+        self.step_factor.unwrap_or_else(|| self.family_step_factor())
+    }
+    /// The family's measured factor for this fractal's arguments (see `crate::fractals`).
+    pub fn family_step_factor(&self) -> f64 {
         (self.kind.0.step_factor)(self)
     }
     /// The leaf function and its arguments after the point.

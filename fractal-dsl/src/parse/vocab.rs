@@ -474,6 +474,9 @@ pub(crate) static METHODS: &[Entry] = &[
     meth(T::Fractal, "iterations", &[p("iterations", T::Int)], T::Fractal, |a| {
         fractal(a.fractal()?.iterations(a.int()?))
     }),
+    meth(T::Fractal, "step_factor", &[p("factor", T::Const)], T::Fractal, |a| {
+        fractal(a.fractal()?.step_factor(a.konst()?))
+    }),
     // (the settings that take a number, `.bailout(b)` and the rest, are made from [`Setting::ALL`])
     // ---- materials (the operators are declared in `crate::ops`)
     meth(T::Shape, "material", &[p("material", T::Material)], T::Shape, |a| shape(a.shape()?.material(a.material()?))),

@@ -211,7 +211,7 @@ fn normalize(a: [f64; 3]) -> [f64; 3] {
 /// iterations where its family approaches a limit (the truth's converged count: a finite-iteration set is fatter
 /// than the limit the estimate approximates, and against it the estimate looks too long).
 pub fn study(name: &str, fractal: Fractal, samples: usize, iteration_factor: u32, seed: u64) -> Vec<RatioStudy> {
-    let step_factor = fractal.step_factor();
+    let step_factor = fractal.step_factor_or_default();
     let scene: Scene = scene(fractal);
     let Some(aabb) = bound(&fold_node(&scene.root)) else { return Vec::new() };
     let membership = SceneMembership::new(&crate::quality::with_iterations_scaled(&scene, iteration_factor));
@@ -298,7 +298,7 @@ mod tests {
     #[test]
     fn the_juliabulb_step_factor_stays_within_the_true_distance() {
         let fractal = juliabulb(vec3(0.45, 0.5, -0.15));
-        let factor = fractal.step_factor();
+        let factor = fractal.step_factor_or_default();
         for row in study("juliabulb", fractal, 60, 2, 11) {
             assert!(row.samples >= 50, "{row:?}");
             assert!(row.max * factor <= 1.0, "{row:?}");
@@ -312,7 +312,7 @@ mod tests {
     #[test]
     fn the_low_power_mandelbulb_step_factor_is_safe_but_for_a_few_points() {
         let fractal = mandelbulb(2.0);
-        let factor = fractal.step_factor();
+        let factor = fractal.step_factor_or_default();
         assert_eq!(factor, 1.0);
         for row in study("mandelbulb(2)", fractal, 60, 2, 11) {
             assert!(row.samples >= 50, "{row:?}");

@@ -253,7 +253,7 @@ impl Writer<'_> {
     /// A fractal names its family by its place in the table (the same table the macro read).
     fn fractal(&self, f: &Fractal) -> TokenStream {
         let k = self.k;
-        let Fractal { kind, arg, iterations, settings } = f;
+        let Fractal { kind, arg, iterations, settings, step_factor } = f;
         let index = FRACTALS.iter().position(|d| d.name == kind.0.name).unwrap_or_default();
         let arg = match arg {
             FractalArgValue::Num(e) => {
@@ -275,12 +275,14 @@ impl Writer<'_> {
             quote!(#n)
         });
         let settings = settings.iter().map(|s| self.option(s, |e| self.expr(e)));
+        let step_factor = self.option(step_factor, |&k| f64_lit(k));
         quote! {
             #k::Fractal {
                 kind: #k::FractalKind(#k::fractals::families::FRACTALS[#index]),
                 arg: #arg,
                 iterations: #iterations,
                 settings: [#(#settings),*],
+                step_factor: #step_factor,
             }
         }
     }
