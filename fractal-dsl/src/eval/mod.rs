@@ -9,8 +9,8 @@
 //!   the nearest distance so far (its distance cannot be nearer);
 //! - intersect: the farthest child's material; subtract and smooth subtract: the left operand's material;
 //! - smooth union / intersect: materials mixed by [`crate::sdf::blend_weight`];
-//! - fractal leaves: estimate × [`crate::Fractal::step_factor_or_default`]; an orbit-trap material mixes its two colours by
-//!   the trap; other leaves under an orbit-trap material take its first colour;
+//! - fractal leaves: estimate × [`crate::Fractal::step_factor_or_default`]; an orbit-trap material mixes its two
+//!   colours by the trap; other leaves under an orbit-trap material take its first colour;
 //! - the innermost `.material(..)` wins; geometry under none gets [`crate::Material::default_surface`].
 
 pub mod interp;

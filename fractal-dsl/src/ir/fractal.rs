@@ -148,7 +148,8 @@ pub struct Fractal {
     pub step_factor: Option<f64>,
 }
 
-/// The range a chained step factor must lie in: above it a march steps several estimates at once.
+/// The range a chained step factor must lie in, open below (a march must advance) and closed above: the largest
+/// measured family factor is 1.4 (the Juliabulb's), and past a few estimates a step is no longer a distance.
 pub const STEP_FACTOR_RANGE: (f64, f64) = (0.0, 4.0);
 
 /// The cap on fractal iterations (validation refuses more).
