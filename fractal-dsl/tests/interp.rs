@@ -197,7 +197,7 @@ fn fractal_leaves_call_the_leaf_functions_times_the_step_factor() {
         (mandelbulb(8).step_factor(1.0), sdf::de_mandelbulb8(p, 8, 2.0)[0]),
     ];
     for (f, raw) in cases {
-        let step = f.step_factor.unwrap_or_else(|| f.family_step_factor()) as f32;
+        let step = f.step_factor_or_default() as f32;
         let i = Interpreter::new(&scene(f.clone())).unwrap();
         assert_eq!(i.distance_in(p, &env), raw * step, "{f:?}");
     }

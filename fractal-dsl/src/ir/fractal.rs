@@ -223,13 +223,10 @@ impl Fractal {
     pub fn fold_limit_or_default(&self) -> Expr {
         self.setting_or_default(Setting::FoldLimit)
     }
-    /// Factor applied to the estimate so a step never overshoots the surface: the scene's choice, else the family's.
+    /// Factor applied to the estimate so a step never overshoots the surface: the scene's choice, else the family's
+    /// measured one for this fractal's arguments (see `crate::fractals`).
     pub fn step_factor_or_default(&self) -> f64 {
-        self.step_factor.unwrap_or_else(|| self.family_step_factor())
-    }
-    /// The family's measured factor for this fractal's arguments (see `crate::fractals`).
-    pub fn family_step_factor(&self) -> f64 {
-        (self.kind.0.step_factor)(self)
+        self.step_factor.unwrap_or_else(|| (self.kind.0.step_factor)(self))
     }
     /// The leaf function and its arguments after the point.
     pub fn call(&self) -> (Leaf, Vec<CallArg>) {
