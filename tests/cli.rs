@@ -577,6 +577,18 @@ fn accuracy_sweeps_settings_against_the_truth_and_writes_a_report() {
         let svg = fs::read_to_string(dir.join(format!("r/{name}.svg"))).unwrap();
         assert!(svg.starts_with("<svg") && svg.contains("hit mismatch"), "{name}: {svg}");
     }
+    // A scene that flies a camera path is judged from its other keys too: the Mandelbulb's close-up at t = 25 s.
+    let path_section = &report[report.find("## mandelbulb\n").unwrap()..report.find("## mandelbulb_bench").unwrap()];
+    for line in [
+        "- truth at key t = 25 s, (0.75, 0.7, -0.75)",
+        "key t = 25 s, (0.75, 0.7, -0.75) → (0.3, 0.45, -0.3): scene default on cpu",
+    ] {
+        assert!(path_section.contains(line), "no `{line}` in\n{path_section}");
+    }
+    assert!(path_section.contains("every other key"), "{path_section}");
+    let fixed_camera =
+        &report[report.find("## mandelbulb_bench").unwrap()..report.find("## mandelbulb_powers").unwrap()];
+    assert!(!fixed_camera.contains("truth at key"), "{fixed_camera}");
     assert!(report.contains("## Distance estimators against the true distance"), "{report}");
     assert!(report.contains("| mandelbulb(8) | near coordinate axes | 0.75 |"), "{report}");
 }

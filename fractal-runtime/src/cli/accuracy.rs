@@ -20,6 +20,8 @@ use crate::select::{BackendChoice, RendererOptions};
 use crate::truth::{self, Truth, TruthSettings};
 use crate::Pose;
 
+mod keys;
+
 /// Factor on the iteration count of the escape-time sets the estimator study measures against.
 pub const CONVERGED_FACTOR: u32 = 2;
 /// The truth of an escape-time fractal has converged when doubling its iterations moves less than this share of the
@@ -73,12 +75,13 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
     let scene = &loaded.scene;
     let params = loaded.params(&[])?;
     let lookup = |p: &fractal_dsl::ParamDecl| params.lookup(p);
-    let pose = Pose::from_camera(&scene.camera, 0.0, &lookup).map_err(|e| CliError::failure(e.to_string()))?;
+    let pose = Pose::from_camera(&scene.camera, args.time, &lookup).map_err(|e| CliError::failure(e.to_string()))?;
     let (w, h) = args.size;
-    let frame = Frame::new(scene, &pose, 0.0, w, h, &params).map_err(|e| CliError::failure(e.to_string()))?;
+    let frame = Frame::new(scene, &pose, args.time, w, h, &params).map_err(|e| CliError::failure(e.to_string()))?;
     let out = &mut std::io::stdout().lock();
     let mut md = format!("## {}\n\n", loaded.name);
-    let _ = writeln!(out, "accuracy of {} at {w}x{h} on {backend}", loaded.name);
+    let at = if args.time == 0.0 { String::new() } else { format!(" at t = {} s", args.time) };
+    let _ = writeln!(out, "accuracy of {}{at} at {w}x{h} on {backend}", loaded.name);
 
     // The truth at the scene's iteration count, and for escape-time fractals at doubled counts until the hit mask
     // settles: the converged truth, judged against.
@@ -107,11 +110,11 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
         }
         factor *= 2;
     }
-    let judged = &truths[settled_in_step(scene, &frame, args.truth_step, budget, &truths, &mut |line| {
-        let _ = writeln!(out, "  {line}");
-        let _ = writeln!(md, "- {line}");
-    })?]
-    .1;
+    let (judged_factor, judged) =
+        &truths[settled_in_step(scene, &frame, args.truth_step, budget, &truths, &mut |line| {
+            let _ = writeln!(out, "  {line}");
+            let _ = writeln!(md, "- {line}");
+        })?];
 
     let mut renderer = match backend {
         Backend::Cpu => None,
@@ -160,12 +163,38 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
     };
     let _ = writeln!(out, "  {verdict}; {default_line}\n");
     let _ = writeln!(md, "\n**{verdict}**; {default_line}.\n");
-    for &other in args.also_on.iter().filter(|&&b| b != backend) {
-        let line = default_on(scene, &frame, judged, other, args.precise, budget)?;
+    let mut others: Vec<keys::Opened> = args
+        .also_on
+        .iter()
+        .filter(|&&b| b != backend)
+        .map(|&b| (b, crate::select::open(b, &RendererOptions { precise: args.precise }).map_err(|e| e.to_string())))
+        .collect();
+    for (other, opened) in &mut others {
+        let line = default_on(scene, &frame, judged, *other, opened, budget)?;
         let _ = writeln!(out, "  {line}");
         let _ = writeln!(md, "- {line}");
     }
     if !args.also_on.is_empty() {
+        let _ = writeln!(md);
+    }
+    let settings = TruthSettings { step_footprints: args.truth_step, iteration_factor: *judged_factor };
+    let has_keys = keys::check(
+        scene,
+        &params,
+        args.size,
+        args.time,
+        settings,
+        backend,
+        renderer.as_mut(),
+        &mut others,
+        &points,
+        budget,
+        &mut |line| {
+            let _ = writeln!(out, "  {line}");
+            let _ = writeln!(md, "- {line}");
+        },
+    )?;
+    if has_keys {
         let _ = writeln!(md);
     }
     if let Some(path) = &args.csv {
@@ -181,14 +210,14 @@ fn default_on(
     frame: &Frame,
     truth: &Truth,
     backend: Backend,
-    precise: bool,
+    opened: &mut Result<Box<dyn crate::renderer::Renderer>, String>,
     budget: &Budget,
 ) -> Result<String, CliError> {
-    let mut renderer = match crate::select::open(backend, &RendererOptions { precise }) {
+    let renderer = match opened {
         Ok(r) => r,
         Err(e) => return Ok(format!("scene default on {backend}: not measured, the backend did not open ({e})")),
     };
-    let point = &sweep::run(scene, frame, truth, backend, Some(&mut renderer), &[Quality::default()], &mut |_| {})?[0];
+    let point = &sweep::run(scene, frame, truth, backend, Some(renderer), &[Quality::default()], &mut |_| {})?[0];
     let violations = budget.violations(&point.error);
     let verdict = if violations.is_empty() {
         "within budget".to_string()
@@ -322,7 +351,8 @@ fn report_text(args: &AccuracyArgs, backend: Backend, budget: &Budget, sections:
     format!(
         "# Accuracy: speed against true error\n\n\
          Written by `{command}`. Every built-in scene is rendered \
-         from its own camera at t = 0 with each quality setting and measured against a ground truth that never reads \
+         from its own camera at t = 0 with each quality setting (a scene with a camera path, then with its default and \
+         the settings within budget from each other key: the lines after its table) and measured against a ground truth that never reads \
          a distance estimate: each fractal decided by its own iteration (escape time or IFS levels), exact primitives \
          by their exact f64 distance, the first crossing along each ray found with steps of {:.4} pixel footprints and \
          bisected (`fractal-runtime/src/truth.rs`). Escape-time fractals get a truth at the scene's iteration count \
