@@ -559,9 +559,13 @@ fn accuracy_sweeps_settings_against_the_truth_and_writes_a_report() {
     assert!(rows[0].starts_with("scene,backend,size,setting,ms"), "{}", rows[0]);
     assert!(rows.len() > 15 && rows[1..].iter().all(|r| r.starts_with("mandelbulb_bench,cpu,24x14,")), "{csv}");
     // The scene's own setting alone: its figures and verdict, no sweep.
-    let out = run_in(&dir, &["accuracy", "hello_world", "--size", "24x14", "--truth-step", "0.05", "--default-only"]);
+    let out = run_in(
+        &dir,
+        &["accuracy", "hello_world", "--size", "24x14", "--truth-step", "0.05", "--default-only", "--time", "0.5"],
+    );
     assert_ok(&out);
     let text = stdout(&out);
+    assert!(text.starts_with("accuracy of hello_world at t = 0.5 s at 24x14 on cpu"), "{text}");
     let rows = text.lines().filter(|l| l.starts_with("scene default ")).count();
     assert_eq!(rows, 1, "{text}");
     assert!(!text.contains("steps 32") && text.contains("the scene default is"), "{text}");
@@ -630,6 +634,7 @@ fn bad_input_is_one_clear_line_and_the_right_exit_status() {
         (vec!["bench", "hello_world", "--csv", "a-file/b.csv"], 1, "cannot write a-file/b.csv".into()),
         (vec!["accuracy", "hello_world", "--backend", "auto"], 2, "accuracy needs one backend".into()),
         (vec!["accuracy", "hello_world", "--report"], 2, "give no scene with it".into()),
+        (vec!["accuracy", "--report", "--time", "2"], 2, "give no --time with it".into()),
         (vec!["accuracy", "hello_world", "--truth-step", "0"], 2, "the truth step is a number of footprints".into()),
         (vec!["accuracy", "hello_world", "--csv", "a-file/a.csv"], 1, "cannot write a-file/a.csv".into()),
     ];

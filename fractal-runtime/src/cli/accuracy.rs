@@ -50,6 +50,11 @@ pub fn accuracy(args: &AccuracyArgs, library: &SceneLibrary) -> Result<(), CliEr
     let names: Vec<String> = match (&args.scene, args.report) {
         (Some(name), false) => vec![name.clone()],
         (Some(_), true) => return Err(CliError::usage("--report studies every built-in scene: give no scene with it")),
+        (None, true) if args.time != 0.0 => {
+            return Err(CliError::usage(
+                "--report studies each scene at t = 0 and its camera path's keys: give no --time with it",
+            ))
+        }
         (None, _) => library.scenes.iter().map(|(n, _)| n.to_string()).collect(),
     };
     let budget = Budget::default();

@@ -244,7 +244,7 @@ pub struct AccuracyArgs {
     pub default_only: bool,
     /// Scene time in seconds the sweep is measured at (the camera path's pose and every animated value then); a
     /// camera path's other keys are checked after it
-    #[arg(long, allow_negative_numbers = true, value_name = "SECONDS", default_value_t = 0.0, value_parser = parse_time, conflicts_with = "report")]
+    #[arg(long, allow_negative_numbers = true, value_name = "SECONDS", default_value_t = 0.0, value_parser = parse_time)]
     pub time: f64,
     /// Truth march step in pixel footprints
     #[arg(long, value_name = "F", default_value_t = crate::truth::DEFAULT_STEP_FOOTPRINTS, value_parser = parse_truth_step)]
