@@ -223,13 +223,19 @@ fn default_on(
         Err(e) => return Ok(format!("scene default on {backend}: not measured, the backend did not open ({e})")),
     };
     let point = &sweep::run(scene, frame, truth, backend, Some(renderer), &[Quality::default()], &mut |_| {})?[0];
+    Ok(format!("scene default on {backend}: {}", judged(point, budget).0))
+}
+
+/// A measured point as one line (its time, the figures its image holds and the budget's verdict on them), and the
+/// budget's violations (none: within budget).
+fn judged(point: &sweep::SweepPoint, budget: &Budget) -> (String, Vec<String>) {
     let violations = budget.violations(&point.error);
     let verdict = if violations.is_empty() {
         "within budget".to_string()
     } else {
         format!("not within budget: {}", violations.join("; "))
     };
-    Ok(format!("scene default on {backend}: {:.1} ms, {}; {verdict}", point.time_ms, point.error.describe()))
+    (format!("{:.1} ms, {}; {verdict}", point.time_ms, point.error.describe()), violations)
 }
 
 /// Which of `truths` (in rising iterations) the sweep is judged against: the one of most iterations that has settled

@@ -11,6 +11,7 @@ use std::time::Instant;
 
 use fractal_dsl::{CameraPlacement, Scene};
 
+use super::judged;
 use crate::accuracy::sweep::{self, Budget, SweepPoint};
 use crate::cli::error::CliError;
 use crate::device::Backend;
@@ -95,14 +96,8 @@ pub(super) fn check(
     let mut default_fails = Vec::new();
     for view in &views {
         let point = measure(scene, view, backend, renderer.as_deref_mut(), &Quality::default())?;
-        let violations = budget.violations(&point.error);
-        say(format!(
-            "{}: scene default on {backend}: {:.1} ms, {}; {}",
-            view.name(),
-            point.time_ms,
-            point.error.describe(),
-            verdict(&violations)
-        ));
+        let (line, violations) = judged(&point, budget);
+        say(format!("{}: scene default on {backend}: {line}", view.name()));
         if !violations.is_empty() {
             default_fails.push(format!("{} ({})", view.name(), violations.join("; ")));
         }
@@ -110,11 +105,11 @@ pub(super) fn check(
             let line = match opened {
                 Ok(r) => {
                     let point = measure(scene, view, *other, Some(r), &Quality::default())?;
-                    let violations = budget.violations(&point.error);
+                    let (line, violations) = judged(&point, budget);
                     if !violations.is_empty() {
                         default_fails.push(format!("{} on {other} ({})", view.name(), violations.join("; ")));
                     }
-                    format!("{:.1} ms, {}; {}", point.time_ms, point.error.describe(), verdict(&violations))
+                    line
                 }
                 Err(e) => format!("not measured, the backend did not open ({e})"),
             };
@@ -174,14 +169,6 @@ fn measure(
     let points =
         sweep::run(scene, &view.frame, &view.truth, backend, renderer, std::slice::from_ref(quality), &mut |_| {})?;
     Ok(points.into_iter().next().expect("one setting gives one point"))
-}
-
-fn verdict(violations: &[String]) -> String {
-    if violations.is_empty() {
-        "within budget".to_string()
-    } else {
-        format!("not within budget: {}", violations.join("; "))
-    }
 }
 
 #[cfg(test)]
