@@ -106,6 +106,7 @@ fn every_kind_of_ir_value_is_constructed_exactly() {
         .max_steps(200)
         .max_distance(50.0)
         .pixel_epsilon(1.5)
+        .normal_pixel_epsilon(0.75)
         .soft_shadows(8.0)
         .ambient_occlusion(0.5)
         .glow(rgb(0.1, 0.2, 0.3))

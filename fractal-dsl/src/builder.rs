@@ -311,6 +311,12 @@ impl Scene {
         self.settings.epsilon = HitEpsilon::Pixel(k);
         self
     }
+    /// The normal's gradient taken with taps `k` pixel footprints apart at the hit, whatever the hit epsilon: a
+    /// normal at the pixel's scale, where a fine epsilon would take it from detail far below the pixel.
+    pub fn normal_pixel_epsilon(mut self, k: f64) -> Scene {
+        self.settings.normal_epsilon = Some(k);
+        self
+    }
     pub fn no_shadows(mut self) -> Scene {
         self.settings.shadows = Shadows::None;
         self

@@ -307,6 +307,9 @@ fn settings(out: &mut String, s: &RenderSettings) {
             HitEpsilon::Pixel(k) => format!("pixel_epsilon({})", lit(k)),
         });
     }
+    if let Some(k) = s.normal_epsilon {
+        line(format!("normal_pixel_epsilon({})", lit(k)));
+    }
     if s.over_relaxation != d.over_relaxation {
         line(format!("over_relaxation({})", lit(s.over_relaxation)));
     }

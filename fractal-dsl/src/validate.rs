@@ -840,6 +840,9 @@ pub fn check_settings(s: &RenderSettings) -> Vec<Problem> {
         HitEpsilon::Fixed(e) => constant(o, "epsilon", "epsilon", e, gt(0.0)),
         HitEpsilon::Pixel(k) => constant(o, "pixels", "pixel_epsilon", k, gt(0.0)),
     }
+    if let Some(k) = s.normal_epsilon {
+        constant(o, "pixels", "normal_pixel_epsilon", k, gt(0.0));
+    }
     constant(o, "omega", "over_relaxation", s.over_relaxation, within(1.0, true, 2.0, true));
     if let Shadows::Soft(k) = s.shadows {
         constant(o, "k", "soft_shadows k", k, gt(0.0));

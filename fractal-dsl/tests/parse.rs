@@ -232,6 +232,7 @@ fn cases() -> Vec<(&'static str, Scene)> {
             s(ball()).pixel_epsilon(1.5).soft_shadows(16.0).glow(rgb(0.1, 0.2, 0.3)).fog(rgb(0.5, 0.5, 0.5), 0.05),
         ),
         ("scene(sphere(1.0)).over_relaxation(1.3)", s(ball()).over_relaxation(1.3)),
+        ("scene(sphere(1.0)).normal_pixel_epsilon(0.5)", s(ball()).normal_pixel_epsilon(0.5)),
         (
             "scene(sphere(1.0)).soft_shadows(8.0).no_shadows().background(rgb(0, 0, 0)).gamma(2.2)",
             s(ball()).soft_shadows(8.0).no_shadows().background(rgb(0.0, 0.0, 0.0)).gamma(2.2),

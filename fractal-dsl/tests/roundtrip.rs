@@ -388,9 +388,10 @@ fn scene_strategy() -> impl Strategy<Value = Scene> {
         prop::option::of(rgb_strategy()),
         prop::option::of(0.5..3.0f64),
         prop::option::of(1.0..=2.0f64),
+        prop::option::of(0.05..4.0f64),
     );
     (shape(), prop::collection::vec(light(), 0..3), camera_strategy(), settings).prop_map(
-        |(root, lights, cam, (steps, dist, eps, shadows, ao, glow, fog, bg, gamma, relax))| {
+        |(root, lights, cam, (steps, dist, eps, shadows, ao, glow, fog, bg, gamma, relax, normal))| {
             let mut s = scene(root).camera(cam);
             for l in lights {
                 s = s.light(l);
@@ -406,6 +407,9 @@ fn scene_strategy() -> impl Strategy<Value = Scene> {
             }
             if let Some(w) = relax {
                 s = s.over_relaxation(w);
+            }
+            if let Some(k) = normal {
+                s = s.normal_pixel_epsilon(k);
             }
             s = match shadows {
                 0 => s,

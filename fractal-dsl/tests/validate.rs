@@ -208,6 +208,7 @@ fn rules_of_every_kind() {
             "scene: max_distance: numbers must lie within ±3.4e38 (the kernels compute in f32), found 1e39",
         ),
         (scene(sphere(1.0)).pixel_epsilon(0.0), "scene: pixel_epsilon must be > 0, found 0"),
+        (scene(sphere(1.0)).normal_pixel_epsilon(-0.5), "scene: normal_pixel_epsilon must be > 0, found -0.5"),
         (scene(sphere(1.0)).over_relaxation(0.9), "scene: over_relaxation must be in [1, 2], found 0.9"),
         (scene(sphere(1.0)).over_relaxation(2.5), "scene: over_relaxation must be in [1, 2], found 2.5"),
         (scene(sphere(1.0)).soft_shadows(0.0), "scene: soft_shadows k must be > 0, found 0"),

@@ -1,8 +1,8 @@
 //! The quality settings an accuracy sweep varies, and how each is applied to a scene: the march's step budget and hit
 //! epsilon (render settings), the iteration count of escape-time fractals (the scene's fractals), a factor on every
 //! distance the march steps by (the step factor, applied by wrapping the CPU evaluator), whether rays are clipped to
-//! the scene's bound (on the CPU only), over-relaxation of the march (a render setting), and whether OpenCL builds
-//! its kernels with fast math (OpenCL only).
+//! the scene's bound (on the CPU only), over-relaxation of the march and the normal's taps (render settings), and
+//! whether OpenCL builds its kernels with fast math (OpenCL only).
 
 use std::fmt;
 
@@ -23,6 +23,8 @@ pub struct Quality {
     pub bounds: Option<bool>,
     /// Over-relaxation factor ω of the march with its fallback (the scene's `over_relaxation`).
     pub over_relaxation: Option<f64>,
+    /// The normal's taps in pixel footprints (the scene's `normal_pixel_epsilon`): the normal method.
+    pub normal: Option<f64>,
     /// `Some(true)`: OpenCL builds the kernels without `-cl-fast-relaxed-math`, `Some(false)`: with it (OpenCL only;
     /// `None` keeps the sweep's own choice, `--precise`).
     pub precise: Option<bool>,
@@ -50,6 +52,9 @@ impl Quality {
         }
         if let Some(w) = self.over_relaxation {
             out.settings.over_relaxation = w;
+        }
+        if let Some(k) = self.normal {
+            out.settings.normal_epsilon = Some(k);
         }
         out
     }
@@ -89,6 +94,9 @@ impl fmt::Display for Quality {
         }
         if let Some(w) = self.over_relaxation {
             parts.push(format!("relax {w}"));
+        }
+        if let Some(k) = self.normal {
+            parts.push(format!("normal {k} px"));
         }
         match self.precise {
             Some(true) => parts.push("precise math".to_string()),

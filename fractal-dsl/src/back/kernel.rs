@@ -817,7 +817,11 @@ impl<D: Dialect> Kernel<'_, D> {
         self.line(l1, "if (hit) {");
         self.line(l2, &self.constant("p", vec3, "ro + rd * t"));
         let distance_frame = p.distance_reads_frame;
-        let tap = if p.refine { format!("eps * {}", self.lit(REFINED_NORMAL_SHARE)) } else { "eps".to_string() };
+        let tap = match s.normal_epsilon {
+            Some(k) => format!("{} * {} * t", self.lit(k), self.footprint()),
+            None if p.refine => format!("eps * {}", self.lit(REFINED_NORMAL_SHARE)),
+            None => "eps".to_string(),
+        };
         let n = self.call("scene_normal", &format!("p, {tap}"), distance_frame);
         self.line(l2, &self.constant("n", vec3, &n));
         if self.traced {

@@ -28,8 +28,9 @@
 //!    scene_de(m) ≤ 0, b = m, and f_a halves if b moved last time too; else a = m, and f_b halves if a moved last
 //!    time too — then t = the final bracket's false position.
 //! 4. **Hit shading.** p = ro + rd·t; n = normalize(Σ k_i·scene_de(p + k_i·h)) over the tetrahedron
-//!    k = (1,−1,−1), (−1,−1,1), (−1,1,−1), (1,1,1) (a zero sum gives the normal +y), h = eps, or in a scene refined
-//!    by sign (3b) [`REFINED_NORMAL_SHARE`]·eps; m = scene_sample(p).
+//!    k = (1,−1,−1), (−1,−1,1), (−1,1,−1), (1,1,1) (a zero sum gives the normal +y), h = k_n·footprint·t with the
+//!    scene's `normal_pixel_epsilon` k_n, else eps, or in a scene refined by sign (3b) [`REFINED_NORMAL_SHARE`]·eps;
+//!    m = scene_sample(p).
 //!    Ambient occlusion (when enabled, strength s): occ = Σ_{i<5} (h_i − scene_de(p + n·h_i))·0.95^i with
 //!    h_i = [`AO_START`] + [`AO_SPAN`]·i/4; ao = clamp(1 − 3·s·occ, 0, 1); otherwise ao = 1.
 //!    colour = albedo·ambient·ao; then per light: L and radiance (directional: the slot's unit direction and colour,

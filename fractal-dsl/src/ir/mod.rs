@@ -234,6 +234,9 @@ pub struct RenderSettings {
     /// Over-relaxation factor ω of the march, in [1, 2] (Keinert et al. 2014): step ω·d while successive unbounding
     /// spheres overlap, and where they do not, step back and go on with ω = 1. 1 is plain sphere tracing.
     pub over_relaxation: f64,
+    /// The normal's taps, in pixel footprints at the hit (k·footprint·t): the scale the surface's normal is taken at.
+    /// `None`: the hit epsilon's (step 4 of [`crate::back::render`]).
+    pub normal_epsilon: Option<f64>,
     pub shadows: Shadows,
     /// Ambient occlusion strength (5 samples along the normal); None disables it.
     pub ambient_occlusion: Option<f64>,
@@ -250,6 +253,7 @@ impl Default for RenderSettings {
             max_distance: 20.0,
             epsilon: HitEpsilon::Fixed(0.0005),
             over_relaxation: 1.0,
+            normal_epsilon: None,
             shadows: Shadows::None,
             ambient_occlusion: None,
             glow: None,

@@ -519,6 +519,9 @@ pub(crate) static METHODS: &[Entry] = &[
     meth(T::Scene, "pixel_epsilon", &[p("pixels", T::Const)], T::Scene, |a| {
         scene(a.scene()?.pixel_epsilon(a.konst()?))
     }),
+    meth(T::Scene, "normal_pixel_epsilon", &[p("pixels", T::Const)], T::Scene, |a| {
+        scene(a.scene()?.normal_pixel_epsilon(a.konst()?))
+    }),
     meth(T::Scene, "over_relaxation", &[p("omega", T::Const)], T::Scene, |a| {
         scene(a.scene()?.over_relaxation(a.konst()?))
     }),

@@ -124,6 +124,12 @@ pub fn grid(scene: &Scene, backend: Backend, precise: bool) -> Vec<Quality> {
     if backend == Backend::OpenCl {
         out.push(Quality { precise: Some(!precise), ..Quality::default() });
     }
+    // The normal at the pixel's scale, apart from the hit epsilon.
+    for k in [0.1, 0.25, 0.5, 1.0] {
+        if own.normal_epsilon != Some(k) {
+            out.push(Quality { normal: Some(k), ..Quality::default() });
+        }
+    }
     // A finer pixel epsilon with the steps to reach it, plain and over-relaxed, and for an escape-time set with the
     // iterations to come near its limit: the combinations that can keep a pixel epsilon's fattening of the surface,
     // and the fatter set of few iterations, within budget.
@@ -131,6 +137,8 @@ pub fn grid(scene: &Scene, backend: Backend, precise: bool) -> Vec<Quality> {
         let finer = Quality { epsilon: Some(HitEpsilon::Pixel(k)), max_steps: Some(256), ..Quality::default() };
         out.push(finer);
         out.push(Quality { over_relaxation: Some(1.3), ..finer });
+        // A fine epsilon takes the normal from detail far below the pixel: the same hits with it at the pixel's scale.
+        out.push(Quality { normal: Some(0.5), ..finer });
         if let Some(n) = escape_time_iterations(scene) {
             out.push(Quality { over_relaxation: Some(1.3), iterations: Some(n + 4), ..finer });
         }

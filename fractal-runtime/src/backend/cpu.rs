@@ -364,12 +364,12 @@ impl View<f32> {
         let at = |i: usize| {
             let (ro, rd) = rays[lane(i)];
             let m = marches[lane(i)].expect("a hit lane has a march");
-            (ro + rd * m.t, m.eps)
+            (ro + rd * m.t, m.t, m.eps)
         };
-        let points: [(V3<f32>, f32); LANES] = std::array::from_fn(at);
+        let points: [(V3<f32>, f32, f32); LANES] = std::array::from_fn(at);
 
         let taps: [[V3<f32>; 4]; LANES] =
-            std::array::from_fn(|i| normal_taps(points[i].0, self.normal_tap(points[i].1)));
+            std::array::from_fn(|i| normal_taps(points[i].0, self.normal_tap(points[i].1, points[i].2)));
         let tap_distances: [[f32; LANES]; 4] =
             std::array::from_fn(|k| distances_x8(packets, env8, std::array::from_fn(|i| taps[i][k])));
         let normals: [V3<f32>; LANES] =
@@ -392,19 +392,19 @@ impl View<f32> {
         if self.shadows != Shadows::None {
             for (light, lit) in self.lights.iter().zip(shadows.iter_mut()) {
                 let rays: [(V3<f32>, V3<f32>, f32, bool); LANES] = std::array::from_fn(|i| {
-                    let (p, eps) = points[i];
+                    let (p, _, eps) = points[i];
                     let (l, _, limit) = self.light_at(light, p);
                     let faces = hit[i] && dot(normals[i], l).max(0.0) > 0.0;
                     (self.shadow_origin(p, normals[i], eps), l, limit, faces)
                 });
-                let mut states: [ShadowMarch<f32>; LANES] = std::array::from_fn(|i| self.shadow_start(points[i].1));
+                let mut states: [ShadowMarch<f32>; LANES] = std::array::from_fn(|i| self.shadow_start(points[i].2));
                 run_lanes(
                     packets,
                     env8,
                     &mut states,
                     |i, march| rays[i].3 && self.shadow_running(march, rays[i].2),
                     |i, march| rays[i].0 + rays[i].1 * march.t,
-                    |i, march, d| self.shadow_step(march, d, points[i].1),
+                    |i, march, d| self.shadow_step(march, d, points[i].2),
                 );
                 for (i, value) in lit.iter_mut().enumerate().filter(|(i, _)| rays[*i].3) {
                     *value = self.shadow_result(&states[i]);
@@ -420,7 +420,7 @@ impl View<f32> {
                 .then(|| Reference { offset: lanes_of(std::array::from_fn(offset)), orbit: &self.orbit }),
             ..*env8
         };
-        let materials = packets.sample_x8(lanes_of(points.map(|(p, _)| p)), &orbit_env);
+        let materials = packets.sample_x8(lanes_of(points.map(|(p, _, _)| p)), &orbit_env);
 
         std::array::from_fn(|i| {
             let (ro, rd) = rays[i];
@@ -616,6 +616,8 @@ pub(crate) struct View<F> {
     relaxation: F,
     /// Whether hits are refined by the distance's sign ([`refines_by_sign`]).
     refine: bool,
+    /// The normal's taps in pixel footprints, when the scene sets them apart from the hit epsilon.
+    normal_epsilon: Option<f64>,
     /// The frame's perturbation reference orbit (empty without one).
     orbit: Vec<[f32; 2]>,
 }
@@ -649,6 +651,7 @@ impl<F: Real> View<F> {
             max_distance,
             epsilon,
             over_relaxation,
+            normal_epsilon,
             shadows,
             ambient_occlusion,
             glow,
@@ -685,6 +688,7 @@ impl<F: Real> View<F> {
             max_steps,
             max_distance: c(max_distance),
             epsilon,
+            normal_epsilon,
             shadows,
             // The kernels fold the factor 3 of the occlusion formula into the strength.
             ambient_occlusion: ambient_occlusion.map(|s| c(3.0 * s)),
@@ -743,7 +747,7 @@ impl<F: Real> View<F> {
         march: Option<March<F>>,
     ) -> Pixel<F> {
         self.finish_with(ro, rd, march, |p, t, eps| {
-            let n = self.normal(eval, env, p, eps);
+            let n = self.normal(eval, env, p, t, eps);
             (self.shade_hit(eval, env, p, n, rd, t, eps), n)
         })
     }
@@ -860,14 +864,16 @@ impl<F: Real> View<F> {
         enters.then_some((t_near, t_far))
     }
 
-    /// Step 4's normal: the tetrahedral gradient of the distance at `p` with taps `eps` apart.
-    fn normal<E: Evaluator<F> + ?Sized>(&self, eval: &E, env: &Env<F>, p: V3<F>, eps: F) -> V3<F> {
-        normal_from(normal_taps(p, self.normal_tap(eps)).map(|q| eval.distance(q, env)))
+    /// Step 4's normal: the tetrahedral gradient of the distance at the hit `p` (ray distance `t`, epsilon `eps`).
+    fn normal<E: Evaluator<F> + ?Sized>(&self, eval: &E, env: &Env<F>, p: V3<F>, t: F, eps: F) -> V3<F> {
+        normal_from(normal_taps(p, self.normal_tap(t, eps)).map(|q| eval.distance(q, env)))
     }
 
-    /// Step 4's tap of the normal at a hit of epsilon `eps`.
-    fn normal_tap(&self, eps: F) -> F {
-        if self.refine {
+    /// Step 4's tap of the normal at a hit at ray distance `t` with epsilon `eps`.
+    fn normal_tap(&self, t: F, eps: F) -> F {
+        if let Some(k) = self.normal_epsilon {
+            c::<F>(k) * self.footprint * t
+        } else if self.refine {
             eps * c::<F>(REFINED_NORMAL_SHARE)
         } else {
             eps
@@ -1136,6 +1142,42 @@ mod tests {
 
     fn unpack(p: u32) -> [u8; 4] {
         p.to_le_bytes()
+    }
+
+    /// A scene's `normal_pixel_epsilon` takes the normal's tetrahedral taps that many footprints apart at the hit,
+    /// whatever the hit epsilon: each traced normal is that gradient taken again at the traced hit, the march is
+    /// unchanged, and on a fractal the normals turn from the fine epsilon's.
+    #[test]
+    fn the_normal_is_taken_at_the_scenes_normal_epsilon() {
+        use fractal_dsl::eval::interp::Interpreter;
+        let fine = scene(mandelbulb(8).iterations(6)).camera(camera([1.2, 1.0, -2.2], [0.0; 3])).pixel_epsilon(0.05);
+        let wide = fine.clone().normal_pixel_epsilon(1.0);
+        let pose = crate::Pose::from_camera(&fine.camera, 0.0, &|p| p.default).unwrap();
+        let frame = Frame::new(&fine, &pose, 0.0, 40, 30, &crate::ParamValues::defaults(&fine)).unwrap();
+        let trace = |s: &Scene| trace_scene::<f64, _>(&Interpreter::new(s).unwrap(), s, &frame).unwrap();
+        let (before, after) = (trace(&fine), trace(&wide));
+        let view = View::<f64>::new(&wide, &frame, None).unwrap();
+        let interpreter = Interpreter::new(&wide).unwrap();
+        let env = Env::new(view.time, &view.params);
+        let (mut hits, mut turned) = (0, 0);
+        for (i, (a, b)) in before.iter().zip(&after).enumerate() {
+            assert_eq!(
+                (a.hit, a.t.to_bits()),
+                (b.hit, b.t.to_bits()),
+                "pixel {i}: the normal's taps changed the march"
+            );
+            let (Some(m), Some(n)) = (a.normal, b.normal) else { continue };
+            let (x, y) = ((i % 40) as f64 + 0.5, (i / 40) as f64 + 0.5);
+            let (ro, rd) = view.ray(x, y);
+            let p = ro + rd * b.t;
+            let taps = normal_taps(p, view.footprint * b.t);
+            let expected = normal_from(taps.map(|q| Evaluator::<f64>::distance(&interpreter, q, &env)));
+            let cos = expected.x * n[0] + expected.y * n[1] + expected.z * n[2];
+            assert!(cos > 1.0 - 1e-9, "pixel {i}: normal {n:?}, taps a footprint apart give {expected:?}");
+            hits += 1;
+            turned += usize::from(m[0] * n[0] + m[1] * n[1] + m[2] * n[2] < 1f64.to_radians().cos());
+        }
+        assert!(hits > 100 && turned > hits / 10, "{turned} of {hits} normals turned by more than 1°");
     }
 
     #[test]

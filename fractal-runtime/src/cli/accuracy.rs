@@ -100,7 +100,8 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
         let hits = truth.pixels.iter().filter(|p| p.hit()).count();
         let moved = truths.last().map(|(_, previous)| mask_moved(previous.pixels.iter().map(|p| p.hit()), &truth));
         let line = format!(
-            "truth at {factor}x the iterations: {:.2} % of pixels hit{}, step {:.4} footprint, {:.1} s",
+            "truth at {factor}x the iterations{}: {:.2} % of pixels hit{}, step {:.4} footprint, {:.1} s",
+            capped(scene, factor),
             100.0 * hits as f64 / truth.pixels.len() as f64,
             moved.map_or(String::new(), |m| format!(" ({:.2} % of the mask moved from {}x)", 100.0 * m, factor / 2)),
             args.truth_step,
@@ -274,6 +275,17 @@ fn settled_in_step(
         }
     }
     Ok(0)
+}
+
+/// ", capped at N, the family's most" where the family's iteration limit holds `factor` × the scene's iterations of
+/// its first escape-time fractal below that product.
+fn capped(scene: &fractal_dsl::Scene, factor: u32) -> String {
+    let own = sweep::escape_time_iterations(scene);
+    let scaled = sweep::escape_time_iterations(&crate::quality::with_iterations_scaled(scene, factor));
+    match (own, scaled) {
+        (Some(own), Some(n)) if n < own.saturating_mul(factor) => format!(", capped at {n}, the family's most"),
+        _ => String::new(),
+    }
 }
 
 /// Share of the pixels whose hit or miss differs between hit mask `a` and truth `b` of one frame.

@@ -368,6 +368,7 @@ impl Writer<'_> {
             max_distance,
             epsilon,
             over_relaxation,
+            normal_epsilon,
             shadows,
             ambient_occlusion,
             glow,
@@ -388,6 +389,7 @@ impl Writer<'_> {
             }
         };
         let over_relaxation = f64_lit(*over_relaxation);
+        let normal_epsilon = self.option(normal_epsilon, |&k| f64_lit(k));
         let shadows = match shadows {
             Shadows::None => quote!(#k::Shadows::None),
             Shadows::Hard => quote!(#k::Shadows::Hard),
@@ -411,6 +413,7 @@ impl Writer<'_> {
                 max_distance: #max_distance,
                 epsilon: #epsilon,
                 over_relaxation: #over_relaxation,
+                normal_epsilon: #normal_epsilon,
                 shadows: #shadows,
                 ambient_occlusion: #ambient_occlusion,
                 glow: #glow,

@@ -84,10 +84,11 @@ pub(super) fn check(
         let hits = truth.pixels.iter().filter(|p| p.hit()).count();
         let view = KeyView { time, position, target, frame, truth };
         say(format!(
-            "truth at {}: {:.2} % of pixels hit, at {}x the iterations ({:.1} s)",
+            "truth at {}: {:.2} % of pixels hit, at {}x the iterations{} ({:.1} s)",
             view.name(),
             100.0 * hits as f64 / view.truth.pixels.len().max(1) as f64,
             settings.iteration_factor,
+            super::capped(scene, settings.iteration_factor),
             start.elapsed().as_secs_f64()
         ));
         views.push(view);
