@@ -55,6 +55,8 @@ pub struct SettingsRecord {
     pub epsilon: String,
     /// The march's over-relaxation factor ω (1: plain sphere tracing).
     pub over_relaxation: f64,
+    /// The normal's taps in pixel footprints, when the scene sets them apart from the hit epsilon.
+    pub normal_pixel_epsilon: Option<f64>,
     /// `none`, `hard` or `soft <k>`.
     pub shadows: String,
     pub ambient_occlusion: Option<f64>,
@@ -77,6 +79,7 @@ impl SettingsRecord {
                 HitEpsilon::Pixel(k) => format!("pixel {k}"),
             },
             over_relaxation: s.over_relaxation,
+            normal_pixel_epsilon: s.normal_epsilon,
             shadows: match s.shadows {
                 Shadows::None => "none".to_string(),
                 Shadows::Hard => "hard".to_string(),
@@ -218,6 +221,7 @@ impl BenchRecord {
             ("max_distance", s.max_distance.to_string()),
             ("epsilon", s.epsilon.clone()),
             ("over_relaxation", s.over_relaxation.to_string()),
+            ("normal_pixel_epsilon", opt(s.normal_pixel_epsilon)),
             ("shadows", s.shadows.clone()),
             ("ambient_occlusion", opt(s.ambient_occlusion)),
             ("glow", s.glow.map(|c| format!("{} {} {}", c[0], c[1], c[2])).unwrap_or_default()),
