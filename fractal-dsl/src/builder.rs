@@ -317,6 +317,13 @@ impl Scene {
         self.settings.normal_epsilon = Some(k);
         self
     }
+    /// Take hits on the escape-time fractals' drawn sets themselves: where the estimate falls below the hit epsilon
+    /// outside the set, step on by half the epsilon until a point is in the set, then refine the crossing. For sets
+    /// whose estimate is far below the true distance near them (the power-2 Mandelbulb), at more steps.
+    pub fn membership_hits(mut self) -> Scene {
+        self.settings.membership_hits = true;
+        self
+    }
     pub fn no_shadows(mut self) -> Scene {
         self.settings.shadows = Shadows::None;
         self

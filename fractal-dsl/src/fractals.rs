@@ -120,6 +120,11 @@ pub mod families {
                 (Leaf::DeMandelbulbStretched, Leaf::InMandelbulb),
             ],
             approaches_limit: true,
+            signed: &[
+                (Leaf::DeMandelbulb8, Leaf::DeMandelbulb8Signed),
+                (Leaf::DeMandelbulb, Leaf::DeMandelbulbSigned),
+                (Leaf::DeMandelbulbStretched, Leaf::DeMandelbulbStretchedSigned),
+            ],
         },
     };
 
@@ -139,7 +144,7 @@ pub mod families {
         step_factor: |_| 1.0,
         // The sponge's estimate is max(box, cuts) with the box [-1, 1]³: exact.
         bound: |_| PrimBound::exact(Aabb::cube(1.0)),
-        membership: Membership { leaves: &[(Leaf::DeMenger, Leaf::InMenger)], approaches_limit: false },
+        membership: Membership { leaves: &[(Leaf::DeMenger, Leaf::InMenger)], approaches_limit: false, signed: &[] },
     };
 
     pub static SIERPINSKI_TETRAHEDRON: FractalDecl = FractalDecl {
@@ -159,7 +164,11 @@ pub mod families {
         // The folds keep points in the tetrahedron's symmetry; far away the estimate is a plane distance, measured at
         // no less than 0.334 × the distance to the cube along the diagonals.
         bound: |f| Some(PrimBound { aabb: Aabb::cube(1.0), reach: 0.32 * f.step_factor_or_default() }),
-        membership: Membership { leaves: &[(Leaf::DeSierpinski, Leaf::InSierpinski)], approaches_limit: false },
+        membership: Membership {
+            leaves: &[(Leaf::DeSierpinski, Leaf::InSierpinski)],
+            approaches_limit: false,
+            signed: &[],
+        },
     };
 
     pub static JULIA: FractalDecl = FractalDecl {
@@ -183,7 +192,11 @@ pub mod families {
             let norm = f.arg_exprs().iter().map(|e| range(e).max_abs().powi(2)).sum::<f64>().sqrt();
             escape_time_bound(f, julia_radius(norm), PLAIN_OUTSIDE)
         },
-        membership: Membership { leaves: &[(Leaf::DeJulia, Leaf::InJulia)], approaches_limit: true },
+        membership: Membership {
+            leaves: &[(Leaf::DeJulia, Leaf::InJulia)],
+            approaches_limit: true,
+            signed: &[(Leaf::DeJulia, Leaf::DeJuliaSigned)],
+        },
     };
 
     pub static MANDELBOX: FractalDecl = FractalDecl {
@@ -212,7 +225,11 @@ pub mod families {
             let ratio = if scale.lo > 1.0 { (scale.lo - 1.0) / (scale.lo + 1.0) } else { 1.0 };
             Some(PrimBound { aabb: Aabb::cube(e), reach: 0.95 * ratio * f.step_factor_or_default() })
         },
-        membership: Membership { leaves: &[(Leaf::DeMandelbox, Leaf::InMandelbox)], approaches_limit: true },
+        membership: Membership {
+            leaves: &[(Leaf::DeMandelbox, Leaf::InMandelbox)],
+            approaches_limit: true,
+            signed: &[],
+        },
     };
 
     pub static JULIABULB: FractalDecl = FractalDecl {
@@ -236,7 +253,11 @@ pub mod families {
             let norm = f.arg_exprs().iter().map(|e| range(e).max_abs().powi(2)).sum::<f64>().sqrt();
             escape_time_bound(f, juliabulb_radius(range(&f.setting_or_default(Setting::Power)).lo, norm), PLAIN_OUTSIDE)
         },
-        membership: Membership { leaves: &[(Leaf::DeJuliabulb, Leaf::InJuliabulb)], approaches_limit: true },
+        membership: Membership {
+            leaves: &[(Leaf::DeJuliabulb, Leaf::InJuliabulb)],
+            approaches_limit: true,
+            signed: &[(Leaf::DeJuliabulb, Leaf::DeJuliabulbSigned)],
+        },
     };
 
     /// The scale of a KIFS: below 1.1 the copies barely shrink (the detail needs ever more iterations), above 4 they
@@ -274,7 +295,7 @@ pub mod families {
             call,
             step_factor: |_| 1.0,
             bound: kifs_bound,
-            membership: Membership { leaves, approaches_limit: false },
+            membership: Membership { leaves, approaches_limit: false, signed: &[] },
         }
     }
 

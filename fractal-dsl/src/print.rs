@@ -310,6 +310,9 @@ fn settings(out: &mut String, s: &RenderSettings) {
     if let Some(k) = s.normal_epsilon {
         line(format!("normal_pixel_epsilon({})", lit(k)));
     }
+    if s.membership_hits {
+        line("membership_hits()".to_string());
+    }
     if s.over_relaxation != d.over_relaxation {
         line(format!("over_relaxation({})", lit(s.over_relaxation)));
     }

@@ -39,6 +39,11 @@ leaves! {
     DeJulia => de_julia(p: V3, cx: F, cy: F, cz: F, cw: F, iterations: Count, bailout: F) -> Pair;
     DeMandelbox => de_mandelbox(p: V3, scale: F, iterations: Count, min_radius: F, fold_limit: F) -> Pair;
     DeJuliabulb => de_juliabulb(p: V3, cx: F, cy: F, cz: F, power: F, iterations: Count, bailout: F) -> Pair;
+    DeMandelbulbSigned => de_mandelbulb_signed(p: V3, power: F, iterations: Count, bailout: F) -> Pair;
+    DeMandelbulbStretchedSigned => de_mandelbulb_stretched_signed(p: V3, power: F, iterations: Count, bailout: F) -> Pair;
+    DeMandelbulb8Signed => de_mandelbulb8_signed(p: V3, iterations: Count, bailout: F) -> Pair;
+    DeJuliaSigned => de_julia_signed(p: V3, cx: F, cy: F, cz: F, cw: F, iterations: Count, bailout: F) -> Pair;
+    DeJuliabulbSigned => de_juliabulb_signed(p: V3, cx: F, cy: F, cz: F, power: F, iterations: Count, bailout: F) -> Pair;
     DeOctahedralKifs => de_octahedral_kifs(p: V3, scale: F, angle: F, iterations: Count) -> Pair;
     DeIcosahedralKifs => de_icosahedral_kifs(p: V3, scale: F, angle: F, iterations: Count) -> Pair;
     InMandelbulb => in_mandelbulb(p: V3, power: F, iterations: Count, bailout: F) -> F;
@@ -241,11 +246,22 @@ fn escape_estimate<F: Num>(r: F, dr: F) -> F {
     c::<F>(0.5) * ln(max(r, c(TINY))) * r / dr
 }
 
-/// The orbit of an escape-time map from z = p: z ← map(z, #[inline(always)] |z|, dr) + offset with dr ← its derivative, while |z|
-/// stays within `escape` and dr below [`DR_MAX`]; returns the distance estimate and the orbit trap (closest approach
-/// to the origin, at most 1). The offset is p for Mandelbrot-type sets, a constant for Julia-type ones.
+/// An escape-time estimate signed by membership: ≤ 0 where the orbit never passed the escape radius (the point is in
+/// the drawn set), > 0 where it escaped. Inside the set the estimate is no distance; its sign is what a march that
+/// takes hits on the set itself reads (step 3b of [`crate::back::render`], `membership_hits`): the `*_signed` leaves.
+/// Only there: with few iterations or a large bailout the drawn set reaches past the bound that holds the surface the
+/// plain hit test renders (1 iteration at bailout 256), and a plain march would stop on the bound's face.
 #[inline(always)]
-fn escape_time<F: Num>(
+fn signed_by_membership<F: Num>(estimate: F, bounded: F::Mask) -> F {
+    select(bounded, -abs(estimate), estimate)
+}
+
+/// The orbit of an escape-time map from z = p: z ← map(z, #[inline(always)] |z|, dr) + offset with dr ← its derivative, while |z|
+/// stays within `escape` and dr below [`DR_MAX`]; returns the distance estimate (if `SIGNED`, signed by membership:
+/// [`signed_by_membership`], an orbit stopped by the derivative cap alone staying in) and the orbit trap (closest
+/// approach to the origin, at most 1). The offset is p for Mandelbrot-type sets, a constant for Julia-type ones.
+#[inline(always)]
+fn escape_time<F: Num, const SIGNED: bool>(
     p: V3<F>,
     offset: V3<F>,
     iterations: F::Count,
@@ -266,13 +282,20 @@ fn escape_time<F: Num>(
             (z, dr, r, min(trap, r))
         },
     );
-    [escape_estimate(r, dr), min(trap, c(1.0))]
+    let estimate = escape_estimate(r, dr);
+    [if SIGNED { signed_by_membership(estimate, le(r, escape)) } else { estimate }, min(trap, c(1.0))]
 }
 
 /// Mandelbulb of any power by the trigonometric form; the derivative uses the same `power` as the iteration.
 #[inline(always)]
 pub fn de_mandelbulb<F: Num>(p: V3<F>, power: F, iterations: F::Count, bailout: F) -> [F; 2] {
-    mandelbulb_trigonometric::<F, false>(p, power, iterations, bailout)
+    mandelbulb_trigonometric::<F, false, false>(p, power, iterations, bailout)
+}
+
+/// [`de_mandelbulb`] signed by membership ([`signed_by_membership`]).
+#[inline(always)]
+pub fn de_mandelbulb_signed<F: Num>(p: V3<F>, power: F, iterations: F::Count, bailout: F) -> [F; 2] {
+    mandelbulb_trigonometric::<F, false, true>(p, power, iterations, bailout)
 }
 
 /// [`de_mandelbulb`] with the derivative taking the map's azimuthal stretch (`bulb_power`), as the Juliabulb's
@@ -283,17 +306,23 @@ pub fn de_mandelbulb<F: Num>(p: V3<F>, power: F, iterations: F::Count, bailout: 
 /// `mandelbulb_powers` the march takes 40 % fewer evaluations with no ray through the surface (`fractals.rs`).
 #[inline(always)]
 pub fn de_mandelbulb_stretched<F: Num>(p: V3<F>, power: F, iterations: F::Count, bailout: F) -> [F; 2] {
-    mandelbulb_trigonometric::<F, true>(p, power, iterations, bailout)
+    mandelbulb_trigonometric::<F, true, false>(p, power, iterations, bailout)
+}
+
+/// [`de_mandelbulb_stretched`] signed by membership ([`signed_by_membership`]).
+#[inline(always)]
+pub fn de_mandelbulb_stretched_signed<F: Num>(p: V3<F>, power: F, iterations: F::Count, bailout: F) -> [F; 2] {
+    mandelbulb_trigonometric::<F, true, true>(p, power, iterations, bailout)
 }
 
 #[inline(always)]
-fn mandelbulb_trigonometric<F: Num, const STRETCHED: bool>(
+fn mandelbulb_trigonometric<F: Num, const STRETCHED: bool, const SIGNED: bool>(
     p: V3<F>,
     power: F,
     iterations: F::Count,
     bailout: F,
 ) -> [F; 2] {
-    escape_time(
+    escape_time::<F, SIGNED>(
         p,
         p,
         iterations,
@@ -340,7 +369,18 @@ fn bulb_power<F: Num, const STRETCHED: bool>(z: V3<F>, r: F, dr: F, power: F) ->
 /// (z + iρ)^8 and ((x + iy)/ρ)^8 expanded as polynomials.
 #[inline(always)]
 pub fn de_mandelbulb8<F: Num>(p: V3<F>, iterations: F::Count, bailout: F) -> [F; 2] {
-    escape_time(
+    mandelbulb8::<F, false>(p, iterations, bailout)
+}
+
+/// [`de_mandelbulb8`] signed by membership ([`signed_by_membership`]).
+#[inline(always)]
+pub fn de_mandelbulb8_signed<F: Num>(p: V3<F>, iterations: F::Count, bailout: F) -> [F; 2] {
+    mandelbulb8::<F, true>(p, iterations, bailout)
+}
+
+#[inline(always)]
+fn mandelbulb8<F: Num, const SIGNED: bool>(p: V3<F>, iterations: F::Count, bailout: F) -> [F; 2] {
+    escape_time::<F, SIGNED>(
         p,
         p,
         iterations,
@@ -430,6 +470,19 @@ pub fn de_sierpinski<F: Num>(p: V3<F>, levels: F::Count) -> [F; 2] {
 /// Quaternion Julia set z ← z² + c in the slice w = 0, c = (cx, cy, cz, cw); `bailout` is the escape radius of |z|.
 #[inline(always)]
 pub fn de_julia<F: Num>(p: V3<F>, cx: F, cy: F, cz: F, cw: F, iterations: F::Count, bailout: F) -> [F; 2] {
+    julia::<F, false>(p, [cx, cy, cz, cw], iterations, bailout)
+}
+
+/// [`de_julia`] signed by membership ([`signed_by_membership`]).
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub fn de_julia_signed<F: Num>(p: V3<F>, cx: F, cy: F, cz: F, cw: F, iterations: F::Count, bailout: F) -> [F; 2] {
+    julia::<F, true>(p, [cx, cy, cz, cw], iterations, bailout)
+}
+
+#[inline(always)]
+fn julia<F: Num, const SIGNED: bool>(p: V3<F>, c4: [F; 4], iterations: F::Count, bailout: F) -> [F; 2] {
+    let [cx, cy, cz, cw] = c4;
     let dot4 = |a: [F; 4]| a[0] * a[0] + a[1] * a[1] + a[2] * a[2] + a[3] * a[3];
     let z0 = [p.x, p.y, p.z, c(0.0)];
     let m0 = dot4(z0);
@@ -455,7 +508,8 @@ pub fn de_julia<F: Num>(p: V3<F>, cx: F, cy: F, cz: F, cw: F, iterations: F::Cou
         },
     );
     // At an exactly-zero iterate the derivative vanishes too; the floor keeps the estimate finite.
-    [c::<F>(0.25) * ln(max(m, c(TINY))) * sqrt(m / max(dot4(dz), c(TINY))), min(trap, c(1.0))]
+    let estimate = c::<F>(0.25) * ln(max(m, c(TINY))) * sqrt(m / max(dot4(dz), c(TINY)));
+    [if SIGNED { signed_by_membership(estimate, le(m, escape2)) } else { estimate }, min(trap, c(1.0))]
 }
 
 /// One step of the quaternion Julia map, z ↦ z² + c.
@@ -508,8 +562,30 @@ fn mandelbox_step<F: Num>(z: V3<F>, p: V3<F>, scale: F, min_r2: F, fold_limit: F
 /// (`bulb_power`).
 #[inline(always)]
 pub fn de_juliabulb<F: Num>(p: V3<F>, cx: F, cy: F, cz: F, power: F, iterations: F::Count, bailout: F) -> [F; 2] {
+    juliabulb::<F, false>(p, [cx, cy, cz, power], iterations, bailout)
+}
+
+/// [`de_juliabulb`] signed by membership ([`signed_by_membership`]).
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub fn de_juliabulb_signed<F: Num>(
+    p: V3<F>,
+    cx: F,
+    cy: F,
+    cz: F,
+    power: F,
+    iterations: F::Count,
+    bailout: F,
+) -> [F; 2] {
+    juliabulb::<F, true>(p, [cx, cy, cz, power], iterations, bailout)
+}
+
+/// The Juliabulb's orbit with its constant and power as `[cx, cy, cz, power]`.
+#[inline(always)]
+fn juliabulb<F: Num, const SIGNED: bool>(p: V3<F>, c_power: [F; 4], iterations: F::Count, bailout: F) -> [F; 2] {
+    let [cx, cy, cz, power] = c_power;
     // An orbit through 0 (p = 0 itself) has dr = 0 from then on; the floor keeps the estimate finite.
-    escape_time(
+    escape_time::<F, SIGNED>(
         p,
         v3(cx, cy, cz),
         iterations,

@@ -827,7 +827,35 @@ pub fn check_scene(s: &Scene) -> Vec<Problem> {
         ));
     }
     out.extend(check_settings(&s.settings));
+    if s.settings.membership_hits {
+        out.extend(check_membership_hits(&s.root));
+    }
     out
+}
+
+/// `membership_hits` reads the sign of every fractal's estimate as membership of its set: only escape-time families
+/// have one ([`crate::ir::fractal::Membership::signed`]), and a scene without them has no set to take hits on.
+pub fn check_membership_hits(root: &Node) -> Vec<Problem> {
+    fn fractals<'a>(node: &'a Node, out: &mut Vec<&'a Fractal>) {
+        if let Node::Fractal(f) = node {
+            out.push(f);
+        }
+        node.children().iter().for_each(|c| fractals(c, out));
+    }
+    let mut all = Vec::new();
+    fractals(root, &mut all);
+    let signed: Vec<&str> = FRACTALS.iter().filter(|d| d.membership.has_sign()).map(|d| d.name).collect();
+    let takes = format!("it takes {}", signed.join(", "));
+    if all.is_empty() {
+        return vec![Problem::new("membership_hits", format!("the scene has no fractal to take hits on; {takes}"))];
+    }
+    all.iter()
+        .filter(|f| !f.decl().membership.has_sign())
+        .map(|f| {
+            let name = f.name();
+            Problem::new("membership_hits", format!("{name}'s estimate has no membership sign; {takes}"))
+        })
+        .collect()
 }
 
 /// Rules of the render settings.

@@ -233,6 +233,7 @@ fn cases() -> Vec<(&'static str, Scene)> {
         ),
         ("scene(sphere(1.0)).over_relaxation(1.3)", s(ball()).over_relaxation(1.3)),
         ("scene(sphere(1.0)).normal_pixel_epsilon(0.5)", s(ball()).normal_pixel_epsilon(0.5)),
+        ("scene(julia(vec4(-0.2, 0.8, 0.0, 0.0))).membership_hits()", scene(julia(vec4(-0.2, 0.8, 0.0, 0.0))).membership_hits()),
         (
             "scene(sphere(1.0)).soft_shadows(8.0).no_shadows().background(rgb(0, 0, 0)).gamma(2.2)",
             s(ball()).soft_shadows(8.0).no_shadows().background(rgb(0.0, 0.0, 0.0)).gamma(2.2),

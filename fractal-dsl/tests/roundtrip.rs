@@ -389,9 +389,10 @@ fn scene_strategy() -> impl Strategy<Value = Scene> {
         prop::option::of(0.5..3.0f64),
         prop::option::of(1.0..=2.0f64),
         prop::option::of(0.05..4.0f64),
+        prop::bool::weighted(0.2),
     );
     (shape(), prop::collection::vec(light(), 0..3), camera_strategy(), settings).prop_map(
-        |(root, lights, cam, (steps, dist, eps, shadows, ao, glow, fog, bg, gamma, relax, normal))| {
+        |(root, lights, cam, (steps, dist, eps, shadows, ao, glow, fog, bg, gamma, relax, normal, membership))| {
             let mut s = scene(root).camera(cam);
             for l in lights {
                 s = s.light(l);
@@ -410,6 +411,9 @@ fn scene_strategy() -> impl Strategy<Value = Scene> {
             }
             if let Some(k) = normal {
                 s = s.normal_pixel_epsilon(k);
+            }
+            if membership {
+                s = s.membership_hits();
             }
             s = match shadows {
                 0 => s,

@@ -209,6 +209,14 @@ fn rules_of_every_kind() {
         ),
         (scene(sphere(1.0)).pixel_epsilon(0.0), "scene: pixel_epsilon must be > 0, found 0"),
         (scene(sphere(1.0)).normal_pixel_epsilon(-0.5), "scene: normal_pixel_epsilon must be > 0, found -0.5"),
+        (
+            scene(sphere(1.0)).membership_hits(),
+            "scene: the scene has no fractal to take hits on; it takes mandelbulb, julia, juliabulb",
+        ),
+        (
+            scene(union(mandelbulb(2.0), menger(3))).membership_hits(),
+            "scene: menger's estimate has no membership sign; it takes mandelbulb, julia, juliabulb",
+        ),
         (scene(sphere(1.0)).over_relaxation(0.9), "scene: over_relaxation must be in [1, 2], found 0.9"),
         (scene(sphere(1.0)).over_relaxation(2.5), "scene: over_relaxation must be in [1, 2], found 2.5"),
         (scene(sphere(1.0)).soft_shadows(0.0), "scene: soft_shadows k must be > 0, found 0"),

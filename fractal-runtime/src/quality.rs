@@ -1,8 +1,8 @@
 //! The quality settings an accuracy sweep varies, and how each is applied to a scene: the march's step budget and hit
 //! epsilon (render settings), the iteration count of escape-time fractals (the scene's fractals), a factor on every
 //! distance the march steps by (the step factor, applied by wrapping the CPU evaluator), whether rays are clipped to
-//! the scene's bound (on the CPU only), over-relaxation of the march and the normal's taps (render settings), and
-//! whether OpenCL builds its kernels with fast math (OpenCL only).
+//! the scene's bound (on the CPU only), over-relaxation of the march, the normal's taps and membership hits (render
+//! settings), and whether OpenCL builds its kernels with fast math (OpenCL only).
 
 use std::fmt;
 
@@ -25,6 +25,8 @@ pub struct Quality {
     pub over_relaxation: Option<f64>,
     /// The normal's taps in pixel footprints (the scene's `normal_pixel_epsilon`): the normal method.
     pub normal: Option<f64>,
+    /// Whether hits are taken on escape-time sets themselves (the scene's `membership_hits`).
+    pub membership: Option<bool>,
     /// `Some(true)`: OpenCL builds the kernels without `-cl-fast-relaxed-math`, `Some(false)`: with it (OpenCL only;
     /// `None` keeps the sweep's own choice, `--precise`).
     pub precise: Option<bool>,
@@ -55,6 +57,9 @@ impl Quality {
         }
         if let Some(k) = self.normal {
             out.settings.normal_epsilon = Some(k);
+        }
+        if let Some(m) = self.membership {
+            out.settings.membership_hits = m;
         }
         out
     }
@@ -97,6 +102,11 @@ impl fmt::Display for Quality {
         }
         if let Some(k) = self.normal {
             parts.push(format!("normal {k} px"));
+        }
+        match self.membership {
+            Some(true) => parts.push("membership hits".to_string()),
+            Some(false) => parts.push("estimate hits".to_string()),
+            None => {}
         }
         match self.precise {
             Some(true) => parts.push("precise math".to_string()),

@@ -453,6 +453,7 @@ mod tests {
     use crate::accuracy::{measure, Observed};
     use crate::backend::cpu::trace_scene;
     use crate::{ParamValues, Pose};
+    use fractal_dsl::analyse::{sign_refinement, SignRefinement};
     use fractal_dsl::builder::*;
 
     fn frame(s: &Scene, w: u32, h: u32) -> Frame {
@@ -605,7 +606,7 @@ mod tests {
                       .camera(camera(vec3(0.0, 1.6, -6.0), vec3(0.0, 0.2, 2.0)).fov(60.0))\
                       .max_steps(384).max_distance(30.0).pixel_epsilon(0.25)";
         let s = fractal_dsl::parse::parse_str(source).unwrap();
-        assert!(fractal_dsl::analyse::refines_by_sign(&s.root));
+        assert_eq!(sign_refinement(&s.root, &s.settings), Some(SignRefinement::Displacement));
         let f = frame(&s, 64, 36);
         let truth = Truth::compute(&s, &f, TruthSettings::default()).unwrap();
         let traces = trace_scene::<f32, _>(&Interpreter::new(&s).unwrap(), &s, &f).unwrap();
@@ -620,7 +621,39 @@ mod tests {
             &source.replace("scene(plane", "scene(union(mandelbulb(8), plane").replace("4)))", "4))))"),
         )
         .unwrap();
-        assert!(!fractal_dsl::analyse::refines_by_sign(&with_bulb.root));
+        assert_eq!(sign_refinement(&with_bulb.root, &with_bulb.settings), None);
+    }
+
+    /// The power-2 Mandelbulb's estimate is a tenth of the distance to its set and less around it, so its rays stop
+    /// where the estimate passes under a half-pixel epsilon, many footprints in front of the set and on pixels whose
+    /// cone holds none of it (measured: 18.8 % of the pixels, interior depth p99 12 footprints). With membership hits
+    /// they step on to the set itself (none, 0.44).
+    #[test]
+    fn membership_hits_stop_on_the_set_where_the_estimate_stops_in_front_of_it() {
+        let source = "scene(mandelbulb(2).iterations(32))\
+                      .camera(camera(vec3(0.0, 1.6, -3.2), vec3(0.0, 0.0, 0.0)).fov(40.0))\
+                      .max_steps(256).max_distance(8.0).pixel_epsilon(0.5)";
+        let plain_scene = fractal_dsl::parse::parse_str(source).unwrap();
+        let f = frame(&plain_scene, 64, 36);
+        // The setting changes the march, not the scene: one truth for both.
+        let truth = Truth::compute(&plain_scene, &f, TruthSettings::default()).unwrap();
+        let measured = |source: &str| {
+            let s = fractal_dsl::parse::parse_str(source).unwrap();
+            let traces = trace_scene::<f32, _>(&Interpreter::new(&s).unwrap(), &s, &f).unwrap();
+            (sign_refinement(&s.root, &s.settings), measure(&s, &truth, Observed::Traced(&traces)))
+        };
+        let (refine, plain) = measured(source);
+        assert_eq!(refine, None);
+        let p = plain.traced.as_ref().unwrap();
+        assert!(plain.false_hits_cone > 0.02 && p.depth_cone_interior.p99 > 3.0, "{}", plain.describe());
+
+        let (refine, on_set) = measured(&format!("{source}.membership_hits()"));
+        assert_eq!(refine, Some(SignRefinement::Membership));
+        let t = on_set.traced.as_ref().unwrap();
+        assert!(on_set.false_hits_cone < 0.005 && t.depth_cone_interior.p99 < 1.0, "{}", on_set.describe());
+        // What it gives up: sheets of the set thinner than its steps along the ray (measured: 1.6 % of the pixels
+        // missed, 0.4 % passed through, at 64×36 so close up; 0.4 % and 0.03 % on `mandelbulb_powers`).
+        assert!(on_set.false_misses < 0.03 && t.overshoot_cone < 0.01, "{}", on_set.describe());
     }
 
     /// A false hit is cone-consistent when the pixel's cone meets the scene off its centre: a half-pixel epsilon

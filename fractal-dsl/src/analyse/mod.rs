@@ -10,17 +10,33 @@ pub use bounds::{bound, Aabb};
 pub use reference::{reference, scene_reference, ReferenceSpec};
 
 use crate::ir::op::Meaning;
-use crate::ir::Node;
+use crate::ir::{Node, RenderSettings};
 
-/// Whether a march's hits are refined by the distance's sign ([`crate::back::render`], step 3b): the tree displaces
-/// a surface (its distance is divided by the displacement's slope bound, so a hit test on it can stop that many times
-/// the hit epsilon short of the surface) and holds no fractal (a distance estimate has no sign to bracket with; every
-/// primitive's does).
-pub fn refines_by_sign(node: &Node) -> bool {
+/// Why a march refines its hits by the distance's sign ([`crate::back::render`], step 3b), which sets its sign step.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SignRefinement {
+    /// The tree displaces a surface (its distance is divided by the displacement's slope bound, so a hit test on it
+    /// can stop that many times the hit epsilon short of the surface) and holds no fractal (an estimate's sign is
+    /// not exact; every primitive's is): sign steps follow the line through the last two samples.
+    Displacement,
+    /// The scene asks for `membership_hits`: its fractals' estimates are signed by membership of the drawn set
+    /// ([`crate::ir::fractal::Membership::signed`]), and sign steps are a fixed share of the epsilon, since near a
+    /// fractal the estimate does not extrapolate.
+    Membership,
+}
+
+/// How a march's hits are refined by the distance's sign, if they are (see [`SignRefinement`]).
+pub fn sign_refinement(node: &Node, settings: &RenderSettings) -> Option<SignRefinement> {
     fn displaces(node: &Node) -> bool {
         node.op().is_some_and(|op| op.decl().meaning == Meaning::Displace) || node.children().iter().any(displaces)
     }
-    displaces(node) && !node.has_fractal()
+    if settings.membership_hits {
+        Some(SignRefinement::Membership)
+    } else if displaces(node) && !node.has_fractal() {
+        Some(SignRefinement::Displacement)
+    } else {
+        None
+    }
 }
 
 /// Whether some material of the tree may have a specular term (a literal 0 is the only certain "no"): the kernels

@@ -11,6 +11,7 @@ use std::fmt::Write;
 use super::render::*;
 use super::syntax::{self, Prec, Spelling, Syntax};
 use super::{f32_literal, Entry, FrameLayout, Level};
+use crate::analyse::SignRefinement;
 use crate::ir::{HitEpsilon, Shadows};
 use crate::lower::code::{MathFn, Ty};
 use crate::lower::trace::Function;
@@ -689,7 +690,7 @@ impl<D: Dialect> Kernel<'_, D> {
             self.line(l1, &self.variable("previous", float, &zero));
             self.line(l1, &self.variable("stride", float, &zero));
         }
-        if p.refine {
+        if p.refine.is_some() {
             self.line(l1, &self.variable("t_last", float, "t"));
             self.line(l1, &self.variable("d_last", float, &zero));
         }
@@ -706,12 +707,12 @@ impl<D: Dialect> Kernel<'_, D> {
         let abs_d = self.math(MathFn::Abs, &["d"]);
         // The step this iteration takes once the hit test has passed over it.
         let step = if relaxed { "stride" } else { "advance" };
-        if p.refine && !relaxed {
+        if p.refine.is_some() && !relaxed {
             self.line(l2, &self.variable("advance", float, "d"));
         }
         let hit_test = |w: &mut Self, level: Level| {
             w.line(level, "if (d < eps) {");
-            if p.refine {
+            if p.refine.is_some() {
                 w.refine(level.next(), step);
                 if relaxed {
                     w.line(level, "} else {");
@@ -731,7 +732,7 @@ impl<D: Dialect> Kernel<'_, D> {
             self.line(l3, &format!("omega = {one};"));
             self.line(l2, "} else {");
             hit_test(self, l3);
-            if !p.refine {
+            if p.refine.is_none() {
                 self.line(l3, "stride = d * omega;");
             }
             self.line(l2, "}");
@@ -742,11 +743,11 @@ impl<D: Dialect> Kernel<'_, D> {
         if s.glow.is_some() {
             self.line(l2, &format!("glow += {one} / ({one} + {} * d * d);", self.lit(GLOW_FALLOFF)));
         }
-        if p.refine {
+        if p.refine.is_some() {
             self.line(l2, "t_last = t;");
             self.line(l2, "d_last = d;");
         }
-        let advance = if p.refine || relaxed { format!("t += {step};") } else { "t += d;".to_string() };
+        let advance = if p.refine.is_some() || relaxed { format!("t += {step};") } else { "t += d;".to_string() };
         self.line(l2, &advance);
         self.line(l1, "}");
     }
@@ -759,10 +760,13 @@ impl<D: Dialect> Kernel<'_, D> {
         let (l2, l3, l4, l5) = (l1.next(), l1.next().next(), Level(l1.0 + 3), Level(l1.0 + 4));
         let (zero, one, half) = (self.lit(0.0), self.lit(1.0), self.lit(0.5));
         let false_position = "a + (b - a) * (fa / (fa - fb))";
-        self.line(
-            l1,
-            "// A displaced distance is divided by its slope bound, but its sign is exact: a hit is a crossing.",
-        );
+        let why = match self.p.refine {
+            Some(SignRefinement::Membership) => {
+                "// Hits on the fractals' drawn sets: the estimate's sign is membership."
+            }
+            _ => "// A displaced distance is divided by its slope bound, but its sign is exact: a hit is a crossing.",
+        };
+        self.line(l1, why);
         self.line(l1, &format!("if (d <= {zero}) {{"));
         self.line(l2, &format!("if (d_last > {zero}) {{"));
         for (name, value) in [("a", "t_last"), ("fa", "d_last"), ("b", "t"), ("fb", "d"), ("side", &zero)] {
@@ -792,13 +796,17 @@ impl<D: Dialect> Kernel<'_, D> {
         self.line(l2, &format!("hit = {};", d.bool_lit(true)));
         self.line(l2, "break;");
         self.line(l1, "}");
-        self.line(l1, &format!("{step} = eps;"));
-        self.line(l1, "if (d_last > d) {");
-        let toward = format!("{} * d * (t - t_last) / (d_last - d)", self.lit(PROBE_SHARE));
-        self.line(l2, &format!("{step} = {};", self.math(MathFn::Max, &[step, &toward])));
-        self.line(l1, "}");
-        let reach = format!("{} * eps", self.lit(PROBE_REACH));
-        self.line(l1, &format!("{step} = {};", self.math(MathFn::Min, &[step, &reach])));
+        if self.p.refine == Some(SignRefinement::Membership) {
+            self.line(l1, &format!("{step} = {} * eps;", self.lit(MEMBERSHIP_STEP)));
+        } else {
+            self.line(l1, &format!("{step} = eps;"));
+            self.line(l1, "if (d_last > d) {");
+            let toward = format!("{} * d * (t - t_last) / (d_last - d)", self.lit(PROBE_SHARE));
+            self.line(l2, &format!("{step} = {};", self.math(MathFn::Max, &[step, &toward])));
+            self.line(l1, "}");
+            let reach = format!("{} * eps", self.lit(PROBE_REACH));
+            self.line(l1, &format!("{step} = {};", self.math(MathFn::Min, &[step, &reach])));
+        }
         if self.p.settings.over_relaxation > 1.0 {
             self.line(l1, &format!("omega = {one};"));
         }
@@ -819,7 +827,7 @@ impl<D: Dialect> Kernel<'_, D> {
         let distance_frame = p.distance_reads_frame;
         let tap = match s.normal_epsilon {
             Some(k) => format!("{} * {} * t", self.lit(k), self.footprint()),
-            None if p.refine => format!("eps * {}", self.lit(REFINED_NORMAL_SHARE)),
+            None if p.refine.is_some() => format!("eps * {}", self.lit(REFINED_NORMAL_SHARE)),
             None => "eps".to_string(),
         };
         let n = self.call("scene_normal", &format!("p, {tap}"), distance_frame);

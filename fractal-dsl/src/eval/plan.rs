@@ -308,7 +308,8 @@ impl Plan {
     /// function library has no frame to hold the reference's orbit, so it iterates them plainly).
     pub fn folded_with(folded: &Scene, params: Vec<ParamDecl>, perturb: bool) -> Plan {
         let reference = crate::analyse::reference(&folded.root).filter(|_| perturb);
-        let compiler = Compiler { params: &params, perturbed: reference.map(|r| r.axes) };
+        let compiler =
+            Compiler { params: &params, perturbed: reference.map(|r| r.axes), signed: folded.settings.membership_hits };
         Plan {
             root: compiler.node(&folded.root, true),
             default_material: Mat::compile(&Material::default_surface(), &params, None),
@@ -322,6 +323,8 @@ struct Compiler<'a> {
     params: &'a [ParamDecl],
     /// The axes of the perturbed Mandelbrot patterns, if any.
     perturbed: Option<[u8; 2]>,
+    /// Fractals call their estimates signed by membership (the scene's `membership_hits`).
+    signed: bool,
 }
 
 impl Compiler<'_> {
@@ -375,6 +378,10 @@ impl Compiler<'_> {
 
     fn fractal(&self, f: &Fractal) -> LeafCall {
         let (leaf, args) = f.call();
+        let leaf = match f.decl().membership.signed_for(leaf) {
+            Some(signed) if self.signed => signed,
+            _ => leaf,
+        };
         let args = args
             .into_iter()
             .map(|a| match a {

@@ -110,12 +110,27 @@ pub struct Membership {
     /// Whether the estimate approximates the limit of the iteration — escape-time sets, where more iterations shrink
     /// the set towards the limit — rather than the set at the drawn count (IFS levels, where the count is the shape).
     pub approaches_limit: bool,
+    /// For each estimator leaf, the same estimate signed by membership: ≤ 0 exactly where the family's orbit stays
+    /// bounded (`sdf::signed_by_membership`), which a scene with `membership_hits` calls instead, to take its hits on
+    /// the drawn set itself. Empty where the estimate has no such sign (IFS folds, the Mandelbox).
+    pub signed: &'static [(Leaf, Leaf)],
 }
 
 impl Membership {
     /// The membership leaf for an estimator leaf of this family.
     pub fn leaf_for(&self, estimator: Leaf) -> Option<Leaf> {
-        self.leaves.iter().find(|(e, _)| *e == estimator).map(|&(_, m)| m)
+        let plain = self.signed.iter().find(|(_, s)| *s == estimator).map_or(estimator, |&(e, _)| e);
+        self.leaves.iter().find(|(e, _)| *e == plain).map(|&(_, m)| m)
+    }
+
+    /// The estimator leaf signed by membership for an estimator leaf of this family, if it has one.
+    pub fn signed_for(&self, estimator: Leaf) -> Option<Leaf> {
+        self.signed.iter().find(|(e, _)| *e == estimator).map(|&(_, s)| s)
+    }
+
+    /// Whether the family's estimates have a membership sign (see [`Membership::signed`]).
+    pub fn has_sign(&self) -> bool {
+        !self.signed.is_empty()
     }
 }
 

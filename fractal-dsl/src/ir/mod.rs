@@ -237,6 +237,10 @@ pub struct RenderSettings {
     /// The normal's taps, in pixel footprints at the hit (k·footprint·t): the scale the surface's normal is taken at.
     /// `None`: the hit epsilon's (step 4 of [`crate::back::render`]).
     pub normal_epsilon: Option<f64>,
+    /// Hits on escape-time fractals are points of the drawn set: below the hit epsilon the march steps on by a share
+    /// of it until the estimate's membership sign turns, and refines the crossing (step 3b of
+    /// [`crate::back::render`]). For sets whose estimate stops rays far in front of them (the power-2 Mandelbulb).
+    pub membership_hits: bool,
     pub shadows: Shadows,
     /// Ambient occlusion strength (5 samples along the normal); None disables it.
     pub ambient_occlusion: Option<f64>,
@@ -254,6 +258,7 @@ impl Default for RenderSettings {
             epsilon: HitEpsilon::Fixed(0.0005),
             over_relaxation: 1.0,
             normal_epsilon: None,
+            membership_hits: false,
             shadows: Shadows::None,
             ambient_occlusion: None,
             glow: None,

@@ -65,8 +65,8 @@ pub struct Program {
     pub bound: Option<Aabb>,
     /// Whether any material can have a specular term (otherwise the kernels omit it).
     pub specular: bool,
-    /// Whether the march refines its hits by the distance's sign ([`analyse::refines_by_sign`]).
-    pub refine: bool,
+    /// How the march refines its hits by the distance's sign, if it does ([`analyse::sign_refinement`]).
+    pub refine: Option<analyse::SignRefinement>,
     /// The perturbation reference the frame holds for the scene's Mandelbrot patterns; when there is one, the
     /// sample function takes the point relative to it as a second argument, [`REFERENCE_OFFSET`].
     pub reference: Option<crate::analyse::ReferenceSpec>,
@@ -146,7 +146,7 @@ fn lower_with(scene: &Scene, perturb: bool) -> Program {
         sample_reads_frame: reads[1],
         bound: analyse::bound(&folded.root),
         specular: analyse::has_specular(&folded.root),
-        refine: analyse::refines_by_sign(&folded.root),
+        refine: analyse::sign_refinement(&folded.root, &folded.settings),
         reference: plan.reference,
         settings: folded.settings.clone(),
         distance,

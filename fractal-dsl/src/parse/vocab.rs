@@ -525,6 +525,7 @@ pub(crate) static METHODS: &[Entry] = &[
     meth(T::Scene, "over_relaxation", &[p("omega", T::Const)], T::Scene, |a| {
         scene(a.scene()?.over_relaxation(a.konst()?))
     }),
+    meth(T::Scene, "membership_hits", &[], T::Scene, |a| scene(a.scene()?.membership_hits())),
     meth(T::Scene, "no_shadows", &[], T::Scene, |a| scene(a.scene()?.no_shadows())),
     meth(T::Scene, "hard_shadows", &[], T::Scene, |a| scene(a.scene()?.hard_shadows())),
     meth(T::Scene, "soft_shadows", &[p("k", T::Const)], T::Scene, |a| scene(a.scene()?.soft_shadows(a.konst()?))),

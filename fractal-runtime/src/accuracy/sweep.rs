@@ -22,6 +22,7 @@ use crate::renderer::{KernelSources, RenderJob, Renderer};
 use crate::select::RendererOptions;
 use crate::truth::Truth;
 use fractal_dsl::analyse::{bound, fold::fold_node};
+use fractal_dsl::validate::check_membership_hits;
 
 /// Renders per timing; the median is reported.
 pub const TIMING_RUNS: usize = 3;
@@ -141,6 +142,15 @@ pub fn grid(scene: &Scene, backend: Backend, precise: bool) -> Vec<Quality> {
         out.push(Quality { normal: Some(0.5), ..finer });
         if let Some(n) = escape_time_iterations(scene) {
             out.push(Quality { over_relaxation: Some(1.3), iterations: Some(n + 4), ..finer });
+        }
+    }
+    // Hits on the escape-time sets themselves, where the estimate may stop rays far in front of them, with the
+    // iterations that bring the drawn set near its limit.
+    if check_membership_hits(&scene.root).is_empty() {
+        let flipped = Quality { membership: Some(!own.membership_hits), ..Quality::default() };
+        out.push(flipped);
+        if let (false, Some(n)) = (own.membership_hits, escape_time_iterations(scene)) {
+            out.extend([2, 4].map(|f| Quality { iterations: Some(n * f), ..flipped }));
         }
     }
     if on_cpu {

@@ -7,9 +7,9 @@
 //! It reads the camera, lights, time and parameters from the same [`Frame`] uniforms the kernels read, so the three
 //! renderers draw the same pose from the same numbers.
 
-use fractal_dsl::analyse::{bound, fold::fold_node, has_specular, refines_by_sign, Aabb};
+use fractal_dsl::analyse::{bound, fold::fold_node, has_specular, sign_refinement, Aabb, SignRefinement};
 use fractal_dsl::back::render::{
-    AO_SAMPLES, AO_SPAN, AO_START, GLOW_FALLOFF, GLOW_NORM, MIN_DIRECTION, PROBE_REACH, PROBE_SHARE,
+    AO_SAMPLES, AO_SPAN, AO_START, GLOW_FALLOFF, GLOW_NORM, MEMBERSHIP_STEP, MIN_DIRECTION, PROBE_REACH, PROBE_SHARE,
     REFINED_NORMAL_SHARE, REFINE_STEPS, T_SPACING,
 };
 use fractal_dsl::eval::{packet::sample_lane, Env, Evaluator, PacketEvaluator, Reference, Sample};
@@ -136,7 +136,7 @@ pub fn render_packets<E: Evaluator<f32> + ?Sized>(
         let env8 = Env::new(F32x8::splat(view.time), &params);
         let row_rays: Vec<(V3<f32>, V3<f32>)> = (0..width).map(|x| view.ray(x as f32 + 0.5, y as f32 + 0.5)).collect();
         let mut row_marches = view.march_row(packets, &env8, &row_rays);
-        if view.refine {
+        if view.refine.is_some() {
             for (m, &(ro, rd)) in row_marches.iter_mut().zip(&row_rays) {
                 *m = m.map(|m| view.refined(evaluator, &env, ro, rd, m));
             }
@@ -274,8 +274,8 @@ impl View<f32> {
             let (last_t, last_d) = (F32x8(lanes.last_t), F32x8(lanes.last_d));
             // Step 3b: near the surface of a scene refined by sign, a hit is a crossing and the step a sign step.
             let near = Num::lt(d, eps);
-            let (hit_near, near_step) = if self.refine {
-                (Num::le(d, F32x8::splat(0.0)), sign_step(d, eps, t, (last_t, last_d)))
+            let (hit_near, near_step) = if let Some(rule) = self.refine {
+                (Num::le(d, F32x8::splat(0.0)), sign_step(rule, d, eps, t, (last_t, last_d)))
             } else {
                 (near, d)
             };
@@ -535,10 +535,14 @@ impl RowLanes {
     }
 }
 
-/// Step 3b's sign step at 0 < d < eps: eps, or a share of the distance to the zero of the line through the last
-/// sample and this one where the ray nears the surface, up to the reach. Written once for a ray and for eight.
+/// Step 3b's sign step at 0 < d < eps. Displacement: eps, or a share of the distance to the zero of the line through
+/// the last sample and this one where the ray nears the surface, up to the reach. Membership: a share of eps.
+/// Written once for a ray and for eight.
 #[inline(always)]
-fn sign_step<N: Num>(d: N, eps: N, t: N, (last_t, last_d): (N, N)) -> N {
+fn sign_step<N: Num>(rule: SignRefinement, d: N, eps: N, t: N, (last_t, last_d): (N, N)) -> N {
+    if rule == SignRefinement::Membership {
+        return N::lit(MEMBERSHIP_STEP) * eps;
+    }
     let toward = N::lit(PROBE_SHARE) * d * (t - last_t) / (last_d - d);
     let step = N::select(N::lt(d, last_d), N::max(eps, toward), eps);
     N::min(step, N::lit(PROBE_REACH) * eps)
@@ -614,8 +618,8 @@ pub(crate) struct View<F> {
     gamma: f64,
     /// Over-relaxation factor of the march (1: plain sphere tracing, the render algorithm's).
     relaxation: F,
-    /// Whether hits are refined by the distance's sign ([`refines_by_sign`]).
-    refine: bool,
+    /// Whether hits are refined by the distance's sign ([`sign_refinement`]), and why.
+    refine: Option<SignRefinement>,
     /// The normal's taps in pixel footprints, when the scene sets them apart from the hit epsilon.
     normal_epsilon: Option<f64>,
     /// The frame's perturbation reference orbit (empty without one).
@@ -652,6 +656,7 @@ impl<F: Real> View<F> {
             epsilon,
             over_relaxation,
             normal_epsilon,
+            membership_hits: _,
             shadows,
             ambient_occlusion,
             glow,
@@ -697,7 +702,7 @@ impl<F: Real> View<F> {
             background: d3(background),
             gamma,
             relaxation: c(over_relaxation),
-            refine: refines_by_sign(&folded),
+            refine: sign_refinement(&folded, &scene.settings),
             orbit: frame.reference_orbit(),
         })
     }
@@ -798,11 +803,11 @@ impl<F: Real> View<F> {
                 length = length - omega * length;
                 omega = F::one();
             } else if d < eps {
-                if !self.refine || d <= F::zero() {
+                let Some(rule) = self.refine.filter(|_| d > F::zero()) else {
                     hit = true;
                     break;
-                }
-                length = sign_step(d, eps, t, last);
+                };
+                length = sign_step(rule, d, eps, t, last);
                 omega = F::one();
             } else {
                 length = d * omega;
@@ -822,7 +827,7 @@ impl<F: Real> View<F> {
     /// crossing with the sample before it moves onto the crossing.
     fn refined<E: Evaluator<F> + ?Sized>(&self, eval: &E, env: &Env<F>, ro: V3<F>, rd: V3<F>, m: March<F>) -> March<F> {
         let ((mut a, mut fa), (mut b, mut fb)) = (m.last, (m.t, m.d));
-        if !(self.refine && m.hit && fa > F::zero()) {
+        if !(self.refine.is_some() && m.hit && fa > F::zero()) {
             return m;
         }
         // Illinois: an end kept twice in a row has its value halved, so both ends move.
@@ -873,7 +878,7 @@ impl<F: Real> View<F> {
     fn normal_tap(&self, t: F, eps: F) -> F {
         if let Some(k) = self.normal_epsilon {
             c::<F>(k) * self.footprint * t
-        } else if self.refine {
+        } else if self.refine.is_some() {
             eps * c::<F>(REFINED_NORMAL_SHARE)
         } else {
             eps

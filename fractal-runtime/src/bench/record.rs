@@ -57,6 +57,8 @@ pub struct SettingsRecord {
     pub over_relaxation: f64,
     /// The normal's taps in pixel footprints, when the scene sets them apart from the hit epsilon.
     pub normal_pixel_epsilon: Option<f64>,
+    /// Whether hits are taken on escape-time sets themselves (`membership_hits`).
+    pub membership_hits: bool,
     /// `none`, `hard` or `soft <k>`.
     pub shadows: String,
     pub ambient_occlusion: Option<f64>,
@@ -80,6 +82,7 @@ impl SettingsRecord {
             },
             over_relaxation: s.over_relaxation,
             normal_pixel_epsilon: s.normal_epsilon,
+            membership_hits: s.membership_hits,
             shadows: match s.shadows {
                 Shadows::None => "none".to_string(),
                 Shadows::Hard => "hard".to_string(),
@@ -222,6 +225,7 @@ impl BenchRecord {
             ("epsilon", s.epsilon.clone()),
             ("over_relaxation", s.over_relaxation.to_string()),
             ("normal_pixel_epsilon", opt(s.normal_pixel_epsilon)),
+            ("membership_hits", s.membership_hits.to_string()),
             ("shadows", s.shadows.clone()),
             ("ambient_occlusion", opt(s.ambient_occlusion)),
             ("glow", s.glow.map(|c| format!("{} {} {}", c[0], c[1], c[2])).unwrap_or_default()),

@@ -216,7 +216,8 @@ pub struct BenchArgs {
 #[derive(Debug, Args)]
 #[command(after_help = "\
 Renders the scene's camera at t = 0 with each quality setting (max steps, hit epsilon fixed or per pixel, iterations of
-escape-time fractals, over-relaxation, and on the CPU a factor on the step and the bound on or off), measures each
+escape-time fractals, over-relaxation, the normal's taps, hits on escape-time sets themselves, fast math on OpenCL,
+and on the CPU a factor on the step and the bound on or off), measures each
 against a ground truth computed from each
 fractal's own membership test and exact primitive distances, prints the table and the fastest setting within the
 error budget (hit mismatch <= 0.5 %, overshoot <= 0.1 % pixel-cone consistent, normal p99 <= 5 degrees, no ray out of steps, no NaN/Inf,
