@@ -292,7 +292,7 @@ pub fn de_mandelbulb<F: Num>(p: V3<F>, power: F, iterations: F::Count, bailout: 
     mandelbulb_trigonometric::<F, false, false>(p, power, iterations, bailout)
 }
 
-/// [`de_mandelbulb`] signed by membership ([`signed_by_membership`]).
+/// [`de_mandelbulb`] signed by membership: ≤ 0 where the orbit never escapes (`signed_by_membership`).
 #[inline(always)]
 pub fn de_mandelbulb_signed<F: Num>(p: V3<F>, power: F, iterations: F::Count, bailout: F) -> [F; 2] {
     mandelbulb_trigonometric::<F, false, true>(p, power, iterations, bailout)
@@ -309,7 +309,7 @@ pub fn de_mandelbulb_stretched<F: Num>(p: V3<F>, power: F, iterations: F::Count,
     mandelbulb_trigonometric::<F, true, false>(p, power, iterations, bailout)
 }
 
-/// [`de_mandelbulb_stretched`] signed by membership ([`signed_by_membership`]).
+/// [`de_mandelbulb_stretched`] signed by membership: ≤ 0 where the orbit never escapes (`signed_by_membership`).
 #[inline(always)]
 pub fn de_mandelbulb_stretched_signed<F: Num>(p: V3<F>, power: F, iterations: F::Count, bailout: F) -> [F; 2] {
     mandelbulb_trigonometric::<F, true, true>(p, power, iterations, bailout)
@@ -372,7 +372,7 @@ pub fn de_mandelbulb8<F: Num>(p: V3<F>, iterations: F::Count, bailout: F) -> [F;
     mandelbulb8::<F, false>(p, iterations, bailout)
 }
 
-/// [`de_mandelbulb8`] signed by membership ([`signed_by_membership`]).
+/// [`de_mandelbulb8`] signed by membership: ≤ 0 where the orbit never escapes (`signed_by_membership`).
 #[inline(always)]
 pub fn de_mandelbulb8_signed<F: Num>(p: V3<F>, iterations: F::Count, bailout: F) -> [F; 2] {
     mandelbulb8::<F, true>(p, iterations, bailout)
@@ -473,13 +473,13 @@ pub fn de_julia<F: Num>(p: V3<F>, cx: F, cy: F, cz: F, cw: F, iterations: F::Cou
     julia::<F, false>(p, [cx, cy, cz, cw], iterations, bailout)
 }
 
-/// [`de_julia`] signed by membership ([`signed_by_membership`]).
+/// [`de_julia`] signed by membership: ≤ 0 where the orbit never escapes (`signed_by_membership`).
 #[inline(always)]
-#[allow(clippy::too_many_arguments)]
 pub fn de_julia_signed<F: Num>(p: V3<F>, cx: F, cy: F, cz: F, cw: F, iterations: F::Count, bailout: F) -> [F; 2] {
     julia::<F, true>(p, [cx, cy, cz, cw], iterations, bailout)
 }
 
+/// The quaternion Julia orbit with its constant as `c4`.
 #[inline(always)]
 fn julia<F: Num, const SIGNED: bool>(p: V3<F>, c4: [F; 4], iterations: F::Count, bailout: F) -> [F; 2] {
     let [cx, cy, cz, cw] = c4;
@@ -565,9 +565,8 @@ pub fn de_juliabulb<F: Num>(p: V3<F>, cx: F, cy: F, cz: F, power: F, iterations:
     juliabulb::<F, false>(p, [cx, cy, cz, power], iterations, bailout)
 }
 
-/// [`de_juliabulb`] signed by membership ([`signed_by_membership`]).
+/// [`de_juliabulb`] signed by membership: ≤ 0 where the orbit never escapes (`signed_by_membership`).
 #[inline(always)]
-#[allow(clippy::too_many_arguments)]
 pub fn de_juliabulb_signed<F: Num>(
     p: V3<F>,
     cx: F,
