@@ -305,9 +305,14 @@ fn estimator_study(samples: usize) -> String {
          estimate (the kernel's estimate divided by the family's step \
          factor) / true distance, the true distance searched from membership alone \
          (`fractal-runtime/src/truth/estimate.rs`). A march is safe where step factor × ratio ≤ 1: *unsafe* is the \
-         share of points where it is not.\n\n\
-         | fractal | region | step factor | points | median | p99.9 | max | ratio > 1 % | unsafe % |\n\
-         |---|---|---|---|---|---|---|---|---|\n"
+         share of points where it is not. A march stops where the scene's estimate (step factor × raw) falls below \
+         its hit epsilon, so it never steps from a point whose estimate is smaller: *unsafe below* is the largest \
+         scene estimate at an unsafe point (scene units), and a hit epsilon above it keeps every sampled point safe. \
+         The Mandelbox's tail lies there: on an orbit that stays within the escape radius R its estimate |z|/|dr| \
+         never falls below R/|scale|^N, while the true distance goes to 0 at the boundary of the set at twice the \
+         iterations.\n\n\
+         | fractal | region | step factor | points | median | p99.9 | max | ratio > 1 % | unsafe % | unsafe below |\n\
+         |---|---|---|---|---|---|---|---|---|---|\n"
     );
     let _ = writeln!(
         out,
@@ -316,8 +321,8 @@ fn estimator_study(samples: usize) -> String {
     );
     let _ = writeln!(
         out,
-        "{:>28} {:>24} {:>6} {:>6} {:>7} {:>7} {:>7} {:>8} {:>8}",
-        "fractal", "region", "factor", "points", "median", "p99.9", "max", ">1 %", "unsafe %"
+        "{:>28} {:>24} {:>6} {:>6} {:>7} {:>7} {:>7} {:>8} {:>8} {:>12}",
+        "fractal", "region", "factor", "points", "median", "p99.9", "max", ">1 %", "unsafe %", "unsafe below"
     );
     for (name, fractal) in truth::estimate::studied() {
         for row in truth::estimate::study(&name, fractal, samples, CONVERGED_FACTOR, 0x5eed) {
@@ -329,11 +334,12 @@ fn estimator_study(samples: usize) -> String {
                 format!("{:.3}", row.max),
                 format!("{:.2}", 100.0 * row.above_one),
                 format!("{:.2}", 100.0 * row.unsafe_stepped),
+                if row.unsafe_below > 0.0 { format!("{:.1e}", row.unsafe_below) } else { "–".to_string() },
             ];
             let _ = writeln!(
                 out,
-                "{:>28} {:>24} {:>6} {:>6} {:>7} {:>7} {:>7} {:>8} {:>8}",
-                row.fractal, row.region, cells[0], cells[1], cells[2], cells[3], cells[4], cells[5], cells[6]
+                "{:>28} {:>24} {:>6} {:>6} {:>7} {:>7} {:>7} {:>8} {:>8} {:>12}",
+                row.fractal, row.region, cells[0], cells[1], cells[2], cells[3], cells[4], cells[5], cells[6], cells[7]
             );
             md += &format!("| {} | {} | {} |\n", row.fractal, row.region, cells.join(" | "));
         }
