@@ -24,8 +24,9 @@
 //!    power-2 Mandelbulb), and its sign is the set's membership. So d < eps is a hit only where d ≤ 0; at
 //!    0 < d < eps the step is a sign step. Displacement: eps, or where d_last > d [`PROBE_SHARE`] of the distance to
 //!    the zero of the line through the last two samples, d·(t − t_last)/(d_last − d), if that is longer; at most
-//!    [`PROBE_REACH`]·eps. Membership: [`MEMBERSHIP_STEP`]·eps. With over-relaxation, ω = 1 from then on. At a hit with d_last > 0 (d ≤ 0 < d_last brackets the crossing): [`REFINE_STEPS`] steps of the Illinois
-//!    false position on (a, f_a) = (t_last, d_last), (b, f_b) = (t, d) — m = a + (b − a)·f_a/(f_a − f_b); where
+//!    [`PROBE_REACH`]·eps. Membership: [`MEMBERSHIP_STEP`]·eps. With over-relaxation, ω = 1 from then on. At a
+//!    hit with d_last > 0 (d ≤ 0 < d_last brackets the crossing): [`REFINE_STEPS`] steps of the Illinois false
+//!    position on (a, f_a) = (t_last, d_last), (b, f_b) = (t, d) — m = a + (b − a)·f_a/(f_a − f_b); where
 //!    scene_de(m) ≤ 0, b = m, and f_a halves if b moved last time too; else a = m, and f_b halves if a moved last
 //!    time too — then t = the final bracket's false position.
 //! 4. **Hit shading.** p = ro + rd·t; n = normalize(Σ k_i·scene_de(p + k_i·h)) over the tetrahedron

@@ -319,11 +319,14 @@ fn estimator_study(samples: usize) -> String {
         "estimate / true distance ({samples} points per fractal and region, escape-time sets at {CONVERGED_FACTOR}x \
          their iterations)"
     );
-    let _ = writeln!(
-        out,
-        "{:>28} {:>24} {:>6} {:>6} {:>7} {:>7} {:>7} {:>8} {:>8} {:>12}",
-        "fractal", "region", "factor", "points", "median", "p99.9", "max", ">1 %", "unsafe %", "unsafe below"
-    );
+    // The terminal table's columns, right-aligned to these widths.
+    let aligned = |cells: &[&str]| -> String {
+        const WIDTHS: [usize; 10] = [28, 24, 6, 6, 7, 7, 7, 8, 8, 12];
+        cells.iter().zip(WIDTHS).map(|(c, w)| format!("{c:>w$}")).collect::<Vec<_>>().join(" ")
+    };
+    let headers =
+        ["fractal", "region", "factor", "points", "median", "p99.9", "max", ">1 %", "unsafe %", "unsafe below"];
+    let _ = writeln!(out, "{}", aligned(&headers));
     for (name, fractal) in truth::estimate::studied() {
         for row in truth::estimate::study(&name, fractal, samples, CONVERGED_FACTOR, 0x5eed) {
             let cells = [
@@ -336,11 +339,9 @@ fn estimator_study(samples: usize) -> String {
                 format!("{:.2}", 100.0 * row.unsafe_stepped),
                 if row.unsafe_below > 0.0 { format!("{:.1e}", row.unsafe_below) } else { "–".to_string() },
             ];
-            let _ = writeln!(
-                out,
-                "{:>28} {:>24} {:>6} {:>6} {:>7} {:>7} {:>7} {:>8} {:>8} {:>12}",
-                row.fractal, row.region, cells[0], cells[1], cells[2], cells[3], cells[4], cells[5], cells[6], cells[7]
-            );
+            let line: Vec<&str> =
+                [row.fractal.as_str(), row.region].into_iter().chain(cells.iter().map(String::as_str)).collect();
+            let _ = writeln!(out, "{}", aligned(&line));
             md += &format!("| {} | {} | {} |\n", row.fractal, row.region, cells.join(" | "));
         }
     }
