@@ -882,16 +882,23 @@ pub fn in_julia<F: Num>(p: V3<F>, cx: F, cy: F, cz: F, cw: F, iterations: F::Cou
 /// 2√3: the most a box fold at limit f can shorten a vector, in units of f (each axis by at most 2f).
 const TWO_SQRT3: f64 = 3.464_101_615_137_754_6;
 
-/// The Mandelbox: the orbit stays within the radius past which it provably escapes. Past
-/// R = max((2√3·|s|·f + |p|)/(|s| − 1), 1 + 2√3·f), the box fold shortens z by at most 2√3·f, leaving it outside the
-/// unit sphere where the sphere fold does nothing, so |s·fold(z) + p| > |z| and the orbit grows without bound.
+/// The radius past which a Mandelbox orbit from a point `distance` from the origin provably escapes:
+/// R = max((2√3·|s|·f + |p|)/(|s| − 1), 1 + 2√3·f). Past it the box fold shortens z by at most 2√3·f, leaving it
+/// outside the unit sphere where the sphere fold does nothing, so |s·fold(z) + p| > |z| and the orbit grows without
+/// bound.
 #[inline(always)]
-pub fn in_mandelbox<F: Num>(p: V3<F>, scale: F, iterations: F::Count, min_radius: F, fold_limit: F) -> F {
+pub fn mandelbox_escape_radius<F: Num>(distance: F, scale: F, fold_limit: F) -> F {
     let one = c::<F>(1.0);
-    let min_r2 = min_radius * min_radius;
     let shortening = c::<F>(TWO_SQRT3) * abs(fold_limit);
     let s = abs(scale);
-    let escape = max((s * shortening + length(p)) / max(s - one, c(TINY)), one + shortening);
+    max((s * shortening + distance) / max(s - one, c(TINY)), one + shortening)
+}
+
+/// The Mandelbox: the orbit stays within the radius past which it provably escapes ([`mandelbox_escape_radius`]).
+#[inline(always)]
+pub fn in_mandelbox<F: Num>(p: V3<F>, scale: F, iterations: F::Count, min_radius: F, fold_limit: F) -> F {
+    let min_r2 = min_radius * min_radius;
+    let escape = mandelbox_escape_radius(length(p), scale, fold_limit);
     let (_, r) = F::iterate(
         iterations,
         (p, length(p)),

@@ -485,41 +485,35 @@ fn expr() -> impl Strategy<Value = Expr> {
     })
 }
 
-/// Whether evaluating `e` produces NaN anywhere along the way.
-fn nan_inside(e: &Expr, t: f64, lookup: &dyn Fn(&ParamDecl) -> f64) -> bool {
-    e.eval(t, lookup).is_nan()
+/// Whether `e` or any part of it satisfies `holds`.
+fn any_part(e: &Expr, holds: &dyn Fn(&Expr) -> bool) -> bool {
+    holds(e)
         || match e {
             Expr::Lit(_) | Expr::Time | Expr::Point(_) | Expr::Param(_) => false,
-            Expr::Neg(a) => nan_inside(a, t, lookup),
-            Expr::Bin(_, a, b) => nan_inside(a, t, lookup) || nan_inside(b, t, lookup),
-            Expr::Call(_, args) => args.iter().any(|a| nan_inside(a, t, lookup)),
+            Expr::Neg(a) => any_part(a, holds),
+            Expr::Bin(_, a, b) => any_part(a, holds) || any_part(b, holds),
+            Expr::Call(_, args) => args.iter().any(|a| any_part(a, holds)),
         }
+}
+
+/// Whether evaluating `e` produces NaN anywhere along the way.
+fn nan_inside(e: &Expr, t: f64, lookup: &dyn Fn(&ParamDecl) -> f64) -> bool {
+    any_part(e, &|part| part.eval(t, lookup).is_nan())
 }
 
 /// Whether some part of `e` evaluates to ±∞ at an end its range leaves open: f64 overflow (0.5 to the power −13 000),
 /// which an open end ("no limit known") admits, and past which no range promises anything (cos ∞ is NaN). Frames
 /// never get there: the runtime refuses a frame at which a moving number of the scene's shape is not finite in f32.
 fn overflow_at_open_end(e: &Expr, t: f64, lookup: &dyn Fn(&ParamDecl) -> f64) -> bool {
-    let (v, r) = (e.eval(t, lookup), range(e));
-    (v == f64::INFINITY && r.hi == f64::INFINITY)
-        || (v == f64::NEG_INFINITY && r.lo == f64::NEG_INFINITY)
-        || match e {
-            Expr::Lit(_) | Expr::Time | Expr::Point(_) | Expr::Param(_) => false,
-            Expr::Neg(a) => overflow_at_open_end(a, t, lookup),
-            Expr::Bin(_, a, b) => overflow_at_open_end(a, t, lookup) || overflow_at_open_end(b, t, lookup),
-            Expr::Call(_, args) => args.iter().any(|a| overflow_at_open_end(a, t, lookup)),
-        }
+    any_part(e, &|part| {
+        let (v, r) = (part.eval(t, lookup), range(part));
+        (v == f64::INFINITY && r.hi == f64::INFINITY) || (v == f64::NEG_INFINITY && r.lo == f64::NEG_INFINITY)
+    })
 }
 
 /// Whether `e` or any part of it has the range [`Interval::ENTIRE`].
 fn any_unlimited(e: &Expr) -> bool {
-    range(e) == Interval::ENTIRE
-        || match e {
-            Expr::Lit(_) | Expr::Time | Expr::Point(_) | Expr::Param(_) => false,
-            Expr::Neg(a) => any_unlimited(a),
-            Expr::Bin(_, a, b) => any_unlimited(a) || any_unlimited(b),
-            Expr::Call(_, args) => args.iter().any(any_unlimited),
-        }
+    any_part(e, &|part| range(part) == Interval::ENTIRE)
 }
 
 proptest! {

@@ -351,8 +351,7 @@ mod tests {
         let factor = fractal.step_factor_or_default();
         let aabb = bound(&fold_node(&scene(fractal.clone()).root)).expect("the Mandelbox is bounded");
         let farthest = aabb.min.iter().chain(&aabb.max).fold(0.0, |m: f64, c| m.max(c.abs())) * 3f64.sqrt();
-        // The escape radius at fold limit 1 (`fractal_dsl::sdf::in_mandelbox`) for the farthest point of the bound.
-        let escape = (scale * 2.0 * 3f64.sqrt() + farthest) / (scale - 1.0);
+        let escape = fractal_dsl::sdf::mandelbox_escape_radius(farthest, scale, 1.0);
         let floor = factor * escape / scale.powi(iterations as i32);
         let rows = study("mandelbox(2)", fractal, 40, 2, 11);
         assert!(rows.iter().any(|r| r.unsafe_stepped > 0.0), "the tail is sampled: {rows:?}");
