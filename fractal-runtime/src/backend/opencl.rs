@@ -1,5 +1,6 @@
-//! The OpenCL renderer (cargo feature `opencl`): builds a scene's OpenCL C program on the first device of the first
-//! platform and runs its `render`, `trace` or `probe` kernel ([`fractal_dsl::back::Entry`]).
+//! The OpenCL renderer (cargo feature `opencl`): builds a scene's OpenCL C program on the preferred device of all
+//! platforms (a GPU before an accelerator before the CPU, [`preferred`]) and runs its `render`, `trace` or `probe`
+//! kernel ([`fractal_dsl::back::Entry`]).
 //!
 //! Programs are built with `-cl-fast-relaxed-math` unless the renderer is precise; a build failure returns the
 //! driver's build log. Programs are cached per source text and precision.
@@ -8,6 +9,7 @@ use std::sync::Mutex;
 
 use fractal_dsl::back::Entry;
 use ocl::enums::{DeviceInfo as ClDeviceInfo, DeviceInfoResult};
+use ocl::flags::DeviceType;
 use ocl::{flags, Buffer, Context, Device, Kernel, Platform, Program, Queue};
 
 use crate::device::{Backend, DeviceInfo};
@@ -56,14 +58,56 @@ pub(crate) fn brief(e: &ocl::Error) -> String {
     }
 }
 
+/// Every device of every platform, then the [`preferred`] one. The ICD loader lists platforms in no promised order,
+/// so on a machine with a GPU driver and a CPU runtime (pocl) beside it the first platform's first device may be the
+/// CPU.
+fn preferred_device() -> Result<(Platform, Device), RenderError> {
+    let ids = ocl::core::get_platform_ids()
+        .map_err(|e| no_device(format!("listing platforms: {}", brief(&ocl::Error::from(e)))))?;
+    let mut candidates = Vec::new();
+    let mut failures = Vec::new();
+    for platform in Platform::list_from_core(ids) {
+        match Device::list_all(platform) {
+            Ok(devices) => candidates.extend(devices.into_iter().map(|device| {
+                let kind = match device.info(ClDeviceInfo::Type) {
+                    Ok(DeviceInfoResult::Type(kind)) => kind,
+                    _ => DeviceType::empty(),
+                };
+                ((platform, device), kind)
+            })),
+            Err(e) => failures.push(brief(&e)),
+        }
+    }
+    preferred(candidates).ok_or_else(|| {
+        let why = if failures.is_empty() { "no platform has a device".to_string() } else { failures.join("; ") };
+        no_device(format!("listing devices: {why}"))
+    })
+}
+
+/// The device a renderer wants most among `candidates` (each with its type), the first listed among equals: a GPU,
+/// then an accelerator, then a device of another or unknown type, the CPU last.
+fn preferred<T>(candidates: impl IntoIterator<Item = (T, DeviceType)>) -> Option<T> {
+    let rank = |kind: DeviceType| {
+        if kind.contains(DeviceType::GPU) {
+            0
+        } else if kind.contains(DeviceType::ACCELERATOR) {
+            1
+        } else if kind.contains(DeviceType::CPU) {
+            3
+        } else {
+            2
+        }
+    };
+    candidates.into_iter().min_by_key(|(_, kind)| rank(*kind)).map(|(candidate, _)| candidate)
+}
+
 impl OpenClRenderer {
-    /// Opens the first device of the first platform; `precise` leaves out `-cl-fast-relaxed-math`.
+    /// Opens the preferred device of all platforms ([`preferred`]); `precise` leaves out `-cl-fast-relaxed-math`.
     pub fn new(precise: bool) -> Result<OpenClRenderer, RenderError> {
         // Some platforms (pocl) report no devices to a thread that asks while another thread initialises them.
         static OPENING: Mutex<()> = Mutex::new(());
         let _opening = OPENING.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
-        let platform = Platform::first().map_err(|e| no_device(format!("listing platforms: {}", brief(&e))))?;
-        let device = Device::first(platform).map_err(|e| no_device(format!("listing devices: {}", brief(&e))))?;
+        let (platform, device) = preferred_device()?;
         let context = Context::builder()
             .platform(platform)
             .devices(device)
@@ -269,4 +313,21 @@ pub(crate) fn image_buffer(queue: &Queue, width: u32, height: u32) -> Result<Buf
             what: format!("a {width}x{height} image"),
             detail: brief(&e),
         })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_gpu_is_preferred_to_the_cpu_whatever_the_platform_order() {
+        let listed = [("pocl cpu", DeviceType::CPU), ("gpu", DeviceType::GPU), ("second gpu", DeviceType::GPU)];
+        assert_eq!(preferred(listed), Some("gpu"));
+        let listed = [("cpu", DeviceType::CPU), ("accelerator", DeviceType::ACCELERATOR)];
+        assert_eq!(preferred(listed), Some("accelerator"));
+        let listed = [("cpu", DeviceType::CPU), ("unknown", DeviceType::empty())];
+        assert_eq!(preferred(listed), Some("unknown"));
+        assert_eq!(preferred([("cpu", DeviceType::CPU | DeviceType::DEFAULT)]), Some("cpu"));
+        assert_eq!(preferred(Vec::<(&str, DeviceType)>::new()), None);
+    }
 }
