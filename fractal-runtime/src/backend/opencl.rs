@@ -1,6 +1,6 @@
 //! The OpenCL renderer (cargo feature `opencl`): builds a scene's OpenCL C program on the preferred device of all
-//! platforms (a GPU before an accelerator before the CPU, [`preferred`]) and runs its `render`, `trace` or `probe`
-//! kernel ([`fractal_dsl::back::Entry`]).
+//! platforms (a GPU before an accelerator before the CPU) and runs its `render`, `trace` or `probe` kernel
+//! ([`fractal_dsl::back::Entry`]).
 //!
 //! Programs are built with `-cl-fast-relaxed-math` unless the renderer is precise; a build failure returns the
 //! driver's build log. Programs are cached per source text and precision.
@@ -102,7 +102,7 @@ fn preferred<T>(candidates: impl IntoIterator<Item = (T, DeviceType)>) -> Option
 }
 
 impl OpenClRenderer {
-    /// Opens the preferred device of all platforms ([`preferred`]); `precise` leaves out `-cl-fast-relaxed-math`.
+    /// Opens the preferred device of all platforms (a GPU first); `precise` leaves out `-cl-fast-relaxed-math`.
     pub fn new(precise: bool) -> Result<OpenClRenderer, RenderError> {
         // Some platforms (pocl) report no devices to a thread that asks while another thread initialises them.
         static OPENING: Mutex<()> = Mutex::new(());
