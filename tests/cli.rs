@@ -595,6 +595,22 @@ fn accuracy_sweeps_settings_against_the_truth_and_writes_a_report() {
     assert!(!fixed_camera.contains("truth at key"), "{fixed_camera}");
     assert!(report.contains("## Distance estimators against the true distance"), "{report}");
     assert!(report.contains("| mandelbulb(8) | near coordinate axes | 0.75 |"), "{report}");
+
+    // The defaults alone at another size: a section and one row per scene, no sweep, plots or estimator study.
+    let out = run_in(
+        &dir,
+        &["accuracy", "--report", "--default-only", "--size", "16x9", "--truth-step", "0.05", "--out", "d.md"],
+    );
+    assert_ok(&out);
+    let defaults = fs::read_to_string(dir.join("d.md")).unwrap();
+    assert!(defaults.starts_with("# Accuracy of the scene defaults at 16×9"), "{defaults}");
+    assert!(defaults.contains("`fractal accuracy --report --size 16x9 --backend cpu --default-only"), "{defaults}");
+    for name in scenes::names() {
+        assert!(defaults.contains(&format!("## {name}\n")), "no section for {name}:\n{defaults}");
+    }
+    assert_eq!(defaults.matches("\n| scene default |").count(), scenes::names().count(), "{defaults}");
+    assert!(!defaults.contains("steps 32") && !defaults.contains(".svg") && !dir.join("d").exists(), "{defaults}");
+    assert!(!defaults.contains("## Distance estimators"), "{defaults}");
 }
 
 #[test]

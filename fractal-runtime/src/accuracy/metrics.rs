@@ -81,7 +81,7 @@ pub enum Observed<'a> {
 }
 
 /// The figures measured on the render's depths, normals and march (not readable from an image).
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
 pub struct TracedError {
     pub depth_thin: Spread,
     pub depth_cone: Spread,
@@ -108,7 +108,7 @@ pub struct TracedError {
 }
 
 /// A render's true error.
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
 pub struct TrueError {
     pub width: u32,
     pub height: u32,

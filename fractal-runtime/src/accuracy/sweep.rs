@@ -76,6 +76,23 @@ impl Budget {
         }
         out
     }
+
+    /// What the budget leaves unjudged in `e`: a normal p99 over fewer than [`MIN_NORMALS`] measured normals.
+    pub fn unjudged(&self, e: &TrueError) -> Option<String> {
+        let t = e.traced.as_ref()?;
+        (t.normal.count < MIN_NORMALS).then(|| format!("normals unjudged, {} measured", t.normal.count))
+    }
+
+    /// The verdict on `e` in words: "within budget" or the ways it is not, then what was left unjudged, so a
+    /// verdict never reads as a pass on what it did not measure.
+    pub fn verdict(&self, e: &TrueError) -> String {
+        let violations = self.violations(e);
+        let judged = if violations.is_empty() { "within budget".to_string() } else { violations.join("; ") };
+        match self.unjudged(e) {
+            Some(unjudged) => format!("{judged} ({unjudged})"),
+            None => judged,
+        }
+    }
 }
 
 /// One measured setting.
@@ -288,6 +305,23 @@ mod tests {
     use crate::truth::TruthSettings;
     use crate::{ParamValues, Pose};
     use fractal_dsl::builder::*;
+
+    /// A verdict names what it did not judge: a normal p99 over too few normals passes, and says so.
+    #[test]
+    fn a_verdict_names_the_normals_it_did_not_judge() {
+        use crate::accuracy::metrics::{Spread, TracedError};
+        let budget = Budget::default();
+        let error = |count, p99| TrueError {
+            traced: Some(TracedError {
+                normal: Spread { count, median: 1.0, p99, max: p99 },
+                ..TracedError::default()
+            }),
+            ..TrueError::default()
+        };
+        assert_eq!(budget.verdict(&error(MIN_NORMALS, 1.0)), "within budget");
+        assert_eq!(budget.verdict(&error(12, 40.0)), "within budget (normals unjudged, 12 measured)");
+        assert_eq!(budget.verdict(&error(MIN_NORMALS, 40.0)), "normal p99 40.0°");
+    }
 
     /// Clipping to the bound is a lever the CPU sweep turns off where the scene has a bound; off, the march covers
     /// the whole ray and must find the same surface, only with more evaluations.

@@ -49,15 +49,6 @@ fn cells(p: &SweepPoint) -> Vec<String> {
     COLUMNS.iter().map(|c| (c.cell)(p).unwrap_or_else(|| "–".to_string())).collect()
 }
 
-fn verdict(p: &SweepPoint, budget: &Budget) -> String {
-    let v = budget.violations(&p.error);
-    if v.is_empty() {
-        "within budget".to_string()
-    } else {
-        v.join("; ")
-    }
-}
-
 /// The table for a terminal: aligned columns and a budget verdict per row.
 pub fn text(points: &[SweepPoint], budget: &Budget) -> String {
     let rows: Vec<Vec<String>> = points.iter().map(cells).collect();
@@ -72,7 +63,7 @@ pub fn text(points: &[SweepPoint], budget: &Budget) -> String {
     };
     let mut out = line(COLUMNS.iter().map(|c| c.header.to_string()).collect(), "budget");
     for (p, row) in points.iter().zip(rows) {
-        out += &line(row, &verdict(p, budget));
+        out += &line(row, &budget.verdict(&p.error));
     }
     out
 }
@@ -83,7 +74,7 @@ pub fn markdown(points: &[SweepPoint], budget: &Budget) -> String {
     let mut out = format!("| {} |\n|{}\n", headers.join(" | "), "---|".repeat(headers.len()));
     for p in points {
         let mut row = cells(p);
-        row.push(verdict(p, budget));
+        row.push(budget.verdict(&p.error));
         out += &format!("| {} |\n", row.join(" | "));
     }
     out
@@ -109,7 +100,7 @@ pub fn csv_rows(scene: &str, backend: &str, size: (u32, u32), points: &[SweepPoi
         .map(|p| {
             let mut row = vec![scene.to_string(), backend.to_string(), format!("{}x{}", size.0, size.1)];
             row.extend(cells(p).into_iter().map(|c| if c == "–" { String::new() } else { c }));
-            row.push(verdict(p, budget));
+            row.push(budget.verdict(&p.error));
             row.iter().map(|c| quote(c)).collect::<Vec<_>>().join(",") + "\n"
         })
         .collect()

@@ -66,7 +66,11 @@ pub fn accuracy(args: &AccuracyArgs, library: &SceneLibrary) -> Result<(), CliEr
         report += &section;
     }
     if args.report {
-        report += &estimator_study(args.estimator_samples as usize);
+        // The estimators do not depend on the image's size: a report of the defaults at another size leaves them
+        // to the full report.
+        if !args.default_only {
+            report += &estimator_study(args.estimator_samples as usize);
+        }
         let text = report_text(args, backend, &budget, &report);
         std::fs::write(&args.out, text)
             .map_err(|e| CliError::failure(format!("cannot write {}: {e}", args.out.display())))?;
@@ -161,10 +165,11 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
         Some(p) => format!("fastest within budget: {} ({:.1} ms)", p.quality, p.time_ms),
         None => "no setting tried is within budget".to_string(),
     };
-    let default_ok = points.iter().find(|p| p.quality.is_default()).map(|p| budget.violations(&p.error));
-    let default_line = match default_ok {
-        Some(v) if v.is_empty() => "the scene default is within budget".to_string(),
-        Some(v) => format!("the scene default is not within budget: {}", v.join("; ")),
+    let default_line = match points.iter().find(|p| p.quality.is_default()) {
+        Some(p) if budget.violations(&p.error).is_empty() => {
+            format!("the scene default is {}", budget.verdict(&p.error))
+        }
+        Some(p) => format!("the scene default is not within budget: {}", budget.verdict(&p.error)),
         None => String::new(),
     };
     let _ = writeln!(out, "  {verdict}; {default_line}\n");
@@ -231,11 +236,8 @@ fn default_on(
 /// budget's violations (none: within budget).
 fn judged(point: &sweep::SweepPoint, budget: &Budget) -> (String, Vec<String>) {
     let violations = budget.violations(&point.error);
-    let verdict = if violations.is_empty() {
-        "within budget".to_string()
-    } else {
-        format!("not within budget: {}", violations.join("; "))
-    };
+    let verdict = budget.verdict(&point.error);
+    let verdict = if violations.is_empty() { verdict } else { format!("not within budget: {verdict}") };
     (format!("{:.1} ms, {}; {verdict}", point.time_ms, point.error.describe()), violations)
 }
 
@@ -351,7 +353,7 @@ fn estimator_study(samples: usize) -> String {
 
 /// Where plots go: `--plot`, or with `--report` the folder named after the report beside it.
 fn plot_dir(args: &AccuracyArgs) -> Option<std::path::PathBuf> {
-    match (&args.plot, args.report) {
+    match (&args.plot, args.report && !args.default_only) {
         (Some(dir), _) => Some(dir.clone()),
         (None, true) => Some(args.out.with_extension("")),
         (None, false) => None,
@@ -371,6 +373,9 @@ fn append_csv(path: &std::path::Path, rows: &str) -> Result<(), CliError> {
 fn report_text(args: &AccuracyArgs, backend: Backend, budget: &Budget, sections: &str) -> String {
     let (w, h) = args.size;
     let mut command = format!("fractal accuracy --report --size {w}x{h} --backend {backend}");
+    if args.default_only {
+        command += " --default-only";
+    }
     if args.truth_step != truth::DEFAULT_STEP_FOOTPRINTS {
         command += &format!(" --truth-step {}", args.truth_step);
     }
@@ -378,17 +383,31 @@ fn report_text(args: &AccuracyArgs, backend: Backend, budget: &Budget, sections:
         let list: Vec<String> = args.also_on.iter().map(|b| b.to_string()).collect();
         command += &format!(" --also-on {}", list.join(","));
     }
+    let (title, rendered) = if args.default_only {
+        (
+            format!("Accuracy of the scene defaults at {w}×{h}"),
+            "Every built-in scene is rendered with its own setting (the scene default) from its own camera at t = 0, \
+             then from each other key of a camera path (the lines after its table), and measured against a ground \
+             truth that never reads a distance estimate. The settings a default was chosen from are swept in \
+             `docs/accuracy.md`, at the size the sweep could afford; this report judges the defaults again at this \
+             size, where a pixel covers less of the scene and detail that fell between pixels there is measured.",
+        )
+    } else {
+        (
+            "Accuracy: speed against true error".to_string(),
+            "Every built-in scene is rendered from its own camera at t = 0 with each quality setting (a scene with a \
+             camera path, then with its default and the settings within budget from each other key: the lines after \
+             its table) and measured against a ground truth that never reads a distance estimate.",
+        )
+    };
     format!(
-        "# Accuracy: speed against true error\n\n\
-         Written by `{command}`. Every built-in scene is rendered \
-         from its own camera at t = 0 with each quality setting (a scene with a camera path, then with its default and \
-         the settings within budget from each other key: the lines after its table) and measured against a ground truth that never reads \
-         a distance estimate: each fractal decided by its own iteration (escape time or IFS levels), exact primitives \
-         by their exact f64 distance, the first crossing along each ray found with steps of {:.4} pixel footprints and \
-         bisected (`fractal-runtime/src/truth.rs`). Escape-time fractals get a truth at the scene's iteration count \
-         and at doubled counts until doubling moves less than {:.1} % of the hit mask (at most {MAX_TRUTH_FACTOR}x); \
-         the sweep is judged against the one of most iterations that has also settled in its step: a truth at twice \
-         the step moves less than {:.1} % of its mask.\n\n\
+        "# {title}\n\n\
+         Written by `{command}`. {rendered} The truth decides each fractal by its own iteration (escape time or IFS \
+         levels) and exact primitives by their exact f64 distance, and finds the first crossing along each ray with \
+         steps of {:.4} pixel footprints, bisected (`fractal-runtime/src/truth.rs`). Escape-time fractals get a truth \
+         at the scene's iteration count and at doubled counts until doubling moves less than {:.1} % of the hit mask \
+         (at most {MAX_TRUTH_FACTOR}x); renders are judged against the one of most iterations that has also settled \
+         in its step: a truth at twice the step moves less than {:.1} % of its mask.\n\n\
          Columns: time of the render (median of {}), distance evaluations per pixel, false hits and misses (% of \
          pixels; a false hit is *thin-ray* where the ray through the pixel's centre misses, *cone-consistent* where \
          no ray of the pixel's cone meets the scene either, and the budget counts the latter), rays out of steps, \
@@ -403,8 +422,8 @@ fn report_text(args: &AccuracyArgs, backend: Backend, budget: &Budget, sections:
          times its render kernel and reads every figure but the evaluation count from its trace kernel, the render \
          kernel that also writes each pixel's depth, normal and steps.\n\n\
          Budget: hit mismatch ≤ {:.1} %, overshoot ≤ {:.1} %, normal p99 ≤ {}° (judged over at least {} measured \
-         normals: the p99 of fewer is their maximum), no ray out of steps, no NaN/Inf, interior depth p99 ≤ {} \
-         footprint (cone-consistent).\n\n{sections}",
+         normals: the p99 of fewer is their maximum, and a verdict names them unjudged), no ray out of steps, no \
+         NaN/Inf, interior depth p99 ≤ {} footprint (cone-consistent).\n\n{sections}",
         args.truth_step,
         100.0 * CONVERGED_MASK,
         100.0 * budget.hit_mismatch,

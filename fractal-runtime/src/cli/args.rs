@@ -223,7 +223,9 @@ from each fractal's own membership test and exact primitive distances, and print
 within the error budget: hit mismatch <= 0.5 %, overshoot <= 0.1 % (pixel-cone consistent), normal p99 <= 5 degrees,
 no ray out of steps, no NaN/Inf, interior depth p99 <= 1 footprint (pixel-cone consistent). A scene with a camera
 path is then judged from each of its other keys. --default-only measures the scene's own setting alone.
---report does it for every built-in scene and writes the Markdown report (docs/accuracy.md).")]
+--report does it for every built-in scene and writes the Markdown report (docs/accuracy.md); with --default-only,
+the defaults alone (to judge them at a size the sweep cannot afford). A normal p99 over fewer than 100 measured
+normals is not judged, and the verdict says so.")]
 pub struct AccuracyArgs {
     /// Built-in scene name or .fractal file (every built-in scene with --report)
     #[arg(required_unless_present_any = ["report", "estimators"])]
