@@ -77,20 +77,49 @@ impl Budget {
         out
     }
 
-    /// What the budget leaves unjudged in `e`: a normal p99 over fewer than [`MIN_NORMALS`] measured normals.
-    pub fn unjudged(&self, e: &TrueError) -> Option<String> {
-        let t = e.traced.as_ref()?;
-        (t.normal.count < MIN_NORMALS).then(|| format!("normals unjudged, {} measured", t.normal.count))
+    /// The budget's verdict on `e`: its violations and what it left unjudged (a normal p99 over fewer than
+    /// [`MIN_NORMALS`] measured normals).
+    pub fn verdict(&self, e: &TrueError) -> Verdict {
+        let unjudged = e
+            .traced
+            .as_ref()
+            .filter(|t| t.normal.count < MIN_NORMALS)
+            .map(|t| format!("normals unjudged, {} measured", t.normal.count));
+        Verdict { violations: self.violations(e), unjudged }
     }
+}
 
-    /// The verdict on `e` in words: "within budget" or the ways it is not, then what was left unjudged, so a
-    /// verdict never reads as a pass on what it did not measure.
-    pub fn verdict(&self, e: &TrueError) -> String {
-        let violations = self.violations(e);
-        let judged = if violations.is_empty() { "within budget".to_string() } else { violations.join("; ") };
-        match self.unjudged(e) {
-            Some(unjudged) => format!("{judged} ({unjudged})"),
-            None => judged,
+/// A verdict of the [`Budget`], written so it never reads as a pass on what it did not measure: "within budget" or
+/// the violations, then what was left unjudged in brackets.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Verdict {
+    /// The ways the error exceeds the budget (empty: within it).
+    pub violations: Vec<String>,
+    /// What the budget did not judge.
+    pub unjudged: Option<String>,
+}
+
+impl Verdict {
+    /// The verdict as a sentence's end: "within budget …" or "not within budget: …".
+    pub fn sentence(&self) -> String {
+        if self.violations.is_empty() {
+            self.to_string()
+        } else {
+            format!("not within budget: {self}")
+        }
+    }
+}
+
+impl std::fmt::Display for Verdict {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.violations.is_empty() {
+            f.write_str("within budget")?;
+        } else {
+            f.write_str(&self.violations.join("; "))?;
+        }
+        match &self.unjudged {
+            Some(unjudged) => write!(f, " ({unjudged})"),
+            None => Ok(()),
         }
     }
 }
@@ -318,9 +347,9 @@ mod tests {
             }),
             ..TrueError::default()
         };
-        assert_eq!(budget.verdict(&error(MIN_NORMALS, 1.0)), "within budget");
-        assert_eq!(budget.verdict(&error(12, 40.0)), "within budget (normals unjudged, 12 measured)");
-        assert_eq!(budget.verdict(&error(MIN_NORMALS, 40.0)), "normal p99 40.0°");
+        assert_eq!(budget.verdict(&error(MIN_NORMALS, 1.0)).to_string(), "within budget");
+        assert_eq!(budget.verdict(&error(12, 40.0)).to_string(), "within budget (normals unjudged, 12 measured)");
+        assert_eq!(budget.verdict(&error(MIN_NORMALS, 40.0)).to_string(), "normal p99 40.0°");
     }
 
     /// Clipping to the bound is a lever the CPU sweep turns off where the scene has a bound; off, the march covers

@@ -63,7 +63,7 @@ pub fn text(points: &[SweepPoint], budget: &Budget) -> String {
     };
     let mut out = line(COLUMNS.iter().map(|c| c.header.to_string()).collect(), "budget");
     for (p, row) in points.iter().zip(rows) {
-        out += &line(row, &budget.verdict(&p.error));
+        out += &line(row, &budget.verdict(&p.error).to_string());
     }
     out
 }
@@ -74,7 +74,7 @@ pub fn markdown(points: &[SweepPoint], budget: &Budget) -> String {
     let mut out = format!("| {} |\n|{}\n", headers.join(" | "), "---|".repeat(headers.len()));
     for p in points {
         let mut row = cells(p);
-        row.push(budget.verdict(&p.error));
+        row.push(budget.verdict(&p.error).to_string());
         out += &format!("| {} |\n", row.join(" | "));
     }
     out
@@ -100,7 +100,7 @@ pub fn csv_rows(scene: &str, backend: &str, size: (u32, u32), points: &[SweepPoi
         .map(|p| {
             let mut row = vec![scene.to_string(), backend.to_string(), format!("{}x{}", size.0, size.1)];
             row.extend(cells(p).into_iter().map(|c| if c == "–" { String::new() } else { c }));
-            row.push(budget.verdict(&p.error));
+            row.push(budget.verdict(&p.error).to_string());
             row.iter().map(|c| quote(c)).collect::<Vec<_>>().join(",") + "\n"
         })
         .collect()

@@ -166,10 +166,7 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
         None => "no setting tried is within budget".to_string(),
     };
     let default_line = match points.iter().find(|p| p.quality.is_default()) {
-        Some(p) if budget.violations(&p.error).is_empty() => {
-            format!("the scene default is {}", budget.verdict(&p.error))
-        }
-        Some(p) => format!("the scene default is not within budget: {}", budget.verdict(&p.error)),
+        Some(p) => format!("the scene default is {}", budget.verdict(&p.error).sentence()),
         None => String::new(),
     };
     let _ = writeln!(out, "  {verdict}; {default_line}\n");
@@ -235,10 +232,8 @@ fn default_on(
 /// A measured point as one line (its time, the figures its image holds and the budget's verdict on them), and the
 /// budget's violations (none: within budget).
 fn judged(point: &sweep::SweepPoint, budget: &Budget) -> (String, Vec<String>) {
-    let violations = budget.violations(&point.error);
     let verdict = budget.verdict(&point.error);
-    let verdict = if violations.is_empty() { verdict } else { format!("not within budget: {verdict}") };
-    (format!("{:.1} ms, {}; {verdict}", point.time_ms, point.error.describe()), violations)
+    (format!("{:.1} ms, {}; {}", point.time_ms, point.error.describe(), verdict.sentence()), verdict.violations)
 }
 
 /// Which of `truths` (in rising iterations) the sweep is judged against: the one of most iterations that has settled
