@@ -62,6 +62,9 @@ pub const NORMAL_OFFSET: f64 = 0.5;
 /// Largest angle between the normals from neighbours [`NORMAL_OFFSET`] and half that away for which the true surface
 /// still counts as smooth at the pixel's scale.
 pub const ROUGH_DEGREES: f64 = 10.0;
+/// Spacing of the sub-rays whose normals make a pixel's normal cone, in pixels: a 3×3 lattice a quarter pixel apart
+/// reaches half a pixel from the centre with the normals' own rays that far around each.
+pub const CONE_NORMAL_SPACING: f64 = 0.25;
 /// Directions of a pixel's neighbouring rays, in units of the offset: the axes, then the diagonals.
 const NEIGHBOURS: [(f64, f64); 8] =
     [(-1.0, 0.0), (1.0, 0.0), (0.0, -1.0), (0.0, 1.0), (-1.0, -1.0), (1.0, -1.0), (-1.0, 1.0), (1.0, 1.0)];
@@ -127,6 +130,8 @@ pub struct Truth {
     params: Vec<Member>,
     /// Per pixel, once asked: whether some ray of its cone meets the scene ([`Truth::cone_sees_scene`]).
     cone_sees: Vec<OnceLock<bool>>,
+    /// Per pixel, once asked: the true normals across its footprint ([`Truth::cone_normal_error`]).
+    cone_normals: Vec<OnceLock<Vec<[f64; 3]>>>,
 }
 
 impl Truth {
@@ -177,6 +182,7 @@ impl Truth {
             time,
             params,
             cone_sees: (0..frame.width() as usize * frame.height() as usize).map(|_| OnceLock::new()).collect(),
+            cone_normals: (0..frame.width() as usize * frame.height() as usize).map(|_| OnceLock::new()).collect(),
         })
     }
 
@@ -375,6 +381,40 @@ impl Truth {
         Some(([n.x, n.y, n.z], crease_x || crease_y))
     }
 
+    /// Pixel-cone consistency of a render's normal `n` at pixel (x, y), a truth hit: the smallest angle, in degrees,
+    /// between `n` and the true surface's normals across the pixel's footprint — the centre's, and those of the
+    /// surface where the sub-rays [`CONE_NORMAL_SPACING`] pixels apart on a 3×3 lattice around the centre meet it,
+    /// each from rays that far around it. A pixel shades one normal for all it covers, and the surface under it turns
+    /// by up to [`ROUGH_DEGREES`] where it counts as smooth, so any normal the surface takes within the pixel is as
+    /// right as the centre's; `None` when no sub-ray finds a normal. Computed once per pixel and kept.
+    pub fn cone_normal_error(&self, x: u32, y: u32, n: [f64; 3]) -> Option<f64> {
+        let index = (y * self.width + x) as usize;
+        let normals = self.cone_normals[index].get_or_init(|| self.normals_across(x, y));
+        normals.iter().map(|&m| angle_degrees(n, m)).min_by(f64::total_cmp)
+    }
+
+    /// The true normals across pixel (x, y)'s footprint (see [`Truth::cone_normal_error`]).
+    fn normals_across(&self, x: u32, y: u32) -> Vec<[f64; 3]> {
+        let centre = self.at(x, y);
+        let (cx, cy) = (x as f64 + 0.5, y as f64 + 0.5);
+        let d = CONE_NORMAL_SPACING;
+        let mut normals: Vec<[f64; 3]> = centre.normal.into_iter().collect();
+        for j in -1..=1 {
+            for i in -1..=1 {
+                let (px, py) = (cx + i as f64 * d, cy + j as f64 * d);
+                let Some(q) = self.neighbour(px, py, centre.t) else { continue };
+                let (ro, rd) = self.view.ray(px, py);
+                let t = fractal_dsl::math::dot(q - ro, rd);
+                let normal = match self.exact_normal(q, rd, t) {
+                    Some(n) => Some(n),
+                    None => self.normal(px, py, t, d).map(|(n, _)| n),
+                };
+                normals.extend(normal);
+            }
+        }
+        normals
+    }
+
     /// Whether some ray of pixel (x, y)'s cone meets the scene (sub-rays on a `grid`×`grid` lattice across the pixel,
     /// each marched as the truth marches): a render that hits where the centre ray misses has then found part of what
     /// the pixel covers, as a ray that stops on a filament it passes a tenth of a footprint from. Computed once per
@@ -430,6 +470,13 @@ impl Truth {
             seen.then_some(k as f64 * step / foot)
         })
     }
+}
+
+/// The angle between two directions, in degrees.
+pub fn angle_degrees(a: [f64; 3], b: [f64; 3]) -> f64 {
+    let dot = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let len = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    (dot / (len(a) * len(b))).clamp(-1.0, 1.0).acos().to_degrees()
 }
 
 /// A step of `h` along coordinate axis `axis`.
@@ -498,6 +545,37 @@ mod tests {
             }
         }
         assert!(hits > 100 && rough < hits / 5, "{hits} hits, {rough} rough");
+    }
+
+    /// A render's normal is judged against the nearest true normal across its pixel: on a sphere seen coarsely the
+    /// surface turns by degrees within a pixel, and the exact normal where a ray a quarter pixel off the centre meets
+    /// it is no error at all, though it is one against the centre's normal.
+    #[test]
+    fn a_normal_the_surface_takes_within_the_pixel_is_cone_consistent() {
+        let centre = v3(0.2, -0.1, 0.3);
+        let s = scene(sphere(1.0).translate(vec3(0.2, -0.1, 0.3))).camera(camera([0.0, 0.5, -3.0], [0.0; 3]).fov(50.0));
+        let truth = Truth::compute(&s, &frame(&s, 20, 15), TruthSettings::default()).unwrap();
+        let mut checked = 0;
+        for y in 0..15 {
+            for x in 0..20 {
+                let pixel = truth.at(x, y);
+                let (Some(own), false) = (pixel.normal, pixel.rough) else { continue };
+                let (ro, rd) = truth.view.ray(x as f64 + 0.75, y as f64 + 0.5);
+                let oc = ro - centre;
+                let b = fractal_dsl::math::dot(oc, rd);
+                let disc = b * b - (fractal_dsl::math::dot(oc, oc) - 1.0);
+                if disc <= 0.0 {
+                    continue;
+                }
+                let n = ro + rd * (-b - disc.sqrt()) - centre;
+                let n = [n.x, n.y, n.z];
+                let cone = truth.cone_normal_error(x, y, n).expect("the sub-rays meet the sphere");
+                assert!(cone < 1e-3, "pixel ({x}, {y}): {cone}° from its own sub-ray's normal");
+                assert!(angle_degrees(n, own) > 0.5, "pixel ({x}, {y}): the surface turns within the pixel");
+                checked += 1;
+            }
+        }
+        assert!(checked > 20, "{checked} pixels checked");
     }
 
     /// An exact surface's normal is the pixel's only where the surface keeps it across the pixel: next to a box's

@@ -17,7 +17,10 @@
 //! - **Normals** where both hit the same surface (within [`NORMAL_SAME_SURFACE`] footprints along the ray; a render
 //!   that stopped on another surface has a depth error, counted above) and the true surface is smooth at the pixel's
 //!   scale (not [`crate::truth::TruthPixel::rough`]): the angle between the render's shading normal and the true
-//!   surface's, in degrees; and the share of both-hit pixels measured.
+//!   surface's at the pixel's centre, in degrees; *cone-consistent*, the angle to the nearest of the true normals
+//!   across the pixel's footprint ([`Truth::cone_normal_error`], for errors above [`NORMAL_CONE_CHECK`]): a smooth
+//!   surface still turns by up to [`crate::truth::ROUGH_DEGREES`] within a pixel, which shades one normal for all of
+//!   it. The budget judges the latter. Also the share of both-hit pixels measured.
 
 //! - **Colour**: PSNR of the 8-bit image against the true hit shaded the same way, over all pixels.
 //! - **Health**: pixels with NaN or Inf anywhere (colour, depth of a hit, normal); rays that ran out of steps;
@@ -32,7 +35,7 @@ use fractal_dsl::Scene;
 use crate::backend::cpu::{pack, PixelTrace};
 use crate::bench::precision::scene_hits;
 use crate::image::{unpack_rgba8, Image};
-use crate::truth::Truth;
+use crate::truth::{angle_degrees, Truth};
 
 /// Largest thin-ray depth difference, in footprints, at which the render and the truth stand on the same surface and
 /// their normals are compared.
@@ -50,6 +53,9 @@ pub const COVER_GRID: u32 = 4;
 /// of a footprint is far below what a pixel resolves, and the check runs for every render of a sweep), and a feature
 /// thinner than it only makes the check stricter.
 pub const CONE_STEP: f64 = 1.0 / 64.0;
+/// Normal errors above this many degrees against the centre's true normal are checked against the normals across
+/// the pixel's footprint.
+pub const NORMAL_CONE_CHECK: f64 = 2.0;
 /// How far past the true hit, in footprints, a ray must end to have passed through the surface.
 pub const OVERSHOOT_FOOTPRINTS: f64 = 1.0;
 
@@ -93,8 +99,11 @@ pub struct TracedError {
     /// where the render stopped: *cone-consistent* (a ray that passes through a feature narrower than the pixel
     /// draws what the rest of the pixel sees).
     pub overshoot_cone: f64,
-    /// Degrees.
+    /// Degrees, against the true normal at the pixel's centre.
     pub normal: Spread,
+    /// Degrees, against the nearest of the true normals across the pixel's footprint: *cone-consistent* (the
+    /// budget's).
+    pub normal_cone: Spread,
     /// Fraction of the pixels both hit where the normal was measured (the rest are rough at the pixel's scale).
     pub normal_measured: f64,
     /// Pixels with NaN or Inf.
@@ -157,8 +166,8 @@ impl TrueError {
         if let Some(t) = &self.traced {
             s += &format!(
                 "; depth error (footprints) median {:.2}, p99 {:.2} thin-ray / {:.2} cone-consistent, interior p99 \
-                 {:.2} cone-consistent; overshoot {:.3} % thin-ray / {:.3} % cone-consistent; normal error median {:.1}°, p99 {:.1}° (on {:.0} % of \
-                 hits); {:.3} % out of steps; {} NaN/Inf pixels{}",
+                 {:.2} cone-consistent; overshoot {:.3} % thin-ray / {:.3} % cone-consistent; normal error median {:.1}°, p99 {:.1}° at the centre / {:.1}° \
+                 cone-consistent (on {:.0} % of hits); {:.3} % out of steps; {} NaN/Inf pixels{}",
                 t.depth_thin.median,
                 t.depth_thin.p99,
                 t.depth_cone.p99,
@@ -167,6 +176,7 @@ impl TrueError {
                 100.0 * t.overshoot_cone,
                 t.normal.median,
                 t.normal.p99,
+                t.normal_cone.p99,
                 100.0 * t.normal_measured,
                 100.0 * t.out_of_steps,
                 t.non_finite,
@@ -244,15 +254,9 @@ fn interior(truth: &Truth, x: u32, y: u32) -> bool {
     })
 }
 
-fn angle_degrees(a: [f64; 3], b: [f64; 3]) -> f64 {
-    let dot = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    let len = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-    (dot / (len(a) * len(b))).clamp(-1.0, 1.0).acos().to_degrees()
-}
-
-/// One pixel's (thin, cone, interior) depth errors where both hit, normal error, and whether it overshot (`None`:
-/// no; `Some(cone)`: thin-ray, and `cone` when the pixel's cone does not explain it either).
-type PixelError = (Option<(f64, f64, bool)>, Option<f64>, Option<bool>);
+/// One pixel's (thin, cone, interior) depth errors where both hit, (centre, cone) normal errors, and whether it
+/// overshot (`None`: no; `Some(cone)`: thin-ray, and `cone` when the pixel's cone does not explain it either).
+type PixelError = (Option<(f64, f64, bool)>, Option<(f64, f64)>, Option<bool>);
 
 fn traced_error(truth: &Truth, traces: &[PixelTrace]) -> TracedError {
     use rayon::prelude::*;
@@ -278,7 +282,15 @@ fn traced_error(truth: &Truth, traces: &[PixelTrace]) -> TracedError {
                 thin
             };
             let normal = match (r.normal, t.normal) {
-                (Some(a), Some(b)) if !t.rough && thin <= NORMAL_SAME_SURFACE => Some(angle_degrees(a, b)),
+                (Some(a), Some(b)) if !t.rough && thin <= NORMAL_SAME_SURFACE => {
+                    let centre = angle_degrees(a, b);
+                    let cone = if centre > NORMAL_CONE_CHECK {
+                        truth.cone_normal_error(x, y, a).map_or(centre, |c| c.min(centre))
+                    } else {
+                        centre
+                    };
+                    Some((centre, cone))
+                }
                 _ => None,
             };
             (Some((thin, cone, interior(truth, x, y))), normal, overshoot)
@@ -300,7 +312,8 @@ fn traced_error(truth: &Truth, traces: &[PixelTrace]) -> TracedError {
         depth_cone_interior: Spread::of(depths().filter(|d| d.2).map(|d| d.1).collect()),
         overshoot: per_pixel.iter().filter(|p| p.2.is_some()).count() as f64 / n,
         overshoot_cone: per_pixel.iter().filter(|p| p.2 == Some(true)).count() as f64 / n,
-        normal: Spread::of(per_pixel.iter().filter_map(|p| p.1).collect()),
+        normal: Spread::of(per_pixel.iter().filter_map(|p| p.1.map(|n| n.0)).collect()),
+        normal_cone: Spread::of(per_pixel.iter().filter_map(|p| p.1.map(|n| n.1)).collect()),
         normal_measured: per_pixel.iter().filter(|p| p.1.is_some()).count() as f64
             / per_pixel.iter().filter(|p| p.0.is_some()).count().max(1) as f64,
         non_finite,

@@ -31,6 +31,10 @@ pub const TIMING_RUNS: usize = 3;
 /// rough at the pixel's scale almost everywhere, so few of its normals can be measured at all.
 pub const MIN_NORMALS: usize = 100;
 
+/// A truth has settled in what the budget judges when doubling its iterations moves none of the scene default's
+/// judged figures by more than this share of the figure's limit (a truth less certain than that cannot judge it).
+pub const SETTLED_SHARE: f64 = 0.25;
+
 /// The error a recommended setting may have.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct Budget {
@@ -61,8 +65,8 @@ impl Budget {
             if t.overshoot_cone > self.overshoot {
                 out.push(format!("overshoot {:.2} %", 100.0 * t.overshoot_cone));
             }
-            if t.normal.count >= MIN_NORMALS && t.normal.p99 > self.normal_p99 {
-                out.push(format!("normal p99 {:.1}°", t.normal.p99));
+            if t.normal_cone.count >= MIN_NORMALS && t.normal_cone.p99 > self.normal_p99 {
+                out.push(format!("normal p99 {:.1}°", t.normal_cone.p99));
             }
             if t.depth_cone_interior.p99 > self.depth_p99_interior {
                 out.push(format!("depth p99 {:.2}", t.depth_cone_interior.p99));
@@ -77,14 +81,49 @@ impl Budget {
         out
     }
 
+    /// The figures the budget judges against the truth, of `e`: name, value (`None` where not measured: an image's
+    /// traced figures, a normal p99 over fewer than [`MIN_NORMALS`]) and limit. Rays out of steps and NaN/Inf pixels
+    /// read no truth.
+    fn against_truth(&self, e: &TrueError) -> [(&'static str, Option<f64>, f64); 4] {
+        let t = e.traced.as_ref();
+        [
+            ("hit mismatch %", Some(100.0 * e.hit_mismatch()), 100.0 * self.hit_mismatch),
+            ("overshoot %", t.map(|t| 100.0 * t.overshoot_cone), 100.0 * self.overshoot),
+            (
+                "normal p99°",
+                t.filter(|t| t.normal_cone.count >= MIN_NORMALS).map(|t| t.normal_cone.p99),
+                self.normal_p99,
+            ),
+            ("depth p99", t.map(|t| t.depth_cone_interior.p99), self.depth_p99_interior),
+        ]
+    }
+
+    /// The judged figures of one render that moved by more than [`SETTLED_SHARE`] of their limit from its error
+    /// `before` (against a truth) to `after` (against the truth at twice the iterations), as "depth p99 1.89 → 3.38";
+    /// empty when the truth has settled in them. A figure measured against one of the truths only has not settled.
+    pub fn moved(&self, before: &TrueError, after: &TrueError) -> Vec<String> {
+        let show = |v: Option<f64>| v.map_or("unmeasured".to_string(), |v| format!("{v:.2}"));
+        self.against_truth(before)
+            .into_iter()
+            .zip(self.against_truth(after))
+            .filter(|((_, a, limit), (_, b, _))| match (a, b) {
+                (Some(a), Some(b)) if a.is_nan() || b.is_nan() => a.is_nan() != b.is_nan(),
+                (Some(a), Some(b)) => (b - a).abs() > SETTLED_SHARE * limit,
+                (None, None) => false,
+                _ => true,
+            })
+            .map(|((name, a, _), (_, b, _))| format!("{name} {} → {}", show(a), show(b)))
+            .collect()
+    }
+
     /// The budget's verdict on `e`: its violations and what it left unjudged (a normal p99 over fewer than
     /// [`MIN_NORMALS`] measured normals).
     pub fn verdict(&self, e: &TrueError) -> Verdict {
         let unjudged = e
             .traced
             .as_ref()
-            .filter(|t| t.normal.count < MIN_NORMALS)
-            .map(|t| format!("normals unjudged, {} measured", t.normal.count));
+            .filter(|t| t.normal_cone.count < MIN_NORMALS)
+            .map(|t| format!("normals unjudged, {} measured", t.normal_cone.count));
         Verdict { violations: self.violations(e), unjudged }
     }
 }
@@ -342,7 +381,7 @@ mod tests {
         let budget = Budget::default();
         let error = |count, p99| TrueError {
             traced: Some(TracedError {
-                normal: Spread { count, median: 1.0, p99, max: p99 },
+                normal_cone: Spread { count, median: 1.0, p99, max: p99 },
                 ..TracedError::default()
             }),
             ..TrueError::default()
@@ -350,6 +389,27 @@ mod tests {
         assert_eq!(budget.verdict(&error(MIN_NORMALS, 1.0)).to_string(), "within budget");
         assert_eq!(budget.verdict(&error(12, 40.0)).to_string(), "within budget (normals unjudged, 12 measured)");
         assert_eq!(budget.verdict(&error(MIN_NORMALS, 40.0)).to_string(), "normal p99 40.0°");
+    }
+
+    /// A truth has settled in what the budget judges when doubling its iterations moves no judged figure of the
+    /// scene default by more than a quarter of its limit; a figure measured against one truth only has not settled.
+    #[test]
+    fn a_truth_settles_when_the_defaults_judged_figures_stop_moving() {
+        use crate::accuracy::metrics::{Spread, TracedError};
+        let budget = Budget::default();
+        let error = |depth_p99, normals| TrueError {
+            traced: Some(TracedError {
+                depth_cone_interior: Spread { count: 500, median: 0.2, p99: depth_p99, max: depth_p99 },
+                normal_cone: Spread { count: normals, median: 1.0, p99: 4.0, max: 4.0 },
+                ..TracedError::default()
+            }),
+            ..TrueError::default()
+        };
+        assert!(budget.moved(&error(0.5, 200), &error(0.7, 200)).is_empty());
+        assert_eq!(budget.moved(&error(1.89, 200), &error(3.38, 200)), ["depth p99 1.89 → 3.38"]);
+        assert_eq!(budget.moved(&error(0.5, 200), &error(0.5, 80)), ["normal p99° 4.00 → unmeasured"]);
+        // Under MIN_NORMALS against both truths, the normals are judged against neither.
+        assert!(budget.moved(&error(0.5, 12), &error(0.5, 80)).is_empty());
     }
 
     /// Clipping to the bound is a lever the CPU sweep turns off where the scene has a bound; off, the march covers

@@ -36,7 +36,8 @@ const COLUMNS: &[Column] = &[
     Column { header: "overshoot % thin", cell: |p| traced(&p.error, |t| pct(t.overshoot)).flatten() },
     Column { header: "overshoot % cone", cell: |p| traced(&p.error, |t| pct(t.overshoot_cone)).flatten() },
     Column { header: "normal p50°", cell: |p| traced(&p.error, |t| format!("{:.1}", t.normal.median)) },
-    Column { header: "normal p99°", cell: |p| traced(&p.error, |t| format!("{:.1}", t.normal.p99)) },
+    Column { header: "normal p99° centre", cell: |p| traced(&p.error, |t| format!("{:.1}", t.normal.p99)) },
+    Column { header: "normal p99° cone", cell: |p| traced(&p.error, |t| format!("{:.1}", t.normal_cone.p99)) },
     Column {
         header: "normals measured %",
         cell: |p| traced(&p.error, |t| format!("{:.0}", 100.0 * t.normal_measured)),

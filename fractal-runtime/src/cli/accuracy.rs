@@ -92,56 +92,67 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
     let at = if args.time == 0.0 { String::new() } else { format!(" at t = {} s", args.time) };
     let _ = writeln!(out, "accuracy of {}{at} at {w}x{h} on {backend}", loaded.name);
 
-    // The truth at the scene's iteration count, and for escape-time fractals at doubled counts until the hit mask
-    // settles: the converged truth, judged against.
+    let mut renderer = match backend {
+        Backend::Cpu => None,
+        other => Some(crate::select::open(other, &RendererOptions { precise: args.precise })?),
+    };
+    // The truth at the scene's iteration count, and for escape-time fractals at doubled counts until neither the hit
+    // mask nor the scene default's judged figures move: the converged truth, judged against. The default against
+    // each truth is on record.
     let escape_time = sweep::escape_time_iterations(scene).is_some();
-    let mut truths: Vec<(u32, Truth)> = Vec::new();
+    let mut truths: Vec<(u32, Truth, sweep::SweepPoint)> = Vec::new();
     let mut factor = 1;
     loop {
         let start = Instant::now();
         let settings = TruthSettings { step_footprints: args.truth_step, iteration_factor: factor };
         let truth = Truth::compute(scene, &frame, settings)?;
+        let took = start.elapsed().as_secs_f64();
         let hits = truth.pixels.iter().filter(|p| p.hit()).count();
-        let moved = truths.last().map(|(_, previous)| mask_moved(previous.pixels.iter().map(|p| p.hit()), &truth));
+        let default =
+            sweep::run(scene, &frame, &truth, backend, renderer.as_mut(), &[Quality::default()], &mut |_| {})?
+                .remove(0);
+        let previous = truths.last();
+        let moved = previous.map(|(_, p, _)| mask_moved(p.pixels.iter().map(|p| p.hit()), &truth));
+        let figures = previous.map(|(_, _, p)| budget.moved(&p.error, &default.error));
+        let figures_said = match &figures {
+            Some(f) if f.is_empty() => ", the scene default's judged figures by under a quarter of their limits".into(),
+            Some(f) => format!(", the scene default's {}", f.join(", ")),
+            None => String::new(),
+        };
         let line = format!(
-            "truth at {factor}x the iterations{}: {:.2} % of pixels hit{}, step {:.4} footprint, {:.1} s",
+            "truth at {factor}x the iterations{}: {:.2} % of pixels hit{}, step {:.4} footprint, {took:.1} s",
             capped(scene, factor),
             100.0 * hits as f64 / truth.pixels.len() as f64,
-            moved.map_or(String::new(), |m| format!(" ({:.2} % of the mask moved from {}x)", 100.0 * m, factor / 2)),
+            moved.map_or(String::new(), |m| format!(
+                " ({:.2} % of the mask moved from {}x{figures_said})",
+                100.0 * m,
+                factor / 2
+            )),
             args.truth_step,
-            start.elapsed().as_secs_f64()
         );
         let _ = writeln!(out, "  {line}");
         let _ = writeln!(md, "- {line}");
-        truths.push((factor, truth));
-        let settled = moved.is_some_and(|m| m < CONVERGED_MASK);
+        if escape_time {
+            let line = format!("scene default against the {factor}x truth: {}", default.error.describe());
+            let _ = writeln!(out, "  {line}");
+            let _ = writeln!(md, "- {line}");
+        }
+        truths.push((factor, truth, default));
+        let settled = moved.is_some_and(|m| m < CONVERGED_MASK) && figures.is_some_and(|f| f.is_empty());
         if !escape_time || settled || factor >= MAX_TRUTH_FACTOR {
             break;
         }
         factor *= 2;
     }
+    let references: Vec<(u32, &Truth)> = truths.iter().map(|(f, t, _)| (*f, t)).collect();
     let (judged_factor, judged) =
-        &truths[settled_in_step(scene, &frame, args.truth_step, budget, &truths, &mut |line| {
+        references[settled_in_step(scene, &frame, args.truth_step, budget, &references, &mut |line| {
             let _ = writeln!(out, "  {line}");
             let _ = writeln!(md, "- {line}");
         })?];
 
-    let mut renderer = match backend {
-        Backend::Cpu => None,
-        other => Some(crate::select::open(other, &RendererOptions { precise: args.precise })?),
-    };
     let qualities =
         if args.default_only { vec![Quality::default()] } else { sweep::grid(scene, backend, args.precise) };
-    // The scene's own setting against every truth, so both judgements are on record.
-    if truths.len() > 1 {
-        for (factor, truth) in &truths {
-            let point =
-                sweep::run(scene, &frame, truth, backend, renderer.as_mut(), &[Quality::default()], &mut |_| {})?;
-            let line = format!("scene default against the {factor}x truth: {}", point[0].error.describe());
-            let _ = writeln!(out, "  {line}");
-            let _ = writeln!(md, "- {line}");
-        }
-    }
     let _ = writeln!(md);
     let points = sweep::run(scene, &frame, judged, backend, renderer.as_mut(), &qualities, &mut |p| {
         eprintln!("  measured {} ({:.1} ms)", p.quality, p.time_ms);
@@ -185,7 +196,7 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
     if !args.also_on.is_empty() {
         let _ = writeln!(md);
     }
-    let settings = TruthSettings { step_footprints: args.truth_step, iteration_factor: *judged_factor };
+    let settings = TruthSettings { step_footprints: args.truth_step, iteration_factor: judged_factor };
     let has_keys = keys::check(
         scene,
         &params,
@@ -248,7 +259,7 @@ fn settled_in_step(
     frame: &Frame,
     step: f64,
     budget: &Budget,
-    truths: &[(u32, Truth)],
+    truths: &[(u32, &Truth)],
     say: &mut dyn FnMut(String),
 ) -> Result<usize, CliError> {
     for (i, (factor, truth)) in truths.iter().enumerate().rev() {
@@ -401,26 +412,30 @@ fn report_text(args: &AccuracyArgs, backend: Backend, budget: &Budget, sections:
          levels) and exact primitives by their exact f64 distance, and finds the first crossing along each ray with \
          steps of {:.4} pixel footprints, bisected (`fractal-runtime/src/truth.rs`). Escape-time fractals get a truth \
          at the scene's iteration count and at doubled counts until doubling moves less than {:.1} % of the hit mask \
-         (at most {MAX_TRUTH_FACTOR}x); renders are judged against the one of most iterations that has also settled \
-         in its step: a truth at twice the step moves less than {:.1} % of its mask.\n\n\
+         and none of the scene default's judged figures by more than {:.0} % of its limit (at most \
+         {MAX_TRUTH_FACTOR}x; the default's figures against each are listed); renders are judged against the one of \
+         most iterations that has also settled in its step: a truth at twice the step moves less than {:.1} % of its mask.\n\n\
          Columns: time of the render (median of {}), distance evaluations per pixel, false hits and misses (% of \
          pixels; a false hit is *thin-ray* where the ray through the pixel's centre misses, *cone-consistent* where \
          no ray of the pixel's cone meets the scene either, and the budget counts the latter), rays out of steps, \
          depth error in pixel footprints (median and p99, thin-ray and pixel-cone consistent; *interior*: truth hits \
          whose 8 neighbours hit too), overshoot (rays that passed more than a \
          footprint through the true surface: thin-ray, and cone-consistent where every ray of the pixel's cone meets \
-         the scene that far in front, which the budget counts), normal error, colour PSNR, NaN/Inf pixels. Definitions: \
+         the scene that far in front, which the budget counts), normal error in degrees (median and p99 against the \
+         true normal at the pixel's centre, and p99 cone-consistent: against the nearest of the true normals across \
+         the pixel's footprint, which the budget counts), colour PSNR, NaN/Inf pixels. Definitions: \
          `fractal-runtime/src/accuracy/metrics.rs`.\n\n\
          Normals are compared where render and truth stand on the same surface and the true surface has one normal \
          at the pixel's scale: no edge, rim, silhouette, hole or detail below the pixel within half a pixel of its \
          centre (*normals measured*: their share of the pixels both hit). A scene default's line on another backend \
          times its render kernel and reads every figure but the evaluation count from its trace kernel, the render \
          kernel that also writes each pixel's depth, normal and steps.\n\n\
-         Budget: hit mismatch ≤ {:.1} %, overshoot ≤ {:.1} %, normal p99 ≤ {}° (judged over at least {} measured \
-         normals: the p99 of fewer is their maximum, and a verdict names them unjudged), no ray out of steps, no \
+         Budget: hit mismatch ≤ {:.1} %, overshoot ≤ {:.1} %, normal p99 ≤ {}° (cone-consistent; judged over at \
+         least {} measured normals: the p99 of fewer is their maximum, and a verdict names them unjudged), no ray out of steps, no \
          NaN/Inf, interior depth p99 ≤ {} footprint (cone-consistent).\n\n{sections}",
         args.truth_step,
         100.0 * CONVERGED_MASK,
+        100.0 * sweep::SETTLED_SHARE,
         100.0 * budget.hit_mismatch,
         sweep::TIMING_RUNS,
         100.0 * budget.hit_mismatch,

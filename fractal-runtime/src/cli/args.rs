@@ -220,7 +220,8 @@ Renders the scene at --time (default t = 0) with each quality setting (max steps
 iterations of escape-time fractals, over-relaxation, the normal's taps, hits on escape-time sets themselves, fast math
 on OpenCL, and on the CPU a factor on the step and the bound on or off), measures each against a ground truth computed
 from each fractal's own membership test and exact primitive distances, and prints the table and the fastest setting
-within the error budget: hit mismatch <= 0.5 %, overshoot <= 0.1 % (pixel-cone consistent), normal p99 <= 5 degrees,
+within the error budget: hit mismatch <= 0.5 %, overshoot <= 0.1 % (pixel-cone consistent), normal p99 <= 5 degrees
+(pixel-cone consistent: against the nearest true normal across the pixel),
 no ray out of steps, no NaN/Inf, interior depth p99 <= 1 footprint (pixel-cone consistent). A scene with a camera
 path is then judged from each of its other keys. --default-only measures the scene's own setting alone.
 --report does it for every built-in scene and writes the Markdown report (docs/accuracy.md); with --default-only,
