@@ -57,20 +57,12 @@ impl Default for Budget {
 impl Budget {
     /// The ways `e` exceeds the budget (empty: within it). Rays out of steps and NaN/Inf pixels allow none.
     pub fn violations(&self, e: &TrueError) -> Vec<String> {
-        let mut out = Vec::new();
-        if e.hit_mismatch() > self.hit_mismatch {
-            out.push(format!("hit mismatch {:.2} %", 100.0 * e.hit_mismatch()));
-        }
+        let mut out: Vec<String> = self
+            .against_truth(e)
+            .into_iter()
+            .filter_map(|f| f.value.filter(|&v| v > f.limit).map(f.violation))
+            .collect();
         if let Some(t) = &e.traced {
-            if t.overshoot_cone > self.overshoot {
-                out.push(format!("overshoot {:.2} %", 100.0 * t.overshoot_cone));
-            }
-            if t.normal_cone.count >= MIN_NORMALS && t.normal_cone.p99 > self.normal_p99 {
-                out.push(format!("normal p99 {:.1}°", t.normal_cone.p99));
-            }
-            if t.depth_cone_interior.p99 > self.depth_p99_interior {
-                out.push(format!("depth p99 {:.2}", t.depth_cone_interior.p99));
-            }
             if t.out_of_steps > 0.0 {
                 out.push(format!("{:.2} % out of steps", 100.0 * t.out_of_steps));
             }
@@ -81,20 +73,34 @@ impl Budget {
         out
     }
 
-    /// The figures the budget judges against the truth, of `e`: name, value (`None` where not measured: an image's
-    /// traced figures, a normal p99 over fewer than [`MIN_NORMALS`]) and limit. Rays out of steps and NaN/Inf pixels
-    /// read no truth.
-    fn against_truth(&self, e: &TrueError) -> [(&'static str, Option<f64>, f64); 4] {
+    /// The figures of `e` the budget judges against the truth. Rays out of steps and NaN/Inf pixels read no truth.
+    fn against_truth(&self, e: &TrueError) -> [JudgedFigure; 4] {
         let t = e.traced.as_ref();
         [
-            ("hit mismatch %", Some(100.0 * e.hit_mismatch()), 100.0 * self.hit_mismatch),
-            ("overshoot %", t.map(|t| 100.0 * t.overshoot_cone), 100.0 * self.overshoot),
-            (
-                "normal p99°",
-                t.filter(|t| t.normal_cone.count >= MIN_NORMALS).map(|t| t.normal_cone.p99),
-                self.normal_p99,
-            ),
-            ("depth p99", t.map(|t| t.depth_cone_interior.p99), self.depth_p99_interior),
+            JudgedFigure {
+                name: "hit mismatch %",
+                value: Some(100.0 * e.hit_mismatch()),
+                limit: 100.0 * self.hit_mismatch,
+                violation: |v| format!("hit mismatch {v:.2} %"),
+            },
+            JudgedFigure {
+                name: "overshoot %",
+                value: t.map(|t| 100.0 * t.overshoot_cone),
+                limit: 100.0 * self.overshoot,
+                violation: |v| format!("overshoot {v:.2} %"),
+            },
+            JudgedFigure {
+                name: "normal p99°",
+                value: t.filter(|t| t.normal_cone.count >= MIN_NORMALS).map(|t| t.normal_cone.p99),
+                limit: self.normal_p99,
+                violation: |v| format!("normal p99 {v:.1}°"),
+            },
+            JudgedFigure {
+                name: "depth p99",
+                value: t.map(|t| t.depth_cone_interior.p99),
+                limit: self.depth_p99_interior,
+                violation: |v| format!("depth p99 {v:.2}"),
+            },
         ]
     }
 
@@ -106,13 +112,13 @@ impl Budget {
         self.against_truth(before)
             .into_iter()
             .zip(self.against_truth(after))
-            .filter(|((_, a, limit), (_, b, _))| match (a, b) {
-                (Some(a), Some(b)) if a.is_nan() || b.is_nan() => a.is_nan() != b.is_nan(),
-                (Some(a), Some(b)) => (b - a).abs() > SETTLED_SHARE * limit,
+            .filter(|(a, b)| match (a.value, b.value) {
+                (Some(x), Some(y)) if x.is_nan() || y.is_nan() => x.is_nan() != y.is_nan(),
+                (Some(x), Some(y)) => (y - x).abs() > SETTLED_SHARE * a.limit,
                 (None, None) => false,
                 _ => true,
             })
-            .map(|((name, a, _), (_, b, _))| format!("{name} {} → {}", show(a), show(b)))
+            .map(|(a, b)| format!("{} {} → {}", a.name, show(a.value), show(b.value)))
             .collect()
     }
 
@@ -126,6 +132,15 @@ impl Budget {
             .map(|t| format!("normals unjudged, {} measured", t.normal_cone.count));
         Verdict { violations: self.violations(e), unjudged }
     }
+}
+
+/// One figure the budget judges against the truth: its name, its value (`None` where not measured: an image's traced
+/// figures, a normal p99 over fewer than [`MIN_NORMALS`]), its limit and how a value over it is said.
+struct JudgedFigure {
+    name: &'static str,
+    value: Option<f64>,
+    limit: f64,
+    violation: fn(f64) -> String,
 }
 
 /// A verdict of the [`Budget`], written so it never reads as a pass on what it did not measure: "within budget" or

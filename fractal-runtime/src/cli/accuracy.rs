@@ -100,7 +100,8 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
     // mask nor the scene default's judged figures move: the converged truth, judged against. The default against
     // each truth is on record.
     let escape_time = sweep::escape_time_iterations(scene).is_some();
-    let mut truths: Vec<(u32, Truth, sweep::SweepPoint)> = Vec::new();
+    // With the default's render against each truth, where more truths may follow (the sweep renders it for the one).
+    let mut truths: Vec<(u32, Truth, Option<sweep::SweepPoint>)> = Vec::new();
     let mut factor = 1;
     loop {
         let start = Instant::now();
@@ -108,12 +109,19 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
         let truth = Truth::compute(scene, &frame, settings)?;
         let took = start.elapsed().as_secs_f64();
         let hits = truth.pixels.iter().filter(|p| p.hit()).count();
-        let default =
-            sweep::run(scene, &frame, &truth, backend, renderer.as_mut(), &[Quality::default()], &mut |_| {})?
-                .remove(0);
+        let default = if escape_time {
+            let defaults =
+                sweep::run(scene, &frame, &truth, backend, renderer.as_mut(), &[Quality::default()], &mut |_| {})?;
+            defaults.into_iter().next()
+        } else {
+            None
+        };
         let previous = truths.last();
         let moved = previous.map(|(_, p, _)| mask_moved(p.pixels.iter().map(|p| p.hit()), &truth));
-        let figures = previous.map(|(_, _, p)| budget.moved(&p.error, &default.error));
+        let figures = match (previous.and_then(|p| p.2.as_ref()), &default) {
+            (Some(before), Some(after)) => Some(budget.moved(&before.error, &after.error)),
+            _ => None,
+        };
         let figures_said = match &figures {
             Some(f) if f.is_empty() => ", the scene default's judged figures by under a quarter of their limits".into(),
             Some(f) => format!(", the scene default's {}", f.join(", ")),
@@ -132,7 +140,7 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
         );
         let _ = writeln!(out, "  {line}");
         let _ = writeln!(md, "- {line}");
-        if escape_time {
+        if let Some(default) = &default {
             let line = format!("scene default against the {factor}x truth: {}", default.error.describe());
             let _ = writeln!(out, "  {line}");
             let _ = writeln!(md, "- {line}");

@@ -36,10 +36,7 @@ impl Truth {
                 let Some(q) = self.neighbour(px, py, centre.t) else { continue };
                 let (ro, rd) = self.view.ray(px, py);
                 let t = fractal_dsl::math::dot(q - ro, rd);
-                let normal = match self.exact_normal(q, rd, t) {
-                    Some(n) => Some(n),
-                    None => self.normal(px, py, t, d).map(|(n, _)| n),
-                };
+                let normal = self.exact_normal(q, rd, t).or_else(|| self.normal(px, py, t, d).map(|(n, _)| n));
                 normals.extend(normal);
             }
         }
