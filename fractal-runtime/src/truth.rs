@@ -634,6 +634,31 @@ mod tests {
         assert!(on_set.false_misses < 0.03 && t.overshoot_cone < 0.01, "{}", on_set.describe());
     }
 
+    /// A render that stopped on a hair of the scene thinner than any lattice of sub-rays resolves has stopped on
+    /// what its pixel's cone holds: a hair running along the cone between the lines of a 5×5 lattice a quarter pixel
+    /// apart, a twenty-fifth of a footprint thick, which none of those sub-rays meets, is found by the depth check's
+    /// points spread anew at each depth.
+    #[test]
+    fn a_hair_between_the_sub_rays_is_within_the_pixels_cone() {
+        let place = scene(sphere(1.0)).camera(camera([0.0, 0.0, -3.0], [0.0; 3]));
+        let f = frame(&place, 20, 15);
+        let (x, y, start) = (10, 7, 2.5);
+        let view = Truth::compute(&place, &f, TruthSettings::default()).unwrap();
+        // Midway between the lattice's sub-rays (at 0, 1/4, … of the pixel), along one of the pixel's own rays.
+        let (ro, rd) = view.view.ray(x as f64 + 0.125, y as f64 + 0.125);
+        let foot = view.footprint_at(start);
+        let (a, b) = (ro + rd * start, ro + rd * (start + 2.0 * foot));
+        let hair = scene(capsule([a.x, a.y, a.z], [b.x, b.y, b.z], 0.02 * foot)).camera(place.camera.clone());
+        let truth = Truth::compute(&hair, &f, TruthSettings::default()).unwrap();
+        for k in 0..25 {
+            let (px, py) = cone::sub_pixel(x, y, k, 5);
+            assert_eq!(truth.first_hit(px, py), None, "sub-ray {k} meets the hair");
+        }
+        let found = truth.cone_error(x, y, start, 2.0, 25, 1.0 / 64.0).expect("the cone holds the hair");
+        assert!(found < 0.5, "the hair found {found} footprints from where the render stopped");
+        assert_eq!(truth.cone_error(2, 2, start, 2.0, 25, 1.0 / 64.0), None, "a pixel whose cone holds no hair");
+    }
+
     /// A false hit is cone-consistent when the pixel's cone meets the scene off its centre: a half-pixel epsilon
     /// fattens a sphere's silhouette by pixels its cone covers in part, and three pixels fatten it beyond any cone.
     #[test]

@@ -4,7 +4,6 @@
 //! false hits, overshoot, depth and normals with them, so a render is not called wrong for an answer some part of the
 //! pixel supports.
 
-use super::ray::TruthRay;
 use super::{angle_degrees, Truth};
 
 /// Spacing of the sub-rays whose normals make a pixel's normal cone, in pixels: a 3×3 lattice a quarter pixel apart
@@ -68,42 +67,50 @@ impl Truth {
     }
 
     /// Pixel-cone consistency of a render that stopped at depth `t` in pixel (x, y): the smallest depth difference,
-    /// in footprints, between `t` and a point of the scene seen by the pixel within `window` footprints of `t`
-    /// (sub-rays on a `grid`×`grid` lattice across the pixel, sampled along the ray every `step_footprints`, never
-    /// finer than the truth's own step); `None` when the pixel sees none of the scene there.
+    /// in footprints, between `t` and a point of the scene inside the pixel's cone within `window` footprints of `t`
+    /// (sampled every `step_footprints` along the cone, never finer than the truth's own step, at `samples` points
+    /// across the pixel at each depth); `None` when the cone holds none of the scene there.
     ///
-    /// Every sub-ray is sampled at one depth offset before any moves to the next, outward from `t` on both sides, so
-    /// the first point found is the nearest and ends the search: a render that stopped on the scene costs a few
-    /// samples, and only one the pixel's cone does not explain pays for the whole window.
-    pub fn cone_error(&self, x: u32, y: u32, t: f64, window: f64, grid: u32, step_footprints: f64) -> Option<f64> {
+    /// The points across the pixel move on with every depth (a low-discrepancy sequence), so together they fill the
+    /// cone's volume: points on fixed sub-rays would sample it on a few lines only, and a filament thinner than their
+    /// spacing that runs between them — the hair of an escape-time set, which the render's estimate sees — would be
+    /// called missing however finely each line is sampled. Depths are taken outward from `t` on both sides, so the
+    /// first point found is the nearest and ends the search: a render that stopped on the scene costs a few samples,
+    /// and only one the pixel's cone does not explain pays for the whole window.
+    pub fn cone_error(&self, x: u32, y: u32, t: f64, window: f64, samples: u32, step_footprints: f64) -> Option<f64> {
         let foot = self.footprint_at(t);
         let step = step_footprints.max(self.settings.step_footprints) * foot;
-        let samples = (window * foot / step).ceil() as i64;
+        let depths = (window * foot / step).ceil() as u64;
         let env = self.env();
-        let rays: Vec<TruthRay> = (0..grid * grid)
-            .map(|k| {
-                let (px, py) = sub_pixel(x, y, k, grid);
-                let (ro, rd) = self.view.ray(px, py);
-                TruthRay {
-                    membership: &self.membership,
-                    env: &env,
-                    origin: [ro.x, ro.y, ro.z],
-                    direction: [rd.x, rd.y, rd.z],
-                }
-            })
-            .collect();
-        (0..=samples).find_map(|k| {
-            let depths = [t - k as f64 * step, t + k as f64 * step];
-            let seen = rays.iter().any(|ray| depths.iter().any(|&s| s >= 0.0 && ray.value(s) <= 0.0));
+        let inside = |n: u64, s: f64| {
+            let (u, v) = cone_point(n);
+            let (ro, rd) = self.view.ray(x as f64 + u, y as f64 + v);
+            let p = ro + rd * s;
+            self.membership.value([p.x, p.y, p.z], &env) <= 0.0
+        };
+        let per_depth = samples as u64;
+        (0..=depths).find_map(|k| {
+            let seen = [t - k as f64 * step, t + k as f64 * step].iter().enumerate().any(|(side, &s)| {
+                let first = (2 * k + side as u64) * per_depth;
+                s >= 0.0 && (first..first + per_depth).any(|n| inside(n, s))
+            });
             seen.then_some(k as f64 * step / foot)
         })
     }
 }
 
+/// Point `n` of a low-discrepancy sequence over the pixel, edge to edge (the R2 sequence, Roberts 2018: any run of
+/// consecutive points spreads evenly over the square), as an offset from the pixel's corner.
+fn cone_point(n: u64) -> (f64, f64) {
+    // 1/φ₂ and 1/φ₂², φ₂ the plastic number.
+    const A: (f64, f64) = (0.754_877_666_246_692_7, 0.569_840_290_998_053_2);
+    ((0.5 + n as f64 * A.0).fract(), (0.5 + n as f64 * A.1).fract())
+}
+
 /// The image position of sub-ray `k` of pixel (x, y) on a `grid`×`grid` lattice across the pixel, edge to edge: the
 /// pixel's cone reaches half a pixel from its centre, as far as a half-pixel hit epsilon finds the surface (a lattice
 /// of cell centres, a third of a pixel out at 3×3, would call that surface outside the pixel).
-fn sub_pixel(x: u32, y: u32, k: u32, grid: u32) -> (f64, f64) {
+pub(super) fn sub_pixel(x: u32, y: u32, k: u32, grid: u32) -> (f64, f64) {
     let at = |i: u32| if grid > 1 { i as f64 / (grid - 1) as f64 } else { 0.5 };
     (x as f64 + at(k % grid), y as f64 + at(k / grid))
 }
