@@ -408,7 +408,8 @@ impl BenchReport {
         writeln!(out, "  precision (vs f64 interpreter, same settings): {}", self.accuracy.describe())?;
         writeln!(
             out,
-            "  true error (vs ground truth at {}x{}, truth step 1/{} footprint): {}",
+            "  true error (vs ground truth at {}x{}, truth step 1/{} footprint, escape-time sets at the scene's own \
+             iterations; `fractal accuracy` judges against converged ones): {}",
             self.true_error.width,
             self.true_error.height,
             (1.0 / TRUTH_STEP).round(),
