@@ -569,6 +569,25 @@ fn accuracy_sweeps_settings_against_the_truth_and_writes_a_report() {
     let rows = text.lines().filter(|l| l.starts_with("scene default ")).count();
     assert_eq!(rows, 1, "{text}");
     assert!(!text.contains("steps 32") && text.contains("the scene default is"), "{text}");
+    // A named truth instead of the settling one.
+    let out = run_in(
+        &dir,
+        &[
+            "accuracy",
+            "mandelbulb_bench",
+            "--size",
+            "24x14",
+            "--truth-step",
+            "0.05",
+            "--default-only",
+            "--truth-factor",
+            "4",
+        ],
+    );
+    assert_ok(&out);
+    let text = stdout(&out);
+    assert!(text.contains("truth at 4x the iterations") && !text.contains("truth at 1x"), "{text}");
+    assert!(!text.contains("truth at 8x") && text.contains("the scene default is"), "{text}");
     let report_args =
         ["--report", "--size", "16x9", "--truth-step", "0.05", "--estimator-samples", "4", "--out", "r.md"];
     let out = run_in(&dir, &[&["accuracy"][..], &report_args].concat());
@@ -652,6 +671,7 @@ fn bad_input_is_one_clear_line_and_the_right_exit_status() {
         (vec!["accuracy", "hello_world", "--report"], 2, "give no scene with it".into()),
         (vec!["accuracy", "--report", "--time", "2"], 2, "give no --time with it".into()),
         (vec!["accuracy", "hello_world", "--truth-step", "0"], 2, "the truth step is a number of footprints".into()),
+        (vec!["accuracy", "hello_world", "--truth-factor", "0"], 2, "0 is not in 1..=64".into()),
         (vec!["accuracy", "hello_world", "--csv", "a-file/a.csv"], 1, "cannot write a-file/a.csv".into()),
     ];
     for (args, code, message) in &cases {

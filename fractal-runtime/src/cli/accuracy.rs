@@ -97,12 +97,12 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
         other => Some(crate::select::open(other, &RendererOptions { precise: args.precise })?),
     };
     // The truth at the scene's iteration count, and for escape-time fractals at doubled counts until neither the hit
-    // mask nor the scene default's judged figures move: the converged truth, judged against. The default against
-    // each truth is on record.
+    // mask nor the scene default's judged figures move: the converged truth, judged against (`--truth-factor` names
+    // the one instead). The default against each truth is on record.
     let escape_time = sweep::escape_time_iterations(scene).is_some();
     // With the default's render against each truth, where more truths may follow (the sweep renders it for the one).
     let mut truths: Vec<(u32, Truth, Option<sweep::SweepPoint>)> = Vec::new();
-    let mut factor = 1;
+    let mut factor = if escape_time { args.truth_factor.unwrap_or(1) } else { 1 };
     loop {
         let start = Instant::now();
         let settings = TruthSettings { step_footprints: args.truth_step, iteration_factor: factor };
@@ -147,7 +147,7 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
         }
         truths.push((factor, truth, default));
         let settled = moved.is_some_and(|m| m < CONVERGED_MASK) && figures.is_some_and(|f| f.is_empty());
-        if !escape_time || settled || factor >= MAX_TRUTH_FACTOR {
+        if !escape_time || settled || factor >= MAX_TRUTH_FACTOR || args.truth_factor.is_some() {
             break;
         }
         factor *= 2;
@@ -392,6 +392,9 @@ fn report_text(args: &AccuracyArgs, backend: Backend, budget: &Budget, sections:
     }
     if args.truth_step != truth::DEFAULT_STEP_FOOTPRINTS {
         command += &format!(" --truth-step {}", args.truth_step);
+    }
+    if let Some(factor) = args.truth_factor {
+        command += &format!(" --truth-factor {factor}");
     }
     if !args.also_on.is_empty() {
         let list: Vec<String> = args.also_on.iter().map(|b| b.to_string()).collect();

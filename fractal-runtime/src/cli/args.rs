@@ -254,6 +254,10 @@ pub struct AccuracyArgs {
     /// Truth march step in pixel footprints
     #[arg(long, value_name = "F", default_value_t = crate::truth::DEFAULT_STEP_FOOTPRINTS, value_parser = parse_truth_step)]
     pub truth_step: f64,
+    /// Judge against the truth at N times the escape-time fractals' iterations (each family caps the product at its
+    /// most) instead of doubling them from 1 until the figures stop moving; and every key of a camera path too
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=64))]
+    pub truth_factor: Option<u32>,
     /// Append the table to this CSV file (header written when the file is new)
     #[arg(long, value_name = "PATH")]
     pub csv: Option<PathBuf>,
