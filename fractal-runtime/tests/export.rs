@@ -31,9 +31,11 @@ fn builtin_scenes() -> Vec<(String, Scene, Kernels)> {
         .collect()
 }
 
-/// Writes an export to a file of its own (per process, so concurrent runs cannot overwrite each other's files).
+/// Writes an export to a file of its own, in a directory of its own (per process, so concurrent runs cannot overwrite
+/// each other's files; per file, so a check that removes its directory cannot take another's from under it).
 fn write_export(scene: &str, target: Target, exported: &Exported) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("export-{}", std::process::id()));
+    let name = format!("export-{}-{scene}-{}", std::process::id(), target.extension());
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
     std::fs::create_dir_all(&dir).expect("create the export directory");
     let path = dir.join(format!("{scene}.{}", target.extension()));
     std::fs::write(&path, exported.as_bytes()).expect("write the export");
@@ -45,7 +47,7 @@ fn remove(files: &[&Path]) {
     for file in files {
         // At worst a leftover in the build's temporary directory.
         let _ = std::fs::remove_file(file);
-        // The process's directory goes with its last file (removing a directory still in use fails, harmlessly).
+        // The file's directory goes with it.
         if let Some(dir) = file.parent() {
             let _ = std::fs::remove_dir(dir);
         }
