@@ -153,18 +153,23 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
         factor *= 2;
     }
     let references: Vec<(u32, &Truth)> = truths.iter().map(|(f, t, _)| (*f, t)).collect();
-    let (judged_factor, judged) =
-        references[settled_in_step(scene, &frame, args.truth_step, budget, &references, &mut |line| {
-            let _ = writeln!(out, "  {line}");
-            let _ = writeln!(md, "- {line}");
-        })?];
+    let judged_index = settled_in_step(scene, &frame, args.truth_step, budget, &references, &mut |line| {
+        let _ = writeln!(out, "  {line}");
+        let _ = writeln!(md, "- {line}");
+    })?;
+    let (judged_factor, judged) = references[judged_index];
 
     let qualities =
         if args.default_only { vec![Quality::default()] } else { sweep::grid(scene, backend, args.precise) };
     let _ = writeln!(md);
-    let points = sweep::run(scene, &frame, judged, backend, renderer.as_mut(), &qualities, &mut |p| {
+    // The default was measured against every truth of an escape-time scene already: its point against the judged one
+    // is kept, not rendered again.
+    let known = truths[judged_index].2.clone();
+    let pending: Vec<Quality> = qualities.into_iter().filter(|q| known.is_none() || !q.is_default()).collect();
+    let mut points: Vec<sweep::SweepPoint> = known.into_iter().collect();
+    points.extend(sweep::run(scene, &frame, judged, backend, renderer.as_mut(), &pending, &mut |p| {
         eprintln!("  measured {} ({:.1} ms)", p.quality, p.time_ms);
-    })?;
+    })?);
     let _ = write!(out, "{}", table::text(&points, budget));
     if let Some(dir) = plot_dir(args) {
         let path = dir.join(format!("{}.svg", loaded.name));
