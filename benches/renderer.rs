@@ -20,7 +20,7 @@ fn renderer(c: &mut Criterion) {
         let frame = Frame::new(scene, &pose, 0.0, width, height, &ParamValues::defaults(scene)).expect("a frame");
         let size = format!("{width}x{height}");
         group.bench_function(BenchmarkId::new("packets", &size), |b| {
-            b.iter(|| black_box(render_packets(&native, &native, scene, &frame).expect("a render")))
+            b.iter(|| black_box(render_packets(&native, scene, &frame).expect("a render")))
         });
         group.bench_function(BenchmarkId::new("a ray at a time", &size), |b| {
             b.iter(|| black_box(render_scene::<f32, _>(&native, scene, &frame).expect("a render")))

@@ -64,7 +64,7 @@ fn perturbation_counts_match_a_double_double_iteration_at_the_deepest_key() {
     let (mut agree, mut f64_agree, mut plain_agree, mut resolvable) = (0, 0, 0, 0);
     for (i, trace) in traces.iter().enumerate() {
         assert!(trace.hit, "every pixel of the zoom sees the plane");
-        // The ray as the renderer makes it (`fractal_dsl::back::render`, step 1), in f32.
+        // The ray as the renderer makes it (`fractal_dsl::ray::View::ray`), in f32.
         let (x, y) = ((i as u32 % WIDTH) as f32 + 0.5, (i as u32 / WIDTH) as f32 + 0.5);
         let (w, h) = (WIDTH as f32, HEIGHT as f32);
         let rd: V3<f32> = normalize(forward + right * ((2.0 * x - w) / h) + up * (-(2.0 * y - h) / h));

@@ -349,6 +349,13 @@ impl Num for F32x8 {
         s
     }
     #[inline(always)]
+    fn stand_in(live: M32x8, x: Self) -> Self {
+        match live.0.iter().position(|&m| m != 0) {
+            Some(first) => blend(live, x, F32x8::splat(x.0[first])),
+            None => x,
+        }
+    }
+    #[inline(always)]
     fn when<S: Carry<Self>>(cond: M32x8, state: S, body: impl FnOnce(S) -> S) -> S {
         if cond.any() {
             body(state).zip_nums(state, &mut |new, old| blend(cond, new, old))

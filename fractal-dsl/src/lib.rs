@@ -47,6 +47,7 @@ pub mod ops;
 pub mod parse;
 pub mod prims;
 pub mod print;
+pub mod ray;
 pub mod sdf;
 pub mod validate;
 pub mod visit;

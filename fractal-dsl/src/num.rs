@@ -111,6 +111,15 @@ pub trait Num:
     fn iterate<S: Carry<Self>>(n: Self::Count, init: S, active: impl Fn(&S) -> Self::Mask, step: impl Fn(S) -> S) -> S;
     /// `body(state)` where `cond` holds, else `state`; the body runs only if some lane needs it.
     fn when<S: Carry<Self>>(cond: Self::Mask, state: S, body: impl FnOnce(S) -> S) -> S;
+    /// `x` where `live` holds; in a lane where it does not, the value of a lane where it does (the value there is
+    /// not used). A packet's lanes run in step, so work done for lanes that do not count then costs what a counting
+    /// lane's costs, not what an arbitrary value's would (a point at a fractal's surface runs every iteration). A
+    /// scalar is its own lane.
+    #[inline(always)]
+    fn stand_in(live: Self::Mask, x: Self) -> Self {
+        let _ = live;
+        x
+    }
 
     /// Entry `index` of a perturbation reference orbit, the last entry for an index past it (see [`Orbit`]).
     ///

@@ -248,7 +248,7 @@ fn escape_estimate<F: Num>(r: F, dr: F) -> F {
 
 /// An escape-time estimate signed by membership: ≤ 0 where the orbit never passed the escape radius (the point is in
 /// the drawn set), > 0 where it escaped. Inside the set the estimate is no distance; its sign is what a march that
-/// takes hits on the set itself reads (step 3b of [`crate::back::render`], `membership_hits`): the `*_signed` leaves.
+/// takes hits on the set itself reads (step 3b of [`crate::ray`], `membership_hits`): the `*_signed` leaves.
 /// Only there: with few iterations or a large bailout the drawn set reaches past the bound that holds the surface the
 /// plain hit test renders (1 iteration at bailout 256), and a plain march would stop on the bound's face.
 #[inline(always)]

@@ -250,8 +250,7 @@ impl Truth {
         };
         // Without a normal from the surface (a lone sample of it), shade facing the camera.
         let n = normal.map_or(-rd, |n| v3(n[0], n[1], n[2]));
-        let env = self.view.env();
-        let colour = self.view.shade_hit(shading, &env, p, n, rd, t, self.view.hit_epsilon(t));
+        let colour = self.view.shade_hit(&self.view.on(shading), p, n, rd, t, self.view.hit_epsilon(t));
         TruthPixel { t, normal, rough, colour: [colour.x, colour.y, colour.z] }
     }
 

@@ -238,7 +238,7 @@ fn packet_marching_draws_the_scalar_renderers_image() {
         // 61 columns: the last packet of each row is partly padding.
         let frame = frame_for(&scene, 61, 20, &ParamValues::defaults(&scene));
         let packets = Evaluator::<f32>::packets(&interp).expect("the interpreter has a packet instance");
-        let packed = fractal_runtime::backend::cpu::render_packets(&interp, packets, &scene, &frame).expect("render");
+        let packed = fractal_runtime::backend::cpu::render_packets(packets, &scene, &frame).expect("render");
         let scalar = render_scene::<f32, _>(&interp, &scene, &frame).expect("render");
         let differing = packed.pixels.iter().zip(&scalar.pixels).filter(|(a, b)| a != b).count();
         assert_eq!(differing, 0, "{name}: {differing} pixels differ between packet and scalar marching");

@@ -12,7 +12,7 @@ pub use reference::{reference, scene_reference, ReferenceSpec};
 use crate::ir::op::Meaning;
 use crate::ir::{Node, RenderSettings};
 
-/// Why a march refines its hits by the distance's sign ([`crate::back::render`], step 3b), which sets its sign step.
+/// Why a march refines its hits by the distance's sign ([`crate::ray`], step 3b), which sets its sign step.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SignRefinement {
     /// The tree displaces a surface (its distance is divided by the displacement's slope bound, so a hit test on it

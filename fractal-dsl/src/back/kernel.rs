@@ -1,6 +1,6 @@
 //! The GPU program, written once for every GPU language: the order of its sections, the framing of the lowered scene
 //! functions, the functions built on them (normal, ambient occlusion, shadow) and the `render` and `probe` kernels
-//! ([`super::Entry`]) that implement [`super::render`], or, for another engine, the same functions as a library
+//! ([`super::Entry`]) that implement [`crate::ray`], or, for another engine, the same functions as a library
 //! ([`write_library`]: `sdf`, `sdf_normal`, `sdf_material`, the bound as constants and `sdf_raymarch`, whose march
 //! and shading are the `render` kernel's statements). What differs between the languages is a [`Dialect`] (and,
 //! for the kernels, a [`KernelDialect`]); each GPU writer (`back/<lang>/writer.rs`) is one impl, and the [`Syntax`]
@@ -8,7 +8,6 @@
 
 use std::fmt::Write;
 
-use super::render::*;
 use super::syntax::{self, Prec, Spelling, Syntax};
 use super::{f32_literal, Entry, FrameLayout, Level};
 use crate::analyse::SignRefinement;
@@ -16,6 +15,7 @@ use crate::ir::{HitEpsilon, Shadows};
 use crate::lower::code::{MathFn, Ty};
 use crate::lower::trace::Function;
 use crate::lower::{LightShape, Program};
+use crate::ray::*;
 
 /// Vector component names, by index.
 const COMPONENTS: [&str; 4] = ["x", "y", "z", "w"];
@@ -639,7 +639,7 @@ impl<D: Dialect> Kernel<'_, D> {
         self.out.push_str("}\n");
     }
 
-    /// Steps 2 and 3 of [`super::render`] from `ro` along the unit `rd`: declares and sets `t`, `t_far`, `hit`,
+    /// Steps 2 and 3 of [`crate::ray`] from `ro` along the unit `rd`: declares and sets `t`, `t_far`, `hit`,
     /// `eps` and (with glow) `glow`.
     fn march(&mut self) {
         let (d, p) = (self.d, self.p);
@@ -752,7 +752,7 @@ impl<D: Dialect> Kernel<'_, D> {
         self.line(l1, "}");
     }
 
-    /// Step 3b of [`super::render`], the sign refinement, where `d < eps` (inside the march's loop): the hit where
+    /// Step 3b of [`crate::ray`], the sign refinement, where `d < eps` (inside the march's loop): the hit where
     /// `d ≤ 0`, refined on its bracket; otherwise the sign step, into `step`.
     fn refine(&mut self, l1: Level, step: &str) {
         let d = self.d;
@@ -812,7 +812,7 @@ impl<D: Dialect> Kernel<'_, D> {
         }
     }
 
-    /// Steps 4 to 6 of [`super::render`] after [`Self::march`]: declares and sets `col`, the linear colour.
+    /// Steps 4 to 6 of [`crate::ray`] after [`Self::march`]: declares and sets `col`, the linear colour.
     fn shade(&mut self) {
         let (d, p) = (self.d, self.p);
         let s = &p.settings;
@@ -901,7 +901,7 @@ impl<D: Dialect> Kernel<'_, D> {
         }
     }
 
-    /// Step 7 of [`super::render`] up to packing: `col` clamped to [0, 1] and gamma-encoded in place.
+    /// Step 7 of [`crate::ray`] up to packing: `col` clamped to [0, 1] and gamma-encoded in place.
     fn display(&mut self) {
         let d = self.d;
         let s = &self.p.settings;

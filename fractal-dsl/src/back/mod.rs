@@ -4,14 +4,13 @@
 //! both GPU languages read, indentation and number formatting (this file); the statement walker over lowered bodies
 //! ([`syntax`]); the whole GPU program — function framing, normal, ambient occlusion, shadows and the `render` /
 //! `probe` kernels, or the same functions as a library for other engines — written once against a per-language
-//! [`kernel::Dialect`], which is all the OpenCL C, WGSL, GLSL and HLSL writers implement ([`kernel`]); the render
-//! algorithm and its constants ([`render`]).
+//! [`kernel::Dialect`], which is all the OpenCL C, WGSL, GLSL and HLSL writers implement ([`kernel`]). The kernels
+//! spell the ray program of [`crate::ray`] (the CPU renderer runs it natively); its constants live there.
 
 pub mod glsl;
 pub mod hlsl;
 pub mod kernel;
 pub mod opencl;
-pub mod render;
 pub mod rust;
 pub mod syntax;
 pub mod wgsl;

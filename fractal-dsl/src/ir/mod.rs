@@ -235,11 +235,11 @@ pub struct RenderSettings {
     /// spheres overlap, and where they do not, step back and go on with ω = 1. 1 is plain sphere tracing.
     pub over_relaxation: f64,
     /// The normal's taps, in pixel footprints at the hit (k·footprint·t): the scale the surface's normal is taken at.
-    /// `None`: the hit epsilon's (step 4 of [`crate::back::render`]).
+    /// `None`: the hit epsilon's (step 4 of [`crate::ray`]).
     pub normal_epsilon: Option<f64>,
     /// Hits on escape-time fractals are points of the drawn set: below the hit epsilon the march steps on by a share
     /// of it until the estimate's membership sign turns, and refines the crossing (step 3b of
-    /// [`crate::back::render`]). For sets whose estimate stops rays far in front of them (the power-2 Mandelbulb).
+    /// [`crate::ray`]). For sets whose estimate stops rays far in front of them (the power-2 Mandelbulb).
     pub membership_hits: bool,
     pub shadows: Shadows,
     /// Ambient occlusion strength (5 samples along the normal); None disables it.
