@@ -124,13 +124,17 @@ fn power_eight_mandelbulb_is_trig_free_and_other_powers_are_not() {
 #[test]
 fn effects_appear_only_when_enabled() {
     let plain = compile(&parse_str("scene(sphere(1.0))").unwrap()).unwrap();
-    let all = compile(
-        &parse_str("scene(sphere(1.0)).soft_shadows(8.0).ambient_occlusion(1.0).glow(rgb(0.2, 0.3, 0.9)).fog(rgb(0.5, 0.5, 0.5), 0.1)")
-            .unwrap(),
-    ).unwrap();
-    for marker in ["scene_shadow", "scene_ao", "glow", "exp("] {
+    // Each effect, and code only it brings: its function, or its constant.
+    for (setting, marker) in [
+        (".soft_shadows(8.0)", "scene_shadow"),
+        (".ambient_occlusion(1.0)", "scene_ao"),
+        // Glow's fall-off with the distance of a near miss.
+        (".glow(rgb(0.2, 0.3, 0.9))", "256.0"),
+        (".fog(rgb(0.5, 0.5, 0.5), 0.1)", "exp2("),
+    ] {
+        let with = compile(&parse_str(&format!("scene(sphere(1.0)){setting}")).unwrap()).unwrap();
         assert!(!plain.wgsl.contains(marker), "plain kernel has `{marker}`");
-        assert!(all.wgsl.contains(marker), "kernel with every effect lacks `{marker}`");
+        assert!(with.wgsl.contains(marker), "kernel with {setting} lacks `{marker}`:\n{}", with.wgsl);
     }
 }
 

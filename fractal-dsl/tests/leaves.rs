@@ -172,6 +172,7 @@ impl Run<'_> {
                 })
             }
             Op::Call(..) => panic!("leaf functions call no other leaf"),
+            Op::Scene(..) | Op::Field(..) | Op::Frame(_) => panic!("leaf functions call no scene function"),
             Op::Cmp(op, a, b) => {
                 let (a, b) = (self.get(*a).f(), self.get(*b).f());
                 V::B(match op {

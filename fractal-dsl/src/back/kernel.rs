@@ -1,21 +1,20 @@
 //! The GPU program, written once for every GPU language: the order of its sections, the framing of the lowered scene
-//! functions, the functions built on them (normal, ambient occlusion, shadow) and the `render` and `probe` kernels
-//! ([`super::Entry`]) that implement [`crate::ray`], or, for another engine, the same functions as a library
-//! ([`write_library`]: `sdf`, `sdf_normal`, `sdf_material`, the bound as constants and `sdf_raymarch`, whose march
-//! and shading are the `render` kernel's statements). What differs between the languages is a [`Dialect`] (and,
-//! for the kernels, a [`KernelDialect`]); each GPU writer (`back/<lang>/writer.rs`) is one impl, and the [`Syntax`]
-//! the shared body walker needs follows from it.
+//! functions and the `render`, `trace` and `probe` kernels ([`super::Entry`]), or, for another engine, the same
+//! functions as a library ([`write_library`]: `sdf`, `sdf_normal`, `sdf_material`, the bound as constants and
+//! `sdf_raymarch`). The ray itself is not written here: the render kernel's body and the library's functions are the
+//! ray program of [`crate::ray`] traced ([`crate::lower::ray`]), the one the CPU renderer runs. What differs between
+//! the languages is a [`Dialect`] (and, for the kernels, a [`KernelDialect`]); each GPU writer
+//! (`back/<lang>/writer.rs`) is one impl, and the [`Syntax`] the shared body walker needs follows from it.
 
 use std::fmt::Write;
 
 use super::syntax::{self, Prec, Spelling, Syntax};
 use super::{f32_literal, Entry, FrameLayout, Level};
-use crate::analyse::SignRefinement;
-use crate::ir::{HitEpsilon, Shadows};
-use crate::lower::code::{MathFn, Ty};
+use crate::ir::HitEpsilon;
+use crate::lower::code::{Body, FrameField, MathFn, SceneFn, Ty, Val};
+use crate::lower::ray;
 use crate::lower::trace::Function;
-use crate::lower::{LightShape, Program};
-use crate::ray::*;
+use crate::lower::Program;
 
 /// Vector component names, by index.
 const COMPONENTS: [&str; 4] = ["x", "y", "z", "w"];
@@ -53,20 +52,6 @@ pub trait Dialect {
     fn construct(&self, ty: &str, components: &str) -> String {
         format!("{ty}({components})")
     }
-    /// A scalar passed where a built-in takes a vector of the other operand's size (`clamp`'s bounds).
-    fn vector_operand(&self, scalar: &str) -> String {
-        scalar.to_string()
-    }
-    /// Per component of the 3-vector `v`: `if_nonnegative` where it is ≥ 0 (−0 included), else `if_negative`.
-    fn select_nonnegative(&self, v: &str, if_nonnegative: &str, if_negative: &str) -> String {
-        // OpenCL's and WGSL's vector `select` take (if false, if true, condition).
-        let zero = self.construct(self.type_name(Ty::V3), &self.lit(0.0));
-        format!("select({if_negative}, {if_nonnegative}, {v} >= {zero})")
-    }
-    /// The name of linear interpolation, `mix(a, b, t)`.
-    fn mix_name(&self) -> &'static str {
-        "mix"
-    }
     /// The name of a math built-in.
     fn math_name(&self, f: MathFn) -> &'static str;
     /// A call of a math function in lowered code: the built-in, or the language's polyfill for it.
@@ -94,14 +79,6 @@ pub trait Dialect {
     /// A declaration whose type the language may infer from `value`.
     fn local(&self, name: &str, ty: &str, value: &str, mutable: bool) -> String {
         self.declare(name, ty, value, mutable)
-    }
-    /// A mutable declaration whose value every path assigns later.
-    fn uninitialised(&self, name: &str, ty: &str) -> String {
-        format!("{ty} {name};")
-    }
-    /// The opening line of `for` over `i` from 0 while `i < {bound}` (the bound may carry `&& …`).
-    fn counted_loop(&self, bound: &str) -> String {
-        format!("for (int i = 0; i < {bound}; i++) {{")
     }
     /// The opening line of `for` over the unsigned `index` from 0 while `index < count`.
     fn counted_loop_over(&self, index: &str, count: &str) -> String {
@@ -146,71 +123,76 @@ pub trait KernelDialect: Dialect {
 
 /// The [`Syntax`] of the lowered bodies in a GPU language; time and parameters come from the frame, or from the
 /// host's globals in a library.
-struct GpuSyntax<'a, D>(&'a D, Option<&'a Library>);
+struct GpuSyntax<'a, D> {
+    d: &'a D,
+    lib: Option<&'a Library>,
+    /// Whether `scene_de` and `scene_sample` take the frame as an argument.
+    passes_frame: [bool; 2],
+}
 
 impl<D: Dialect> Syntax for GpuSyntax<'_, D> {
     fn type_name(&self, ty: Ty) -> &'static str {
-        self.0.type_name(ty)
+        self.d.type_name(ty)
     }
     fn declare(&self, name: &str, ty: Ty, value: &str, mutable: bool) -> String {
-        self.0.declare(name, self.0.type_name(ty), value, mutable)
+        self.d.declare(name, self.d.type_name(ty), value, mutable)
     }
     fn lit(&self, v: f64) -> String {
-        self.0.lit(v)
+        self.d.lit(v)
     }
     fn bool_lit(&self, v: bool) -> String {
-        self.0.bool_lit(v).to_string()
+        self.d.bool_lit(v).to_string()
     }
     fn int(&self, v: u32) -> String {
-        self.0.index_lit(v)
+        self.d.index_lit(v)
     }
     fn time(&self) -> String {
-        match self.1 {
+        match self.lib {
             Some(lib) => lib.time.clone(),
-            None => self.0.frame_field("origin.w"),
+            None => self.d.frame_field("origin.w"),
         }
     }
     fn param(&self, slot: usize) -> String {
-        match self.1 {
+        match self.lib {
             Some(lib) => lib.params[slot].clone(),
-            None => self.0.frame_field(&format!("params[{}].{}", slot / 4, COMPONENTS[slot % 4])),
+            None => self.d.frame_field(&format!("params[{}].{}", slot / 4, COMPONENTS[slot % 4])),
         }
     }
     fn orbit(&self) -> Option<String> {
-        self.0.frame_parameter().map(|_| "frame".to_string())
+        self.d.frame_parameter().map(|_| "frame".to_string())
     }
     fn orbit_entry(&self, index: &str) -> String {
         // Two entries per slot: entry i is the xy (even i) or zw (odd i) of slot i / 2.
-        let d = self.0;
+        let d = self.d;
         let i = d.cast(d.type_name(Ty::Int), index);
         let (two, one) = (d.index_lit(2), d.index_lit(1));
         let slot = d.frame_field(&format!("orbit[{i} / {two}]"));
         d.select(&format!("({i} % {two} == {one})"), &format!("{slot}.zw"), &format!("{slot}.xy"))
     }
     fn orbit_last(&self) -> String {
-        self.0.frame_field("reference.x")
+        self.d.frame_field("reference.x")
     }
     fn make_v3(&self, x: &str, y: &str, z: &str) -> String {
         let components = if x == y && y == z { x.to_string() } else { format!("{x}, {y}, {z}") };
-        self.0.construct(self.0.type_name(Ty::V3), &components)
+        self.d.construct(self.d.type_name(Ty::V3), &components)
     }
     fn make_pair(&self, distance: &str, trap: &str) -> String {
-        self.0.construct(self.0.type_name(Ty::Pair), &format!("{distance}, {trap}"))
+        self.d.construct(self.d.type_name(Ty::Pair), &format!("{distance}, {trap}"))
     }
     fn comp(&self, v: &str, _ty: Ty, i: u8) -> String {
         format!("{v}.{}", COMPONENTS[i as usize])
     }
     fn math_name(&self, f: MathFn) -> &'static str {
-        self.0.math_name(f)
+        self.d.math_name(f)
     }
     fn math(&self, f: MathFn, args: &[String]) -> String {
-        self.0.math_call(f, args)
+        self.d.math_call(f, args)
     }
     fn select(&self, cond: &str, if_true: &str, if_false: &str) -> String {
-        self.0.select(cond, if_true, if_false)
+        self.d.select(cond, if_true, if_false)
     }
     fn select_prec(&self) -> Prec {
-        self.0.select_prec()
+        self.d.select_prec()
     }
     fn if_open(&self, cond: &str) -> String {
         format!("if {} {{", parenthesized(cond))
@@ -218,14 +200,25 @@ impl<D: Dialect> Syntax for GpuSyntax<'_, D> {
     fn break_if(&self, cond: &str) -> String {
         format!("if {} {{ break; }}", parenthesized(cond))
     }
+    fn scene_call(&self, f: SceneFn, args: &[String]) -> String {
+        let frame = match f {
+            SceneFn::Sample => self.passes_frame[1],
+            SceneFn::Distance | SceneFn::Normal | SceneFn::Occlusion | SceneFn::Shadow => self.passes_frame[0],
+        };
+        let frame = if frame { ", frame" } else { "" };
+        format!("{}({}{frame})", f.name(), args.join(", "))
+    }
+    fn frame(&self, field: FrameField) -> String {
+        self.d.frame_field(&field.path())
+    }
     fn loop_open(&self, count: &str, depth: usize) -> String {
-        self.0.counted_loop_over(&format!("i{depth}"), count)
+        self.d.counted_loop_over(&format!("i{depth}"), count)
     }
 }
 
 /// Writes traced leaf functions in `dialect`, each followed by a blank line.
 pub fn write_functions<D: Dialect>(functions: &[Function], dialect: &D) -> String {
-    let syn = GpuSyntax(dialect, None);
+    let syn = GpuSyntax { d: dialect, lib: None, passes_frame: [false; 2] };
     let mut out = String::new();
     for f in functions {
         // An orbit parameter is the frame, where the language passes it (see `Syntax::orbit`).
@@ -264,14 +257,8 @@ pub fn write<D: KernelDialect>(program: &Program, entry: Entry, dialect: &D) -> 
     k.scene_functions();
     match entry {
         Entry::Render | Entry::Trace => {
-            k.normal();
-            if let Some(strength) = program.settings.ambient_occlusion {
-                k.ambient_occlusion(strength);
-            }
-            if program.settings.shadows != Shadows::None {
-                k.shadow();
-            }
-            k.render(dialect, entry);
+            k.ray_functions();
+            k.render(dialect, entry)
         }
         Entry::Probe => k.probe(dialect),
     }
@@ -353,14 +340,8 @@ pub fn write_library<D: Dialect>(program: &Program, lib: &Library, dialect: &D) 
     k.library_constants();
     k.leaf_functions();
     k.scene_functions();
-    k.normal();
-    if let Some(strength) = program.settings.ambient_occlusion {
-        k.ambient_occlusion(strength);
-    }
-    if program.settings.shadows != Shadows::None {
-        k.shadow();
-    }
-    k.library_functions();
+    k.ray_functions();
+    k.library_functions(lib);
     k.out
 }
 
@@ -384,11 +365,6 @@ fn parenthesized(cond: &str) -> String {
     }
 }
 
-/// A call of a built-in every GPU language spells alike (`clamp`, `mix`).
-fn builtin(name: &str, args: &[&str]) -> String {
-    format!("{name}({})", args.join(", "))
-}
-
 struct Kernel<'a, D> {
     p: &'a Program,
     d: &'a D,
@@ -402,7 +378,7 @@ struct Kernel<'a, D> {
 /// The `trace` kernel's per-pixel output array ([`Entry::Trace`]).
 const TRACES: &str = "traces";
 
-impl<D: Dialect> Kernel<'_, D> {
+impl<'a, D: Dialect> Kernel<'a, D> {
     fn line(&mut self, level: Level, text: &str) {
         let _ = writeln!(self.out, "{level}{text}");
     }
@@ -419,14 +395,15 @@ impl<D: Dialect> Kernel<'_, D> {
     fn vec3_lit(&self, c: [f64; 3]) -> String {
         self.d.construct(self.vec3(), &format!("{}, {}, {}", self.lit(c[0]), self.lit(c[1]), self.lit(c[2])))
     }
-    fn math(&self, f: MathFn, args: &[&str]) -> String {
-        format!("{}({})", self.d.math_name(f), args.join(", "))
-    }
     fn constant(&self, name: &str, ty: &str, value: &str) -> String {
         self.d.local(name, ty, value, false)
     }
-    fn variable(&self, name: &str, ty: &str, value: &str) -> String {
-        self.d.local(name, ty, value, true)
+
+    /// The spelling of lowered bodies in this program.
+    fn syntax(&self) -> GpuSyntax<'a, D> {
+        let passes_frame =
+            [self.passes_frame(self.p.distance_reads_frame), self.passes_frame(self.p.sample_reads_frame)];
+        GpuSyntax { d: self.d, lib: self.lib, passes_frame }
     }
 
     /// Whether a function that reads the frame when `reads_frame` takes it as an argument (never in a library,
@@ -461,7 +438,7 @@ impl<D: Dialect> Kernel<'_, D> {
     }
 
     fn scene_functions(&mut self) {
-        let (p, syn) = (self.p, GpuSyntax(self.d, self.lib));
+        let (p, syn) = (self.p, self.syntax());
         let (float, vec3) = (self.float(), self.vec3());
         self.function_open(float, "scene_de", &[("p", vec3)], p.distance_reads_frame);
         let spelling = Spelling::new(&p.distance, &syn, &[p.distance_result]);
@@ -485,111 +462,29 @@ impl<D: Dialect> Kernel<'_, D> {
         self.function_close();
     }
 
-    fn normal(&mut self) {
-        let (float, vec3) = (self.float(), self.vec3());
-        let l1 = Level(1);
-        self.function_open(vec3, "scene_normal", &[("p", vec3), ("e", float)], self.p.distance_reads_frame);
-        let k = [[1.0, -1.0, -1.0], [-1.0, -1.0, 1.0], [-1.0, 1.0, -1.0], [1.0, 1.0, 1.0]];
-        for (i, ki) in k.into_iter().enumerate() {
-            self.line(l1, &self.constant(&format!("k{i}"), vec3, &self.vec3_lit(ki)));
-        }
-        let terms: Vec<String> = (0..4).map(|i| format!("k{i} * {}", self.de(&format!("p + k{i} * e")))).collect();
-        self.line(l1, &self.constant("g", vec3, &terms.join(" + ")));
-        self.line(l1, &self.constant("len", float, "length(g)"));
-        let up = self.vec3_lit([0.0, 1.0, 0.0]);
-        let normal = self.d.select(&format!("len > {}", self.lit(0.0)), "g / len", &up);
-        self.line(l1, &format!("return {normal};"));
-        self.function_close();
-    }
-
-    fn ambient_occlusion(&mut self, strength: f64) {
-        let (float, vec3) = (self.float(), self.vec3());
-        let (l1, l2) = (Level(1), Level(2));
-        self.function_open(float, "scene_ao", &[("p", vec3), ("n", vec3)], self.p.distance_reads_frame);
-        self.line(l1, &self.variable("occ", float, &self.lit(0.0)));
-        self.line(l1, &self.variable("weight", float, &self.lit(1.0)));
-        self.line(l1, &self.d.counted_loop(&AO_SAMPLES.to_string()));
-        let h = format!(
-            "{} + {} * {} / {}",
-            self.lit(AO_START),
-            self.lit(AO_SPAN),
-            self.d.cast(float, "i"),
-            self.lit((AO_SAMPLES - 1) as f64)
-        );
-        self.line(l2, &self.constant("h", float, &h));
-        self.line(l2, &format!("occ += (h - {}) * weight;", self.de("p + n * h")));
-        self.line(l2, &format!("weight *= {};", self.lit(0.95)));
-        self.line(l1, "}");
-        let occlusion = format!("{} - {} * occ", self.lit(1.0), self.lit(3.0 * strength));
-        let clamped = builtin("clamp", &[&occlusion, &self.lit(0.0), &self.lit(1.0)]);
-        self.line(l1, &format!("return {clamped};"));
-        self.function_close();
-    }
-
-    fn shadow(&mut self) {
-        let (float, vec3) = (self.float(), self.vec3());
-        let (l1, l2, l3) = (Level(1), Level(2), Level(3));
-        let params = [("ro", vec3), ("rd", vec3), ("limit", float), ("eps", float)];
-        self.function_open(float, "scene_shadow", &params, self.p.distance_reads_frame);
-        let soft = match self.p.settings.shadows {
-            Shadows::Soft(k) => Some(k),
-            _ => None,
-        };
-        if soft.is_some() {
-            self.line(l1, &self.variable("res", float, &self.lit(1.0)));
-            self.line(l1, &self.variable("t", float, &format!("{} * eps", self.lit(2.0))));
-        } else {
-            self.line(l1, &self.variable("t", float, &self.lit(0.0)));
-        }
-        self.line(l1, &self.d.counted_loop(&format!("{} && t < limit", self.p.settings.max_steps)));
-        self.line(l2, &self.constant("d", float, &self.de("ro + rd * t")));
-        self.line(l2, "if (d < eps) {");
-        self.line(l3, &format!("return {};", self.lit(0.0)));
-        self.line(l2, "}");
-        if let Some(k) = soft {
-            let penumbra = format!("{} * d / t", self.lit(k));
-            self.line(l2, &format!("res = {};", self.math(MathFn::Min, &["res", &penumbra])));
-        }
-        self.line(l2, "t += d;");
-        self.line(l1, "}");
-        if soft.is_some() {
-            self.line(l1, &format!("return res * res * ({} - {} * res);", self.lit(3.0), self.lit(2.0)));
-        } else {
-            self.line(l1, &format!("return {};", self.lit(1.0)));
-        }
-        self.function_close();
-    }
-
-    /// Whether the march used all its steps without hitting or leaving the ray: the trace kernel's flag.
-    fn out_of_steps(&self) -> String {
-        format!("!hit && steps_taken >= {} && t <= t_far", self.lit(f64::from(self.p.settings.max_steps)))
-    }
-
-    /// Pixel footprint per unit distance: the frame's, or a library function's argument `footprint`.
-    fn footprint(&self) -> String {
-        match self.lib {
-            Some(_) => "footprint".to_string(),
-            None => self.d.frame_field("forward.w"),
-        }
-    }
-    /// Light i's direction or position, and its colour · intensity: the frame's, or a library's constants.
-    fn light(&self, i: usize) -> (String, String) {
-        match self.lib {
-            Some(lib) => (self.vec3_lit(lib.lights[i].position), self.vec3_lit(lib.lights[i].radiance)),
-            None => (
-                self.d.frame_field(&format!("lights[{}].xyz", 2 * i)),
-                self.d.frame_field(&format!("lights[{}].xyz", 2 * i + 1)),
-            ),
+    /// The ray program's named functions the scene needs ([`ray::functions`]).
+    fn ray_functions(&mut self) {
+        for f in ray::functions(self.p) {
+            let params: Vec<(&str, &str)> = f.params.iter().map(|&(name, ty)| (name, self.d.type_name(ty))).collect();
+            let reads_frame = self.p.distance_reads_frame;
+            self.traced_function(
+                self.d.type_name(f.f.returns()),
+                f.f.name(),
+                &params,
+                &f.body,
+                &[f.result],
+                reads_frame,
+            );
         }
     }
 
+    /// The `render` or `trace` entry point: the pixel's ray program ([`crate::lower::ray::pixel`]), then what the
+    /// entry writes of it.
     fn render<K: KernelDialect>(&mut self, kernel: &K, entry: Entry) {
         let d = self.d;
         let float = self.float();
         let (l1, l2) = (Level(1), Level(2));
-        let (two, half) = (self.lit(2.0), self.lit(0.5));
 
-        // 1. The ray through the pixel's centre.
         let [px, py] = kernel.render_open(&mut self.out, entry);
         let index = kernel.pixel_index_type();
         self.line(l1, &self.constant("w", index, &d.cast(index, &d.frame_field("right.w"))));
@@ -597,323 +492,34 @@ impl<D: Dialect> Kernel<'_, D> {
         self.line(l1, &format!("if ({px} >= w || {py} >= h) {{"));
         self.line(l2, "return;");
         self.line(l1, "}");
-        if self.traced {
-            self.line(l1, &self.constant("pixel", index, &format!("{} * ({py} * w + {px})", d.index_lit(3))));
+        for (name, i) in ray::PIXEL_ARGS.into_iter().zip([px, py]) {
+            self.line(l1, &self.constant(name, float, &d.cast(float, i)));
         }
-        let (w, h) = (d.cast(float, "w"), d.cast(float, "h"));
-        let u = format!("({two} * ({} + {half}) - {w}) / {h}", d.cast(float, px));
-        let v = format!("-({two} * ({} + {half}) - {h}) / {h}", d.cast(float, py));
-        self.line(l1, &self.constant("u", float, &u));
-        self.line(l1, &self.constant("v", float, &v));
-        self.line(l1, &self.constant("ro", self.vec3(), &d.frame_field("origin.xyz")));
-        let rd = format!(
-            "normalize({} + u * {} + v * {})",
-            d.frame_field("forward.xyz"),
-            d.frame_field("right.xyz"),
-            d.frame_field("up.xyz")
-        );
-        self.line(l1, &self.constant("rd", self.vec3(), &rd));
-
-        // 2.–6. March and shade.
-        self.march();
+        let (body, vals) = ray::pixel(self.p);
+        let (all, shown) = (vals.all(), [vals.display]);
+        let body = body.pruned(if self.traced { &all } else { &shown });
+        let syn = self.syntax();
+        let spelling = Spelling::new(&body, &syn, &vals.all());
+        spelling.write(&mut self.out, l1);
         if self.traced {
-            let (zero, one) = (self.lit(0.0), self.lit(1.0));
-            let flag = |cond: &str| d.select(cond, &one, &zero);
             let vec4 = d.vec4_type();
-            let position = d.construct(vec4, &format!("{}, t", d.construct(self.vec3(), &zero)));
-            self.line(l1, &format!("{TRACES}[pixel] = {position};"));
-            let march = format!("steps_taken, {}, {}, {zero}", flag("hit"), flag(&self.out_of_steps()));
-            self.line(l1, &format!("{TRACES}[pixel + {}] = {};", d.index_lit(1), d.construct(vec4, &march)));
+            let v = |x| spelling.value(x);
+            self.line(l1, &self.constant("pixel", index, &format!("{} * ({py} * w + {px})", d.index_lit(3))));
+            let rows = [
+                format!("{}, {}", v(vals.normal), v(vals.t)),
+                format!("{}, {}, {}, {}", v(vals.steps), v(vals.hit), v(vals.out_of_steps), self.lit(0.0)),
+                format!("{}, {}", v(vals.colour), self.lit(0.0)),
+            ];
+            for (k, row) in rows.iter().enumerate() {
+                let at = if k == 0 { "pixel".to_string() } else { format!("pixel + {}", d.index_lit(k as u32)) };
+                self.line(l1, &format!("{TRACES}[{at}] = {};", d.construct(vec4, row)));
+            }
         }
-        self.shade();
-        if self.traced {
-            let colour = d.construct(d.vec4_type(), &format!("col, {}", self.lit(0.0)));
-            self.line(l1, &format!("{TRACES}[pixel + {}] = {colour};", d.index_lit(2)));
-        }
-
-        // 7. Output.
-        self.display();
+        self.line(l1, &self.constant("col", self.vec3(), &spelling.value(vals.display)));
         for statement in kernel.pack_pixel() {
             self.line(l1, statement);
         }
         self.out.push_str("}\n");
-    }
-
-    /// Steps 2 and 3 of [`crate::ray`] from `ro` along the unit `rd`: declares and sets `t`, `t_far`, `hit`,
-    /// `eps` and (with glow) `glow`.
-    fn march(&mut self) {
-        let (d, p) = (self.d, self.p);
-        let s = &p.settings;
-        let (float, vec3) = (self.float(), self.vec3());
-        let (l1, l2, l3) = (Level(1), Level(2), Level(3));
-        let (zero, one) = (self.lit(0.0), self.lit(1.0));
-
-        // 2. Clip to the scene's bound.
-        self.line(l1, &self.variable("t", float, &zero));
-        self.line(l1, &self.variable("t_far", float, &self.lit(s.max_distance)));
-        if let Some(b) = p.bound {
-            self.line(l1, "{");
-            self.line(l2, "// Clip the ray to the scene's bound: no marching through empty space.");
-            let min_direction = d.construct(vec3, &self.lit(MIN_DIRECTION));
-            let m = self.math(MathFn::Max, &[&self.math(MathFn::Abs, &["rd"]), &min_direction]);
-            self.line(l2, &self.constant("m", vec3, &m));
-            self.line(l2, &self.constant("safe", vec3, &d.select_nonnegative("rd", "m", "-m")));
-            self.line(l2, &self.constant("t0", vec3, &format!("({} - ro) / safe", self.vec3_lit(b.min))));
-            self.line(l2, &self.constant("t1", vec3, &format!("({} - ro) / safe", self.vec3_lit(b.max))));
-            self.line(l2, &self.constant("tn", vec3, &self.math(MathFn::Min, &["t0", "t1"])));
-            self.line(l2, &self.constant("tf", vec3, &self.math(MathFn::Max, &["t0", "t1"])));
-            let fold = |f: MathFn, v: &str, last: &str| {
-                let xy = self.math(f, &[&format!("{v}.x"), &format!("{v}.y")]);
-                let xyz = self.math(f, &[&xy, &format!("{v}.z")]);
-                self.math(f, &[&xyz, last])
-            };
-            let (near, far) = (fold(MathFn::Max, "tn", &zero), fold(MathFn::Min, "tf", "t_far"));
-            self.line(l2, &format!("t = {near};"));
-            self.line(l2, &format!("t_far = {far};"));
-            self.line(l1, "}");
-        }
-
-        // 3. March.
-        self.line(l1, &self.variable("hit", d.type_name(Ty::Bool), d.bool_lit(false)));
-        self.line(l1, &self.variable("eps", float, &zero));
-        if s.glow.is_some() {
-            self.line(l1, &self.variable("glow", float, &zero));
-        }
-        let eps = match s.epsilon {
-            HitEpsilon::Fixed(e) => self.lit(e),
-            HitEpsilon::Pixel(k) => format!("{} * {} * t", self.lit(k), self.footprint()),
-        };
-        // Over-relaxation only where the scene asks for it: a plain march is the loop below without it.
-        let relaxed = s.over_relaxation > 1.0;
-        if relaxed {
-            self.line(l1, &self.variable("omega", float, &self.lit(s.over_relaxation)));
-            self.line(l1, &self.variable("previous", float, &zero));
-            self.line(l1, &self.variable("stride", float, &zero));
-        }
-        if p.refine.is_some() {
-            self.line(l1, &self.variable("t_last", float, "t"));
-            self.line(l1, &self.variable("d_last", float, &zero));
-        }
-        if self.traced {
-            self.line(l1, &self.variable("steps_taken", float, &zero));
-        }
-        self.line(l1, &d.counted_loop(&format!("{} && t <= t_far", s.max_steps)));
-        self.line(l2, &self.constant("d", float, &self.de("ro + rd * t")));
-        if self.traced {
-            self.line(l2, &format!("steps_taken = steps_taken + {one};"));
-        }
-        let spacing = format!("{} * t", self.lit(T_SPACING));
-        self.line(l2, &format!("eps = {};", self.math(MathFn::Max, &[&eps, &spacing])));
-        let abs_d = self.math(MathFn::Abs, &["d"]);
-        // The step this iteration takes once the hit test has passed over it.
-        let step = if relaxed { "stride" } else { "advance" };
-        if p.refine.is_some() && !relaxed {
-            self.line(l2, &self.variable("advance", float, "d"));
-        }
-        let hit_test = |w: &mut Self, level: Level| {
-            w.line(level, "if (d < eps) {");
-            if p.refine.is_some() {
-                w.refine(level.next(), step);
-                if relaxed {
-                    w.line(level, "} else {");
-                    w.line(level.next(), "stride = d * omega;");
-                }
-            } else {
-                w.line(level.next(), &format!("hit = {};", d.bool_lit(true)));
-                w.line(level.next(), "break;");
-            }
-            w.line(level, "}");
-        };
-        if relaxed {
-            // The unbounding spheres of this point and the last do not overlap: the relaxed step may have passed
-            // the surface, so take back its excess and go on with plain steps.
-            self.line(l2, &format!("if (omega > {one} && {abs_d} + previous < stride) {{"));
-            self.line(l3, "stride = stride - omega * stride;");
-            self.line(l3, &format!("omega = {one};"));
-            self.line(l2, "} else {");
-            hit_test(self, l3);
-            if p.refine.is_none() {
-                self.line(l3, "stride = d * omega;");
-            }
-            self.line(l2, "}");
-            self.line(l2, &format!("previous = {abs_d};"));
-        } else {
-            hit_test(self, l2);
-        }
-        if s.glow.is_some() {
-            self.line(l2, &format!("glow += {one} / ({one} + {} * d * d);", self.lit(GLOW_FALLOFF)));
-        }
-        if p.refine.is_some() {
-            self.line(l2, "t_last = t;");
-            self.line(l2, "d_last = d;");
-        }
-        let advance = if p.refine.is_some() || relaxed { format!("t += {step};") } else { "t += d;".to_string() };
-        self.line(l2, &advance);
-        self.line(l1, "}");
-    }
-
-    /// Step 3b of [`crate::ray`], the sign refinement, where `d < eps` (inside the march's loop): the hit where
-    /// `d ≤ 0`, refined on its bracket; otherwise the sign step, into `step`.
-    fn refine(&mut self, l1: Level, step: &str) {
-        let d = self.d;
-        let float = self.float();
-        let (l2, l3, l4, l5) = (l1.next(), l1.next().next(), Level(l1.0 + 3), Level(l1.0 + 4));
-        let (zero, one, half) = (self.lit(0.0), self.lit(1.0), self.lit(0.5));
-        let false_position = "a + (b - a) * (fa / (fa - fb))";
-        let why = match self.p.refine {
-            Some(SignRefinement::Membership) => {
-                "// Hits on the fractals' drawn sets: the estimate's sign is membership."
-            }
-            _ => "// A displaced distance is divided by its slope bound, but its sign is exact: a hit is a crossing.",
-        };
-        self.line(l1, why);
-        self.line(l1, &format!("if (d <= {zero}) {{"));
-        self.line(l2, &format!("if (d_last > {zero}) {{"));
-        for (name, value) in [("a", "t_last"), ("fa", "d_last"), ("b", "t"), ("fb", "d"), ("side", &zero)] {
-            self.line(l3, &self.variable(name, float, value));
-        }
-        self.line(l3, &d.counted_loop_over("k", &d.index_lit(REFINE_STEPS)));
-        self.line(l4, &self.constant("m", float, false_position));
-        self.line(l4, &self.constant("fm", float, &self.de("ro + rd * m")));
-        self.line(l4, &format!("if (fm <= {zero}) {{"));
-        self.line(l5, "b = m;");
-        self.line(l5, "fb = fm;");
-        self.line(l5, &format!("if (side < {zero}) {{"));
-        self.line(l5.next(), &format!("fa = fa * {half};"));
-        self.line(l5, "}");
-        self.line(l5, &format!("side = -{one};"));
-        self.line(l4, "} else {");
-        self.line(l5, "a = m;");
-        self.line(l5, "fa = fm;");
-        self.line(l5, &format!("if (side > {zero}) {{"));
-        self.line(l5.next(), &format!("fb = fb * {half};"));
-        self.line(l5, "}");
-        self.line(l5, &format!("side = {one};"));
-        self.line(l4, "}");
-        self.line(l3, "}");
-        self.line(l3, &format!("t = {false_position};"));
-        self.line(l2, "}");
-        self.line(l2, &format!("hit = {};", d.bool_lit(true)));
-        self.line(l2, "break;");
-        self.line(l1, "}");
-        if self.p.refine == Some(SignRefinement::Membership) {
-            self.line(l1, &format!("{step} = {} * eps;", self.lit(MEMBERSHIP_STEP)));
-        } else {
-            self.line(l1, &format!("{step} = eps;"));
-            self.line(l1, "if (d_last > d) {");
-            let toward = format!("{} * d * (t - t_last) / (d_last - d)", self.lit(PROBE_SHARE));
-            self.line(l2, &format!("{step} = {};", self.math(MathFn::Max, &[step, &toward])));
-            self.line(l1, "}");
-            let reach = format!("{} * eps", self.lit(PROBE_REACH));
-            self.line(l1, &format!("{step} = {};", self.math(MathFn::Min, &[step, &reach])));
-        }
-        if self.p.settings.over_relaxation > 1.0 {
-            self.line(l1, &format!("omega = {one};"));
-        }
-    }
-
-    /// Steps 4 to 6 of [`crate::ray`] after [`Self::march`]: declares and sets `col`, the linear colour.
-    fn shade(&mut self) {
-        let (d, p) = (self.d, self.p);
-        let s = &p.settings;
-        let (float, vec3) = (self.float(), self.vec3());
-        let (l1, l2, l3) = (Level(1), Level(2), Level(3));
-        let (zero, one, two) = (self.lit(0.0), self.lit(1.0), self.lit(2.0));
-
-        // 4. Hit shading.
-        self.line(l1, &d.uninitialised("col", vec3));
-        self.line(l1, "if (hit) {");
-        self.line(l2, &self.constant("p", vec3, "ro + rd * t"));
-        let distance_frame = p.distance_reads_frame;
-        let tap = match s.normal_epsilon {
-            Some(k) => format!("{} * {} * t", self.lit(k), self.footprint()),
-            None if p.refine.is_some() => format!("eps * {}", self.lit(REFINED_NORMAL_SHARE)),
-            None => "eps".to_string(),
-        };
-        let n = self.call("scene_normal", &format!("p, {tap}"), distance_frame);
-        self.line(l2, &self.constant("n", vec3, &n));
-        if self.traced {
-            let normal = d.construct(d.vec4_type(), "n, t");
-            self.line(l2, &format!("{TRACES}[pixel] = {normal};"));
-        }
-        // A perturbed pattern reads the hit relative to the camera, rd·t: exact to t's precision at any zoom.
-        let sample_args = if p.reference.is_some() { "p, rd * t" } else { "p" };
-        let sample = self.call("scene_sample", sample_args, p.sample_reads_frame);
-        self.line(l2, &self.constant("m", "Sample", &sample));
-        if s.ambient_occlusion.is_some() {
-            let ao = self.call("scene_ao", "p, n", distance_frame);
-            self.line(l2, &format!("col = m.albedo * (m.ambient * {ao});"));
-        } else {
-            self.line(l2, "col = m.albedo * m.ambient;");
-        }
-        for (i, shape) in p.lights.iter().enumerate() {
-            let (position, color) = self.light(i);
-            self.line(l2, "{");
-            match shape {
-                LightShape::Directional => {
-                    self.line(l3, &self.constant("l", vec3, &position));
-                    self.line(l3, &self.constant("radiance", vec3, &color));
-                    self.line(l3, &self.constant("limit", float, &self.lit(s.max_distance)));
-                }
-                LightShape::Point => {
-                    self.line(l3, &self.constant("to_light", vec3, &format!("{position} - p")));
-                    self.line(l3, &self.constant("limit", float, "length(to_light)"));
-                    self.line(l3, &self.constant("l", vec3, "to_light / limit"));
-                    self.line(l3, &self.constant("radiance", vec3, &format!("{color} / (limit * limit)")));
-                }
-            }
-            self.line(l3, &self.constant("ndl", float, &self.math(MathFn::Max, &["dot(n, l)", &zero])));
-            let shade = if s.shadows != Shadows::None {
-                self.line(l3, &self.variable("shadow", float, &one));
-                self.line(l3, &format!("if (ndl > {zero}) {{"));
-                let shadow =
-                    self.call("scene_shadow", &format!("p + n * ({two} * eps), l, limit, eps"), distance_frame);
-                self.line(Level(4), &format!("shadow = {shadow};"));
-                self.line(l3, "}");
-                " * shadow"
-            } else {
-                ""
-            };
-            self.line(l3, &format!("col += m.albedo * (m.diffuse * ndl) * radiance{shade};"));
-            if p.specular {
-                self.line(l3, &self.constant("hv", vec3, "normalize(l - rd)"));
-                let highlight =
-                    self.math(MathFn::Pow, &[&self.math(MathFn::Max, &["dot(n, hv)", &zero]), "m.shininess"]);
-                self.line(l3, &format!("col += (m.specular * {highlight}) * radiance{shade};"));
-            }
-            self.line(l2, "}");
-        }
-        if let Some(fog) = &s.fog {
-            let attenuation = format!("{one} - exp({} * t)", self.lit(-fog.density));
-            let fogged = format!("{}(col, {}, {attenuation})", d.mix_name(), self.vec3_lit(fog.color));
-            self.line(l2, &format!("col = {fogged};"));
-        }
-
-        // 5. Miss.
-        self.line(l1, "} else {");
-        self.line(l2, &format!("col = {};", self.vec3_lit(s.background)));
-        self.line(l1, "}");
-
-        // 6. Glow.
-        if let Some(g) = s.glow {
-            let saturation = self.math(MathFn::Min, &[&format!("glow / {}", self.lit(GLOW_NORM)), &one]);
-            self.line(l1, &format!("col += {} * {saturation};", self.vec3_lit(g)));
-        }
-    }
-
-    /// Step 7 of [`crate::ray`] up to packing: `col` clamped to [0, 1] and gamma-encoded in place.
-    fn display(&mut self) {
-        let d = self.d;
-        let s = &self.p.settings;
-        let (zero, one) = (self.lit(0.0), self.lit(1.0));
-        let clamped = builtin("clamp", &["col", &d.vector_operand(&zero), &d.vector_operand(&one)]);
-        self.line(Level(1), &format!("col = {clamped};"));
-        if s.gamma == 2.0 {
-            self.line(Level(1), &format!("col = {};", self.math(MathFn::Sqrt, &["col"])));
-        } else if s.gamma != 1.0 {
-            let exponent = self.d.construct(self.vec3(), &self.lit(1.0 / s.gamma));
-            self.line(Level(1), &format!("col = {};", self.math(MathFn::Pow, &["col", &exponent])));
-        }
     }
 
     /// The bound and the constants the library's functions use ([`library`]).
@@ -942,35 +548,61 @@ impl<D: Dialect> Kernel<'_, D> {
         self.out.push('\n');
     }
 
-    /// The functions an engine calls ([`library`]), on the scene functions.
-    fn library_functions(&mut self) {
+    /// The functions an engine calls ([`library`]), on the scene functions: `sdf` and `sdf_material` call them, the
+    /// others are the ray program traced ([`crate::lower::ray`]).
+    fn library_functions(&mut self, lib: &Library) {
         let (float, vec3, vec4) = (self.float(), self.vec3(), self.d.vec4_type());
         let l1 = Level(1);
         self.function_open(float, library::SDF, &[("p", vec3)], false);
-        self.line(l1, &format!("return {};", self.de("p")));
+        self.line(l1, &format!("return {};", self.call("scene_de", "p", self.p.distance_reads_frame)));
         self.function_close();
 
-        self.function_open(vec3, library::NORMAL, &[("p", vec3)], false);
-        let normal = self.call("scene_normal", &format!("p, {}", library::NORMAL_EPSILON), false);
-        self.line(l1, &format!("return {normal};"));
-        self.function_close();
+        let (body, normal) = ray::normal(self.p, library::NORMAL_EPSILON);
+        self.traced_function(vec3, library::NORMAL, &[("p", vec3)], &body, &[normal], false);
 
         self.function_open(vec3, library::MATERIAL, &[("p", vec3)], false);
         self.line(l1, &format!("return {}.albedo;", self.call("scene_sample", "p", false)));
         self.function_close();
 
-        self.function_open(vec4, library::RAYMARCH, &[("ro", vec3), ("rd", vec3), ("footprint", float)], false);
-        self.march();
-        self.shade();
-        let t = self.d.select("hit", "t", &self.lit(-1.0));
-        let t = if self.d.select_prec() == Prec::Atom { t } else { format!("({t})") };
-        self.line(l1, &format!("return {};", self.d.construct(vec4, &format!("col, {t}"))));
-        self.function_close();
+        let lights: Vec<([f64; 3], [f64; 3])> = lib.lights.iter().map(|l| (l.position, l.radiance)).collect();
+        let (body, [colour, t]) = ray::raymarch(self.p, &lights);
+        let params = ray::RAYMARCH_ARGS.map(|(name, ty)| (name, self.d.type_name(ty)));
+        let hit = |s: &Spelling| self.d.construct(vec4, &format!("{}, {}", s.value(colour), s.value(t)));
+        self.traced_function_with(vec4, library::RAYMARCH, (&params, false), &body, &[colour, t], hit);
 
-        self.function_open(vec3, library::DISPLAY, &[("colour", vec3)], false);
-        self.line(l1, &self.variable("col", vec3, "colour"));
-        self.display();
-        self.line(l1, "return col;");
+        let (body, shown) = ray::display(self.p);
+        self.traced_function(vec3, library::DISPLAY, &[("colour", vec3)], &body, &[shown], false);
+    }
+
+    /// A function whose body is `body`, returning its one result; it takes the frame where it `reads_frame`.
+    fn traced_function(
+        &mut self,
+        ret: &str,
+        name: &str,
+        params: &[(&str, &str)],
+        body: &Body,
+        results: &[Val],
+        reads_frame: bool,
+    ) {
+        self.traced_function_with(ret, name, (params, reads_frame), body, results, |s| s.value(results[0]));
+    }
+
+    /// A function whose body is `body`, returning `value` of its spelling; it takes the frame where it reads it.
+    fn traced_function_with(
+        &mut self,
+        ret: &str,
+        name: &str,
+        (params, reads_frame): (&[(&str, &str)], bool),
+        body: &Body,
+        results: &[Val],
+        value: impl Fn(&Spelling) -> String,
+    ) {
+        self.function_open(ret, name, params, reads_frame);
+        let syn = self.syntax();
+        let spelling = Spelling::new(body, &syn, results);
+        spelling.write(&mut self.out, Level(1));
+        let returned = value(&spelling);
+        self.line(Level(1), &format!("return {returned};"));
         self.function_close();
     }
 

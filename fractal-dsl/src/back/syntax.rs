@@ -7,7 +7,8 @@ use std::fmt::Write;
 
 use super::Level;
 use crate::ir::BinOp;
-use crate::lower::code::{is_inline, operands, Body, CmpOp, LogicOp, MathFn, Op, Stmt, Ty, Val};
+use crate::lower::code::SAMPLE_FIELDS;
+use crate::lower::code::{is_inline, operands, Body, CmpOp, FrameField, LogicOp, MathFn, Op, SceneFn, Stmt, Ty, Val};
 use crate::lower::SampleVals;
 use crate::sdf::Leaf;
 
@@ -43,6 +44,18 @@ pub trait Syntax {
     /// A call of a leaf function.
     fn call(&self, leaf: Leaf, args: &[String]) -> String {
         format!("{}({})", leaf.name(), args.join(", "))
+    }
+    /// A call of a scene function (in the ray program's bodies).
+    fn scene_call(&self, f: SceneFn, args: &[String]) -> String {
+        format!("{}({})", f.name(), args.join(", "))
+    }
+    /// A field of a Sample (an atom).
+    fn field(&self, sample: &str, name: &str) -> String {
+        format!("{sample}.{name}")
+    }
+    /// A value of the kernel's frame (in the ray program's bodies).
+    fn frame(&self, field: FrameField) -> String {
+        format!("frame.{}", field.path())
     }
     fn select(&self, cond: &str, if_true: &str, if_false: &str) -> String;
     /// How tightly [`Syntax::select`]'s spelling binds (a call binds like a name).
@@ -226,6 +239,9 @@ impl<'a> Spelling<'a> {
                 let passed = |v: &&Val| syn.orbit().is_some() || self.body.op(**v) != Some(&Op::Orbit);
                 atom(syn.call(*leaf, &args.iter().filter(passed).map(any).collect::<Vec<_>>()))
             }
+            Op::Scene(f, args) => atom(syn.scene_call(*f, &args.iter().map(any).collect::<Vec<_>>())),
+            Op::Field(v, i) => atom(syn.field(&self.operand(*v, Prec::Atom), SAMPLE_FIELDS[*i as usize].0)),
+            Op::Frame(field) => atom(syn.frame(*field)),
             Op::Cmp(op, x, y) => atom(syn.cmp(*op, &self.operand(*x, Prec::Add), &self.operand(*y, Prec::Add))),
             Op::Select(c, t, f) => {
                 let operand = |v: &Val| self.operand(*v, Prec::Or);

@@ -19,6 +19,95 @@ pub enum Ty {
     Int,
     /// The frame's perturbation reference orbit ([`crate::num::Orbit`]), handed to the leaf function that reads it.
     Orbit,
+    /// The scene's sample: distance and material ([`crate::eval::Sample`]).
+    Sample,
+}
+
+/// The scene functions the ray program calls ([`crate::ray::SceneFns`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum SceneFn {
+    /// `scene_de(p)`: the distance.
+    Distance,
+    /// `scene_sample(p)` (or `scene_sample(p, dp)` with a perturbation reference): a [`Ty::Sample`].
+    Sample,
+    /// `scene_normal(p, e)`: the unit normal at p, taps e apart (V3).
+    Normal,
+    /// `scene_ao(p, n)`: ambient occlusion at p along the normal n.
+    Occlusion,
+    /// `scene_shadow(ro, rd, limit, eps)`: the light reaching ro along rd within limit.
+    Shadow,
+}
+
+impl SceneFn {
+    pub fn name(self) -> &'static str {
+        match self {
+            SceneFn::Distance => "scene_de",
+            SceneFn::Sample => "scene_sample",
+            SceneFn::Normal => "scene_normal",
+            SceneFn::Occlusion => "scene_ao",
+            SceneFn::Shadow => "scene_shadow",
+        }
+    }
+    /// The type of the function's result.
+    pub fn returns(self) -> Ty {
+        match self {
+            SceneFn::Sample => Ty::Sample,
+            SceneFn::Normal => Ty::V3,
+            SceneFn::Distance | SceneFn::Occlusion | SceneFn::Shadow => Ty::F,
+        }
+    }
+}
+
+/// The fields of a [`Ty::Sample`], in order, with their types.
+pub const SAMPLE_FIELDS: [(&str, Ty); 6] = [
+    ("distance", Ty::F),
+    ("albedo", Ty::V3),
+    ("ambient", Ty::F),
+    ("diffuse", Ty::F),
+    ("specular", Ty::F),
+    ("shininess", Ty::F),
+];
+
+/// What the ray program reads of a kernel's frame ([`crate::back::FrameLayout`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum FrameField {
+    /// The camera's position, and its right, up and forward axes (V3).
+    Origin,
+    Right,
+    Up,
+    Forward,
+    /// The image's width and height in pixels (F).
+    Width,
+    Height,
+    /// The pixel footprint per unit distance along a ray (F).
+    Footprint,
+    /// Light i's unit direction towards it (directional) or position (point) (V3).
+    LightPosition(usize),
+    /// Light i's colour times intensity (V3).
+    LightRadiance(usize),
+}
+
+impl FrameField {
+    pub fn ty(self) -> Ty {
+        match self {
+            FrameField::Width | FrameField::Height | FrameField::Footprint => Ty::F,
+            _ => Ty::V3,
+        }
+    }
+    /// Where the frame holds it: the field and component of the frame uniform.
+    pub fn path(self) -> String {
+        match self {
+            FrameField::Origin => "origin.xyz".into(),
+            FrameField::Right => "right.xyz".into(),
+            FrameField::Up => "up.xyz".into(),
+            FrameField::Forward => "forward.xyz".into(),
+            FrameField::Width => "right.w".into(),
+            FrameField::Height => "up.w".into(),
+            FrameField::Footprint => "forward.w".into(),
+            FrameField::LightPosition(i) => format!("lights[{}].xyz", 2 * i),
+            FrameField::LightRadiance(i) => format!("lights[{}].xyz", 2 * i + 1),
+        }
+    }
 }
 
 /// A value: an SSA name, or a mutable variable (see [`Stmt::Var`]).
@@ -116,6 +205,12 @@ pub enum Op {
     Bin(BinOp, Val, Val),
     Math(MathFn, Vec<Val>),
     Call(Leaf, Vec<Val>),
+    /// A call of a scene function.
+    Scene(SceneFn, Vec<Val>),
+    /// Field i of a Sample ([`SAMPLE_FIELDS`]).
+    Field(Val, u8),
+    /// A value of the kernel's frame.
+    Frame(FrameField),
     Cmp(CmpOp, Val, Val),
     Logic(LogicOp, Val, Val),
     Not(Val),
@@ -159,7 +254,12 @@ pub enum Stmt {
 /// arguments, the frame's orbit), components and comparisons (whose operands are immutable values, so spelling them
 /// where used reads the same numbers).
 pub fn is_inline(op: &Op) -> bool {
-    matches!(op, Op::Comp(..) | Op::Cmp(..)) || operands(op).is_empty()
+    match op {
+        // Named once where the ray program reads it (a local, not a load of the uniform at every use in a loop).
+        Op::Frame(_) => false,
+        Op::Comp(..) | Op::Field(..) | Op::Cmp(..) => true,
+        _ => operands(op).is_empty(),
+    }
 }
 
 /// What kind of block is open.
@@ -179,6 +279,8 @@ pub struct Builder {
     blocks: Vec<(Block, Vec<Stmt>)>,
     /// Reuse tables, one per open block (a value defined inside a block is not visible after it).
     reuse: Vec<HashMap<Op, Val>>,
+    /// The conditions of the `if`s open around the point being built: true there.
+    holding: Vec<Val>,
 }
 
 impl Default for Builder {
@@ -189,7 +291,12 @@ impl Default for Builder {
 
 impl Builder {
     pub fn new() -> Builder {
-        Builder { defs: Vec::new(), blocks: vec![(Block::Top, Vec::new())], reuse: vec![HashMap::new()] }
+        Builder {
+            defs: Vec::new(),
+            blocks: vec![(Block::Top, Vec::new())],
+            reuse: vec![HashMap::new()],
+            holding: Vec::new(),
+        }
     }
 
     pub fn ty(&self, v: Val) -> Ty {
@@ -205,9 +312,11 @@ impl Builder {
             _ => None,
         }
     }
+    /// A truth value known here: a literal, or the condition of an `if` being built around this point.
     pub fn bool_value(&self, v: Val) -> Option<bool> {
         match self.op(v) {
             Some(Op::BoolLit(b)) => Some(*b),
+            _ if self.holding.contains(&v) => Some(true),
             _ => None,
         }
     }
@@ -331,6 +440,16 @@ impl Builder {
         };
         self.emit(ty, Op::Call(leaf, args))
     }
+    pub fn scene(&mut self, f: SceneFn, args: Vec<Val>) -> Val {
+        self.emit(f.returns(), Op::Scene(f, args))
+    }
+    /// Field `i` of the Sample `v`.
+    pub fn field(&mut self, v: Val, i: u8) -> Val {
+        self.emit(SAMPLE_FIELDS[i as usize].1, Op::Field(v, i))
+    }
+    pub fn frame(&mut self, field: FrameField) -> Val {
+        self.emit(field.ty(), Op::Frame(field))
+    }
     pub fn cmp(&mut self, op: CmpOp, a: Val, b: Val) -> Val {
         if let (Some(x), Some(y)) = (self.lit_value(a), self.lit_value(b)) {
             return self.bool_lit(match op {
@@ -398,12 +517,14 @@ impl Builder {
         self.reuse.pop();
         body
     }
-    /// Opens `if (cond) { … }`; statements go inside until [`Builder::end_if`].
-    pub fn begin_if(&mut self) {
+    /// Opens `if (cond) { … }`; statements go inside until [`Builder::end_if`], and know `cond` true.
+    pub fn begin_if(&mut self, cond: Val) {
         self.open(Block::If);
+        self.holding.push(cond);
     }
-    pub fn end_if(&mut self, cond: Val) {
+    pub fn end_if(&mut self) {
         let body = self.close(Block::If);
+        let cond = self.holding.pop().expect("an if was opened");
         self.push(Stmt::If { cond, body });
     }
     /// Opens a counted loop; statements go inside until [`Builder::end_loop`].
@@ -449,7 +570,8 @@ impl Body {
     }
 
     /// The body without the values nothing reads: tracing records everything a formula computes (a fractal's orbit
-    /// trap where only its distance is wanted, say); only what reaches `results` or a statement stays.
+    /// trap where only its distance is wanted, say); only what reaches `results` or control flow stays, and a
+    /// variable nothing live reads goes with its assignments.
     pub fn pruned(mut self, results: &[Val]) -> Body {
         let mut live = vec![false; self.defs.len()];
         loop {
@@ -467,6 +589,7 @@ impl Body {
                 .into_iter()
                 .filter_map(|s| match s {
                     Stmt::Let { val, .. } if !live[val.0 as usize] => None,
+                    Stmt::Var { var, .. } | Stmt::Assign { var, .. } if !live[var.0 as usize] => None,
                     Stmt::If { cond, body } => Some(Stmt::If { cond, body: keep(body, live) }),
                     Stmt::Loop { count, body } => Some(Stmt::Loop { count, body: keep(body, live) }),
                     s => Some(s),
@@ -497,9 +620,13 @@ impl Body {
                         }
                     }
                 }
-                Stmt::Var { init: v, .. } | Stmt::Assign { value: v, .. } | Stmt::BreakIf { cond: v } => {
-                    self.mark(*v, live)
+                // A variable's values matter only where something live reads it.
+                Stmt::Var { var, init: v, .. } | Stmt::Assign { var, value: v } => {
+                    if live[var.0 as usize] {
+                        self.mark(*v, live)
+                    }
                 }
+                Stmt::BreakIf { cond: v } => self.mark(*v, live),
                 Stmt::If { cond: v, body } | Stmt::Loop { count: v, body } => {
                     self.mark(*v, live);
                     self.mark_stmts(body, live);
@@ -519,11 +646,12 @@ pub fn operands(op: &Op) -> Vec<Val> {
         | Op::Param(_)
         | Op::Arg(_)
         | Op::Orbit
-        | Op::OrbitLast => vec![],
+        | Op::OrbitLast
+        | Op::Frame(_) => vec![],
         Op::MakeV3(a, b, c) | Op::Select(a, b, c) => vec![*a, *b, *c],
-        Op::Comp(a, _) | Op::Neg(a) | Op::Not(a) | Op::Load(a) | Op::OrbitEntry(a) => vec![*a],
+        Op::Comp(a, _) | Op::Field(a, _) | Op::Neg(a) | Op::Not(a) | Op::Load(a) | Op::OrbitEntry(a) => vec![*a],
         Op::Bin(_, a, b) | Op::Cmp(_, a, b) | Op::Logic(_, a, b) | Op::MakePair(a, b) => vec![*a, *b],
-        Op::Math(_, args) | Op::Call(_, args) => args.clone(),
+        Op::Math(_, args) | Op::Call(_, args) | Op::Scene(_, args) => args.clone(),
     }
 }
 

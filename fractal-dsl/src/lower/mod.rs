@@ -8,6 +8,7 @@
 //! ([`mod@trace`]).
 
 pub mod code;
+pub mod ray;
 pub mod trace;
 
 use std::collections::BTreeSet;

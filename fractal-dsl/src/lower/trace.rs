@@ -9,7 +9,7 @@
 use std::cell::RefCell;
 use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
-use super::code::{Body, Builder, CmpOp, LogicOp, MathFn, Ty, Val};
+use super::code::{Body, Builder, CmpOp, FrameField, LogicOp, MathFn, SceneFn, Ty, Val};
 use crate::ir::BinOp;
 use crate::leaf::{ArgKind, LeafArg, LeafOut, RetKind};
 use crate::math::{v3, V3};
@@ -83,6 +83,18 @@ impl Sym {
     pub fn vector(v: V3<Sym>) -> Val {
         with(|b| b.v3(v.x.0, v.y.0, v.z.0))
     }
+    /// A call of a scene function.
+    pub fn scene_call(f: SceneFn, args: Vec<Val>) -> Val {
+        with(|b| b.scene(f, args))
+    }
+    /// Field `i` of a Sample value ([`super::code::SAMPLE_FIELDS`]).
+    pub fn field(sample: Val, i: u8) -> Val {
+        with(|b| b.field(sample, i))
+    }
+    /// A value of the kernel's frame.
+    pub fn frame(field: FrameField) -> Val {
+        with(|b| b.frame(field))
+    }
 }
 
 macro_rules! sym_bin {
@@ -148,9 +160,20 @@ fn declare_all<S: Carry<Sym>>(state: S) -> S {
 fn load_all<S: Carry<Sym>>(vars: S) -> S {
     vars.map_nums(&mut |v| Sym(with(|b| b.load(v.0))))
 }
-fn assign_all<S: Carry<Sym>>(vars: S, values: S) -> S {
+/// Assigns each variable of `vars` its number in `values`, where that is not the variable's `current` value (a
+/// number the step left alone needs no assignment, and a variable never assigned is a constant).
+fn assign_changed<S: Carry<Sym>>(vars: S, current: S, values: S) -> S {
+    let mut loaded = Vec::new();
+    current.map_nums(&mut |v| {
+        loaded.push(v);
+        v
+    });
+    let mut k = 0;
     vars.zip_nums(values, &mut |var, value| {
-        with(|b| b.assign(var.0, value.0));
+        if value != loaded[k] {
+            with(|b| b.assign(var.0, value.0));
+        }
+        k += 1;
         var
     })
 }
@@ -225,7 +248,7 @@ impl Num for Sym {
         let go_on = active(&current);
         with(|b| b.break_unless(go_on.0));
         let next = step(current);
-        let vars = assign_all(vars, next);
+        let vars = assign_changed(vars, current, next);
         with(|b| b.end_loop(n.0));
         load_all(vars)
     }
@@ -245,10 +268,11 @@ impl Num for Sym {
             None => {}
         }
         let vars = declare_all(state);
-        with(|b| b.begin_if());
-        let next = body(load_all(vars));
-        let vars = assign_all(vars, next);
-        with(|b| b.end_if(cond.0));
+        with(|b| b.begin_if(cond.0));
+        let loaded = load_all(vars);
+        let next = body(loaded);
+        let vars = assign_changed(vars, loaded, next);
+        with(|b| b.end_if());
         load_all(vars)
     }
 }

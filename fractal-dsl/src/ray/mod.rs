@@ -56,13 +56,29 @@ pub const REFINE_STEPS: u32 = 6;
 /// bound).
 pub const REFINED_NORMAL_SHARE: f64 = 0.125;
 
-/// What the ray program reads of a scene, from whichever evaluator runs it.
-pub trait SceneFns<N: Num> {
+/// What the ray program reads of a scene, from whichever evaluator runs it. The provided functions are the program's
+/// own ([`shade`]); a traced scene calls them as named kernel functions instead of inlining them.
+pub trait SceneFns<N: Num>: Sized {
     /// The scene's distance estimate at `p`.
     fn distance(&self, p: V3<N>) -> N;
     /// Distance and material at `p`; `offset` is `p` relative to the camera (rd·t along a camera ray), which a
     /// perturbed Mandelbrot pattern reads.
     fn sample(&self, p: V3<N>, offset: V3<N>) -> Sample<N>;
+    /// [`shade::normal`].
+    #[inline(always)]
+    fn normal(&self, p: V3<N>, h: N) -> V3<N> {
+        shade::normal(self, p, h)
+    }
+    /// [`shade::occlusion`].
+    #[inline(always)]
+    fn occlusion(&self, rules: &Rules, p: V3<N>, n: V3<N>) -> N {
+        shade::occlusion(rules, self, p, n)
+    }
+    /// [`shade::shadow`].
+    #[inline(always)]
+    fn shadow(&self, rules: &Rules, ray: (V3<N>, V3<N>), limit: N, eps: N, live: N::Mask) -> N {
+        shade::shadow(rules, self, ray, limit, eps, live)
+    }
 }
 
 /// A scene's settings as the ray program reads them: fixed for a compiled scene, so a disabled effect is code the
@@ -166,4 +182,59 @@ impl<N: Num> View<N> {
 #[inline(always)]
 pub(crate) fn lit3<N: Num>(c: [f64; 3]) -> V3<N> {
     V3 { x: N::lit(c[0]), y: N::lit(c[1]), z: N::lit(c[2]) }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    /// The ray program's constants, which a second spelling of the march or the shading would need.
+    const CONSTANTS: [&str; 12] = [
+        "T_SPACING",
+        "MIN_DIRECTION",
+        "GLOW_FALLOFF",
+        "GLOW_NORM",
+        "AO_START",
+        "AO_SPAN",
+        "AO_SAMPLES",
+        "PROBE_SHARE",
+        "PROBE_REACH",
+        "MEMBERSHIP_STEP",
+        "REFINE_STEPS",
+        "REFINED_NORMAL_SHARE",
+    ];
+
+    fn sources(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
+        for entry in std::fs::read_dir(dir).expect("a readable source folder").flatten() {
+            let path = entry.path();
+            let name = entry.file_name();
+            if path.is_dir() && name != "target" && !name.to_string_lossy().starts_with('.') {
+                sources(&path, out);
+            } else if path.extension().is_some_and(|e| e == "rs") {
+                out.push(path);
+            }
+        }
+    }
+
+    /// Every step of the ray is written once, here: no other Rust file of the workspace names its constants.
+    #[test]
+    fn no_other_file_spells_a_step_of_the_ray() {
+        let crate_dir = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let workspace = crate_dir.parent().expect("the crate sits in the workspace");
+        let own = crate_dir.join("src").join("ray");
+        let mut files = Vec::new();
+        sources(workspace, &mut files);
+        assert!(files.len() > 100, "only {} Rust files found under {}", files.len(), workspace.display());
+        for file in files.iter().filter(|f| !f.starts_with(&own)) {
+            let text = std::fs::read_to_string(file).expect("a readable source file");
+            for name in CONSTANTS {
+                let named = text.match_indices(name).any(|(i, _)| {
+                    let before = text[..i].chars().next_back().is_some_and(|c| c.is_alphanumeric() || c == '_');
+                    let after = text[i + name.len()..].chars().next().is_some_and(|c| c.is_alphanumeric() || c == '_');
+                    !before && !after
+                });
+                assert!(!named, "{} names {name}: the ray program is written in fractal-dsl/src/ray/", file.display());
+            }
+        }
+    }
 }

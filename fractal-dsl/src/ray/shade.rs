@@ -28,7 +28,7 @@ pub fn shade<N: Num, S: SceneFns<N>>(
     let (t, eps) = (N::stand_in(hit, m.t), N::stand_in(hit, m.eps));
     let (colour, normal) = N::when(hit, (lit3(rules.background), V3::splat(N::lit(0.0))), |_| {
         let p = (ro + rd * t).map(|c| N::stand_in(hit, c));
-        let n = normal(scene, p, normal_tap(rules, view, t, eps));
+        let n = scene.normal(p, normal_tap(rules, view, t, eps));
         (surface(rules, view, scene, p, n, rd, t, eps, hit), n)
     });
     let colour = match rules.glow {
@@ -87,10 +87,7 @@ pub fn surface<N: Num, S: SceneFns<N>>(
     live: N::Mask,
 ) -> V3<N> {
     let (zero, one) = (N::lit(0.0), N::lit(1.0));
-    let ao = match rules.ambient_occlusion {
-        Some(strength) => occlusion(strength, scene, p, n),
-        None => one,
-    };
+    let ao = if rules.ambient_occlusion.is_some() { scene.occlusion(rules, p, n) } else { one };
     let m = scene.sample(p, rd * t);
     let mut colour = m.albedo * (m.ambient * ao);
     for light in &view.lights {
@@ -100,7 +97,7 @@ pub fn surface<N: Num, S: SceneFns<N>>(
         let shadow = if rules.shadows == Shadows::None {
             one
         } else {
-            N::when(facing, one, |_| shadow(rules, scene, p + n * (N::lit(2.0) * eps), l, limit, eps, live & facing))
+            N::when(facing, one, |_| scene.shadow(rules, (p + n * (N::lit(2.0) * eps), l), limit, eps, live & facing))
         };
         colour = colour + m.albedo * (m.diffuse * ndl) * radiance * shadow;
         if rules.specular {
@@ -129,10 +126,12 @@ pub fn light_at<N: Num>(rules: &Rules, light: &Light<N>, p: V3<N>) -> (V3<N>, V3
     }
 }
 
-/// Ambient occlusion at `p` along the normal `n`: 1 − 3·strength·Σ (h_i − d(p + n·h_i))·0.95^i, clamped to [0, 1].
+/// Ambient occlusion at `p` along the normal `n`: 1 − 3·strength·Σ (h_i − d(p + n·h_i))·0.95^i, clamped to [0, 1]
+/// (1 where the scene has none).
 #[inline(always)]
-pub fn occlusion<N: Num, S: SceneFns<N>>(strength: f64, scene: &S, p: V3<N>, n: V3<N>) -> N {
+pub fn occlusion<N: Num, S: SceneFns<N>>(rules: &Rules, scene: &S, p: V3<N>, n: V3<N>) -> N {
     let (zero, one) = (N::lit(0.0), N::lit(1.0));
+    let Some(strength) = rules.ambient_occlusion else { return one };
     let [occ, _, _] = N::iterate(
         N::count(AO_SAMPLES),
         [zero, one, zero],
@@ -152,8 +151,7 @@ pub fn occlusion<N: Num, S: SceneFns<N>>(strength: f64, scene: &S, p: V3<N>, n: 
 pub fn shadow<N: Num, S: SceneFns<N>>(
     rules: &Rules,
     scene: &S,
-    origin: V3<N>,
-    l: V3<N>,
+    (origin, l): (V3<N>, V3<N>),
     limit: N,
     eps: N,
     live: N::Mask,

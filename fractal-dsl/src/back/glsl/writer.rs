@@ -32,15 +32,11 @@ impl Dialect for Glsl {
             Ty::Int => "uint",
             // Never declared: a library has no frame, so no perturbed pattern reads an orbit.
             Ty::Orbit => "vec2",
+            Ty::Sample => "Sample",
         }
     }
     fn vec4_type(&self) -> &'static str {
         "vec4"
-    }
-    fn select_nonnegative(&self, v: &str, if_nonnegative: &str, if_negative: &str) -> String {
-        // mix with a bool vector selects per component, exactly.
-        let zero = self.construct("vec3", &self.lit(0.0));
-        format!("mix({if_negative}, {if_nonnegative}, greaterThanEqual({v}, {zero}))")
     }
     fn math_name(&self, f: MathFn) -> &'static str {
         match f {

@@ -31,6 +31,7 @@ impl Dialect for Hlsl {
             Ty::Int => "uint",
             // Never declared: a library has no frame, so no perturbed pattern reads an orbit.
             Ty::Orbit => "float2",
+            Ty::Sample => "Sample",
         }
     }
     fn vec4_type(&self) -> &'static str {
@@ -43,23 +44,11 @@ impl Dialect for Hlsl {
             format!("(({ty})({components}))")
         }
     }
-    fn select_nonnegative(&self, v: &str, if_nonnegative: &str, if_negative: &str) -> String {
-        // The conditional operator selects per component on vectors (HLSL 2021 spells it `select`; Unity's and
-        // Unreal's compilers take both).
-        format!("({v} >= {}) ? {if_nonnegative} : {if_negative}", self.construct("float3", &self.lit(0.0)))
-    }
-    fn mix_name(&self) -> &'static str {
-        "lerp"
-    }
     fn math_name(&self, f: MathFn) -> &'static str {
         match f {
             MathFn::Ln => "log",
             _ => common_math_name(f),
         }
-    }
-
-    fn uninitialised(&self, name: &str, ty: &str) -> String {
-        format!("{ty} {name} = {};", self.construct(ty, &self.lit(0.0)))
     }
 
     fn global_constant(&self, name: &str, ty: &str, value: &str) -> String {

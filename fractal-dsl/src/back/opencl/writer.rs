@@ -39,6 +39,7 @@ impl Dialect for OpenCl {
             Ty::Bool => "int",
             Ty::Int => "uint",
             Ty::Orbit => "__constant const Frame*",
+            Ty::Sample => "Sample",
         }
     }
     fn vec4_type(&self) -> &'static str {

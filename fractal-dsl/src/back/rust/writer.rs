@@ -23,6 +23,7 @@ impl Syntax for RustSyntax {
             Ty::Bool => "F::Mask",
             Ty::Int => "u32",
             Ty::Orbit => "Orbit<'_>",
+            Ty::Sample => "Sample<F>",
         }
     }
     fn declare(&self, name: &str, ty: Ty, value: &str, mutable: bool) -> String {

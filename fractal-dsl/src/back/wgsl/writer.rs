@@ -45,13 +45,11 @@ impl Dialect for Wgsl {
             Ty::Int => "u32",
             // Never declared: WGSL functions read the orbit from the module's `frame`.
             Ty::Orbit => "Frame",
+            Ty::Sample => "Sample",
         }
     }
     fn vec4_type(&self) -> &'static str {
         "vec4<f32>"
-    }
-    fn vector_operand(&self, scalar: &str) -> String {
-        self.construct(self.type_name(Ty::V3), scalar)
     }
     fn math_name(&self, f: MathFn) -> &'static str {
         match f {
@@ -81,12 +79,6 @@ impl Dialect for Wgsl {
     fn local(&self, name: &str, _ty: &str, value: &str, mutable: bool) -> String {
         let kw = if mutable { "var" } else { "let" };
         format!("{kw} {name} = {value};")
-    }
-    fn uninitialised(&self, name: &str, ty: &str) -> String {
-        format!("var {name}: {ty};")
-    }
-    fn counted_loop(&self, bound: &str) -> String {
-        format!("for (var i = 0; i < {bound}; i++) {{")
     }
     fn counted_loop_over(&self, index: &str, count: &str) -> String {
         format!("for (var {index} = 0u; {index} < {count}; {index}++) {{")
