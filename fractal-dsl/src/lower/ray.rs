@@ -97,23 +97,7 @@ pub fn functions(program: &Program) -> Vec<RayFunction> {
 impl Program {
     /// The ray program's rules for this scene.
     pub fn rules(&self) -> Rules {
-        let s = &self.settings;
-        Rules {
-            max_steps: s.max_steps,
-            max_distance: s.max_distance,
-            epsilon: s.epsilon,
-            over_relaxation: s.over_relaxation,
-            refine: self.refine,
-            normal_epsilon: s.normal_epsilon,
-            shadows: s.shadows,
-            ambient_occlusion: s.ambient_occlusion,
-            glow: s.glow,
-            fog: s.fog.as_ref().map(|f| (f.color, f.density)),
-            background: s.background,
-            gamma: s.gamma,
-            specular: self.specular,
-            bound: self.bound,
-        }
+        Rules::from_settings(&self.settings, self.refine, self.specular, self.bound)
     }
 
     fn calls(&self) -> Calls {

@@ -25,7 +25,7 @@ use crate::analyse::{self, fold::fold_node, Aabb, SignRefinement};
 use crate::eval::Sample;
 use crate::math::{normalize, V3};
 use crate::num::Num;
-use crate::{HitEpsilon, Scene, Shadows};
+use crate::{HitEpsilon, RenderSettings, Scene, Shadows};
 
 /// Relative float spacing of t that the hit epsilon never goes below: 4 ulps of an f32 (2⁻²¹ ≈ 4.77e-7), so every
 /// step moves t and a far hit never asks for more precision than t has.
@@ -119,12 +119,23 @@ impl Rules {
     pub fn with_bound(scene: &Scene, bound: Option<Aabb>) -> Rules {
         let folded = fold_node(&scene.root);
         let s = &scene.settings;
+        Rules::from_settings(s, analyse::sign_refinement(&folded, s), analyse::has_specular(&folded), bound)
+    }
+
+    /// The rules of a scene's `settings`, with the analyses of its tree: how its hits are refined by sign, whether a
+    /// material can have a specular term, and the box rays are clipped to.
+    pub fn from_settings(
+        s: &RenderSettings,
+        refine: Option<SignRefinement>,
+        specular: bool,
+        bound: Option<Aabb>,
+    ) -> Rules {
         Rules {
             max_steps: s.max_steps,
             max_distance: s.max_distance,
             epsilon: s.epsilon,
             over_relaxation: s.over_relaxation,
-            refine: analyse::sign_refinement(&folded, s),
+            refine,
             normal_epsilon: s.normal_epsilon,
             shadows: s.shadows,
             ambient_occlusion: s.ambient_occlusion,
@@ -132,7 +143,7 @@ impl Rules {
             fog: s.fog.as_ref().map(|f| (f.color, f.density)),
             background: s.background,
             gamma: s.gamma,
-            specular: analyse::has_specular(&folded),
+            specular,
             bound,
         }
     }
