@@ -1,6 +1,8 @@
 //! Project automation. `cargo xtask test` is the one test command: it installs the system packages the tests need
 //! (when it can), then runs every test of the workspace with the `opencl` feature, and the format and lint checks.
 
+mod layers;
+
 use std::process::{exit, Command};
 
 /// Debian packages the tests use: OpenCL on pocl, Vulkan on lavapipe (for wgpu), an X server for the viewer tests,
@@ -24,10 +26,12 @@ fn main() {
     match args.first().map(String::as_str) {
         Some("test") => test(&args[1..]),
         Some("install") => install(),
+        Some("layers") => layers(),
         Some("fuzz") => fuzz(args.get(1).map(String::as_str).unwrap_or("1000000")),
         _ => {
             eprintln!("usage: cargo xtask test [extra cargo test args]   (installs system packages, runs all tests)");
             eprintln!("       cargo xtask install                       (only installs system packages)");
+            eprintln!("       cargo xtask layers                        (module cycles in any crate)");
             eprintln!("       cargo xtask fuzz [N]                      (N random scene texts, default 10^6)");
             exit(2);
         }
@@ -133,6 +137,22 @@ fn run(cmd: &mut Command) {
         }
         Err(e) => {
             eprintln!("xtask: cannot run {cmd:?}: {e}");
+            exit(1);
+        }
+    }
+}
+
+/// Prints each crate's module cycles; fails when there is one.
+fn layers() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("xtask lives in the workspace");
+    match layers::workspace_cycles(root) {
+        Ok(cycles) if cycles.is_empty() => println!("xtask: no module cycles"),
+        Ok(cycles) => {
+            cycles.iter().for_each(|c| eprintln!("cycle: {c}"));
+            exit(1);
+        }
+        Err(e) => {
+            eprintln!("xtask: {e}");
             exit(1);
         }
     }
