@@ -26,12 +26,13 @@ fn main() {
     match args.first().map(String::as_str) {
         Some("test") => test(&args[1..]),
         Some("install") => install(),
-        Some("layers") => layers(),
+        Some("layers") => layers(args.get(1).map(String::as_str)),
         Some("fuzz") => fuzz(args.get(1).map(String::as_str).unwrap_or("1000000")),
         _ => {
             eprintln!("usage: cargo xtask test [extra cargo test args]   (installs system packages, runs all tests)");
             eprintln!("       cargo xtask install                       (only installs system packages)");
             eprintln!("       cargo xtask layers                        (module cycles in any crate)");
+            eprintln!("       cargo xtask layers CRATE/src              (that crate's file dependencies)");
             eprintln!("       cargo xtask fuzz [N]                      (N random scene texts, default 10^6)");
             exit(2);
         }
@@ -142,9 +143,21 @@ fn run(cmd: &mut Command) {
     }
 }
 
-/// Prints each crate's module cycles; fails when there is one.
-fn layers() {
+/// Prints each crate's module cycles and fails when there is one; with a crate's source folder, prints its edges.
+fn layers(dir: Option<&str>) {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("xtask lives in the workspace");
+    if let Some(dir) = dir {
+        match layers::Graph::read(&root.join(dir)) {
+            Ok(graph) => {
+                for (from, to) in graph.edges() {
+                    let names: Vec<String> = to.iter().map(|t| t.join("::")).collect();
+                    println!("{} -> {}", from.join("::"), names.join(" "));
+                }
+            }
+            Err(e) => eprintln!("xtask: {e}"),
+        }
+        return;
+    }
     match layers::workspace_cycles(root) {
         Ok(cycles) if cycles.is_empty() => println!("xtask: no module cycles"),
         Ok(cycles) => {
