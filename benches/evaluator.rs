@@ -8,7 +8,7 @@
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use fractal::dsl::eval::interp::Interpreter;
 use fractal::dsl::eval::Env;
-use fractal::dsl::math::V3;
+use fractal::dsl::number::math::V3;
 use fractal::dsl::CompiledScene;
 use fractal::prelude::*;
 use std::hint::black_box;

@@ -21,7 +21,7 @@ use std::sync::Mutex;
 use fractal::dsl::back::{self, Entry};
 use fractal::dsl::eval::interp::Interpreter;
 use fractal::dsl::lower::lower;
-use fractal::dsl::math::V3;
+use fractal::dsl::number::math::V3;
 use fractal::runtime::{Frame, ParamValues, Pose, ProbeSample, WgpuRenderer};
 use harness::{cpu_answers, Answer, Column, Row, Subject};
 use tolerance::Class;

@@ -133,7 +133,7 @@ fn distance_slices_match_point_by_point_evaluation() {
             let mut samples = vec![
                 fractal::dsl::eval::Sample {
                     distance: 0.0f32,
-                    albedo: fractal::dsl::math::v3(0.0, 0.0, 0.0),
+                    albedo: fractal::dsl::number::math::v3(0.0, 0.0, 0.0),
                     ambient: 0.0,
                     diffuse: 0.0,
                     specular: 0.0,

@@ -13,7 +13,7 @@ use std::time::Instant;
 
 use fractal::dsl::eval::interp::Interpreter;
 use fractal::dsl::eval::Env;
-use fractal::dsl::math::v3;
+use fractal::dsl::number::math::v3;
 use fractal::dsl::parse::{parse_str, SourceError};
 use fractal::dsl::print::to_source;
 use fractal::dsl::{compile, Scene};

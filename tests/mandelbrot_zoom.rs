@@ -1,6 +1,6 @@
 //! The deep zoom of the `mandelbrot_zoom` scene. At the deepest key of its camera path the view is 1e-12 wide, 10⁻¹⁴
 //! per pixel here, where f32 numbers near 0.74 are 6·10⁻⁸ apart. The pattern there is computed by perturbation
-//! (`fractal_dsl::mandelbrot`): the frame's f64 reference orbit at the camera position, and per pixel the hit's offset
+//! (`fractal_dsl::formula::mandelbrot`): the frame's f64 reference orbit at the camera position, and per pixel the hit's offset
 //! from the camera, rd·t, in f32.
 //!
 //! The check, at every pixel of a 96×54 render: the escape count the CPU renderer's perturbed pattern computes (f32,
@@ -18,8 +18,8 @@
 //! Counts are read from the smooth value ν = n + 1 − log₂(log₂|z|): escape means 16 < |z| < 16² + 2, so
 //! log₂(log₂|z|) lies in (2, 3) and n = ⌊ν⌋ + 2.
 
-use fractal::dsl::mandelbrot::{inverse_count, mandelbrot, mandelbrot_perturbed};
-use fractal::dsl::math::{normalize, v3, V3};
+use fractal::dsl::formula::mandelbrot::{inverse_count, mandelbrot, mandelbrot_perturbed};
+use fractal::dsl::number::math::{normalize, v3, V3};
 use fractal::runtime::backend::cpu::trace_scene;
 use fractal::runtime::{Frame, ParamValues, Pose};
 use fractal::scenes;

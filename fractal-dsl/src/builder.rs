@@ -25,7 +25,7 @@ pub fn z() -> Expr {
     Expr::Point(2)
 }
 
-/// 2D gradient noise in [−1, 1] (`noise2(x, y)`; [`crate::noise`]).
+/// 2D gradient noise in [−1, 1] (`noise2(x, y)`; [`crate::formula::noise`]).
 pub fn noise2(x: impl Into<Expr>, y: impl Into<Expr>) -> Expr {
     Expr::Call(Func::Noise2, vec![x.into(), y.into()])
 }
@@ -92,17 +92,17 @@ pub fn vec4(x: impl Into<Expr>, y: impl Into<Expr>, z: impl Into<Expr>, w: impl 
     Vec4Expr([x.into(), y.into(), z.into(), w.into()])
 }
 
-// ---- primitives: declared with their builder functions in `crate::prims` ---------------------------------------
+// ---- primitives: declared with their builder functions in `crate::vocab::prims` ---------------------------------------
 
-pub use crate::prims::*;
+pub use crate::vocab::prims::*;
 
-// ---- fractals: declared with their builder functions in `crate::fractals` -------------------------------------
+// ---- fractals: declared with their builder functions in `crate::vocab::fractals` -------------------------------------
 
-pub use crate::fractals::*;
+pub use crate::vocab::fractals::*;
 
-// ---- operators (CSG, transforms, domain operations): declared with their builders in `crate::ops` -----------
+// ---- operators (CSG, transforms, domain operations): declared with their builders in `crate::vocab::ops` -----------
 
-pub use crate::ops::{
+pub use crate::vocab::ops::{
     intersect, intersect_all, smooth_intersect, smooth_intersect_all, smooth_subtract, smooth_union, smooth_union_all,
     subtract, union, union_all, ShapeExt,
 };

@@ -5,8 +5,8 @@ use std::sync::OnceLock;
 
 use crate::eval::{Env, Evaluator, PacketEvaluator, Sample};
 use crate::ir::Scene;
-use crate::lanes::F32x8;
-use crate::math::{Real, V3};
+use crate::number::lanes::F32x8;
+use crate::number::math::{Real, V3};
 
 /// The native evaluator functions emitted by the Rust writer and compiled by rustc with the user's crate.
 #[derive(Clone, Copy, Debug)]

@@ -5,7 +5,7 @@
 //! ```
 //! use fractal_dsl::builder::*;
 //! use fractal_dsl::eval::{interp::Interpreter, Env};
-//! use fractal_dsl::math::v3;
+//! use fractal_dsl::number::math::v3;
 //!
 //! // The text of a `.fractal` file, and the same scene from the builder API.
 //! let text = "union(sphere(1.0), box3(vec3(0.5, 0.5, 0.5)).translate(vec3(2.0, 0.0, 0.0)))";
@@ -30,27 +30,19 @@ pub mod analyse;
 pub mod back;
 pub mod builder;
 pub mod compiled;
-pub mod echo;
-pub mod elementary;
 pub mod eval;
-pub mod fractals;
+pub mod formula;
 pub mod geom;
 pub mod ir;
-pub mod lanes;
-pub mod leaf;
 pub mod lower;
-pub mod mandelbrot;
-pub mod math;
-pub mod noise;
-pub mod num;
-pub mod ops;
+pub mod number;
 pub mod parse;
-pub mod prims;
 pub mod print;
 pub mod ray;
-pub mod sdf;
+pub mod sanitise;
 pub mod validate;
 pub mod visit;
+pub mod vocab;
 
 pub use compiled::{compile, CompiledScene, DefaultParams, Kernels, NativeFns};
 pub use ir::*;

@@ -13,11 +13,11 @@ use std::fmt;
 
 use crate::analyse::fold::fold_expr;
 use crate::analyse::interval::{range, Interval};
-use crate::fractals::families::FRACTALS;
 use crate::ir::arg::{ArgDecl, ArgShape, Rule};
 use crate::ir::fractal::{FractalArg, FractalArgShape, FractalArgValue, FractalRule, Setting, STEP_FACTOR_RANGE};
 use crate::ir::op::{Meaning, Operands};
 use crate::ir::*;
+use crate::vocab::fractals::families::FRACTALS;
 
 /// Most nodes a distance tree may have.
 pub const MAX_NODES: usize = 10_000;
@@ -34,7 +34,7 @@ pub const MAX_MARCH_STEPS: u32 = 10_000;
 /// Largest `max_distance`. The kernels keep the ray parameter in f32, whose spacing is 64 units at 1e9; beyond the f32
 /// range (3.4e38) one backend would march to infinity and another draw nothing.
 pub const MAX_DISTANCE: f64 = 1e9;
-pub use crate::ops::MAX_REPEAT_COUNT;
+pub use crate::vocab::ops::MAX_REPEAT_COUNT;
 
 /// A broken rule in a scene, located by the path of the node (or the scene part) it concerns.
 #[derive(Clone, Debug, PartialEq)]

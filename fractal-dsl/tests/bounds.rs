@@ -9,7 +9,7 @@ use fractal_dsl::analyse::{bound, fold::fold_node};
 use fractal_dsl::builder::*;
 use fractal_dsl::eval::interp::Interpreter;
 use fractal_dsl::eval::Env;
-use fractal_dsl::math::v3;
+use fractal_dsl::number::math::v3;
 use fractal_dsl::*;
 use proptest::prelude::*;
 

@@ -5,8 +5,8 @@
 use fractal_dsl::builder::*;
 use fractal_dsl::eval::interp::Interpreter;
 use fractal_dsl::eval::{Env, Evaluator, Sample};
-use fractal_dsl::math::{v3, V3};
-use fractal_dsl::sdf;
+use fractal_dsl::formula;
+use fractal_dsl::number::math::{v3, V3};
 use fractal_dsl::*;
 use proptest::prelude::*;
 
@@ -149,12 +149,12 @@ fn intersect_subtract_and_smooth_blends_choose_materials_by_the_rules() {
     let mid = sample64(&su, [0.5, 0.7, 0.0]);
     assert!(close(albedo(&mid), [0.5, 0.5, 0.0]), "{:?}", mid.albedo);
     let (da, db) = ((0.25f64 + 0.49).sqrt() - 1.0, (0.25f64 + 0.49).sqrt() - 1.0);
-    assert!((mid.distance - sdf::smooth_min(da, db, 0.5)).abs() < 1e-12);
+    assert!((mid.distance - formula::smooth_min(da, db, 0.5)).abs() < 1e-12);
     // Smooth intersection leans towards the farther child.
     let si = Interpreter::new(&scene(smooth_intersect(a, b, 0.5))).unwrap();
     let s = sample64(&si, [-0.3, 0.0, 0.0]);
     let (d_red, d_green) = (0.3 - 1.0, 1.3 - 1.0);
-    let w = sdf::blend_weight(d_green, d_red, 0.5);
+    let w = formula::blend_weight(d_green, d_red, 0.5);
     assert!(close(albedo(&s), [1.0 - w, w, 0.0]), "{:?} vs weight {w}", s.albedo);
 }
 
@@ -176,7 +176,7 @@ fn orbit_trap_mixes_by_the_fractals_trap_and_other_leaves_take_the_first_colour(
     let trap = orbit_trap(rgb(1.0, 0.0, 0.0), rgb(0.0, 0.0, 1.0));
     let bulb = Interpreter::new(&scene(mandelbulb(8).material(trap.clone()))).unwrap();
     let p = [0.3, 0.5, 0.9];
-    let t = sdf::de_mandelbulb8(v3(p[0], p[1], p[2]), 8, 2.0)[1];
+    let t = formula::de_mandelbulb8(v3(p[0], p[1], p[2]), 8, 2.0)[1];
     assert!(close(albedo(&sample64(&bulb, p)), [1.0 - t, 0.0, t]), "trap {t}");
     let plain = Interpreter::new(&scene(sphere(1.0).material(trap))).unwrap();
     assert!(close(albedo(&sample64(&plain, p)), [1.0, 0.0, 0.0]));
@@ -187,14 +187,14 @@ fn fractal_leaves_call_the_leaf_functions_times_the_step_factor() {
     let p = v3(0.4f32, -0.7, 0.55);
     let env = Env::<f32>::still();
     let cases: Vec<(Fractal, f32)> = vec![
-        (mandelbulb(8), sdf::de_mandelbulb8(p, 8, 2.0)[0]),
-        (mandelbulb(7).iterations(5).bailout(4.0), sdf::de_mandelbulb(p, 7.0, 5, 4.0)[0]),
-        (menger(3), sdf::de_menger(p, 3)[0]),
-        (sierpinski_tetrahedron(5), sdf::de_sierpinski(p, 5)[0]),
-        (julia([-0.2, 0.6, 0.2, 0.0]), sdf::de_julia(p, -0.2, 0.6, 0.2, 0.0, 11, 4.0)[0]),
-        (mandelbox(-1.5).min_radius(0.4).fold_limit(1.2), sdf::de_mandelbox(p, -1.5, 12, 0.4, 1.2)[0]),
+        (mandelbulb(8), formula::de_mandelbulb8(p, 8, 2.0)[0]),
+        (mandelbulb(7).iterations(5).bailout(4.0), formula::de_mandelbulb(p, 7.0, 5, 4.0)[0]),
+        (menger(3), formula::de_menger(p, 3)[0]),
+        (sierpinski_tetrahedron(5), formula::de_sierpinski(p, 5)[0]),
+        (julia([-0.2, 0.6, 0.2, 0.0]), formula::de_julia(p, -0.2, 0.6, 0.2, 0.0, 11, 4.0)[0]),
+        (mandelbox(-1.5).min_radius(0.4).fold_limit(1.2), formula::de_mandelbox(p, -1.5, 12, 0.4, 1.2)[0]),
         // A scene's own factor replaces the family's.
-        (mandelbulb(8).step_factor(1.0), sdf::de_mandelbulb8(p, 8, 2.0)[0]),
+        (mandelbulb(8).step_factor(1.0), formula::de_mandelbulb8(p, 8, 2.0)[0]),
     ];
     for (f, raw) in cases {
         let step = f.step_factor_or_default() as f32;
@@ -203,13 +203,13 @@ fn fractal_leaves_call_the_leaf_functions_times_the_step_factor() {
     }
     // A power that folds to 8 takes the polynomial form; a parameter power takes the trigonometric one.
     let folded = Interpreter::new(&scene(mandelbulb(Expr::Lit(4.0) * 2.0))).unwrap();
-    assert_eq!(folded.distance_in(p, &env), sdf::de_mandelbulb8(p, 8, 2.0)[0] * 0.75);
+    assert_eq!(folded.distance_in(p, &env), formula::de_mandelbulb8(p, 8, 2.0)[0] * 0.75);
     // Its step factor is that of the lowest power it can take (2 here).
     let animated = Interpreter::new(&scene(mandelbulb(param("power", 8.0, 2.0..12.0)))).unwrap();
-    assert_eq!(animated.distance_in(p, &Env::new(0.0, &[8.0])), sdf::de_mandelbulb(p, 8.0, 8, 2.0)[0] * 0.35);
+    assert_eq!(animated.distance_in(p, &Env::new(0.0, &[8.0])), formula::de_mandelbulb(p, 8.0, 8, 2.0)[0] * 0.35);
     // A power that stays below 4 takes the stretched estimate, at the factor 1.
     let low = Interpreter::new(&scene(mandelbulb(param("power", 3.0, 2.0..3.5)))).unwrap();
-    assert_eq!(low.distance_in(p, &Env::new(0.0, &[3.0])), sdf::de_mandelbulb_stretched(p, 3.0, 8, 2.0)[0]);
+    assert_eq!(low.distance_in(p, &Env::new(0.0, &[3.0])), formula::de_mandelbulb_stretched(p, 3.0, 8, 2.0)[0]);
 }
 
 #[test]
@@ -388,9 +388,12 @@ fn f32_agrees_with_f64_on_fractals_away_from_the_surface() {
 // ---- hard cases (DESIGN.md) ----------------------------------------------------------------------------------------
 
 /// Both Mandelbulb forms at power 8 in precision F.
-fn bulb_forms<F: fractal_dsl::math::Real>(p: [f64; 3], iterations: u32) -> (F, F) {
+fn bulb_forms<F: fractal_dsl::number::math::Real>(p: [f64; 3], iterations: u32) -> (F, F) {
     let q: V3<F> = v3(F::c(p[0]), F::c(p[1]), F::c(p[2]));
-    (sdf::de_mandelbulb8(q, iterations, F::c(2.0))[0], sdf::de_mandelbulb(q, F::c(8.0), iterations, F::c(2.0))[0])
+    (
+        formula::de_mandelbulb8(q, iterations, F::c(2.0))[0],
+        formula::de_mandelbulb(q, F::c(8.0), iterations, F::c(2.0))[0],
+    )
 }
 
 /// Case 1: on the pole axis (x = y = 0; the polar axis is z) and 1e-7 and 1e-30 off it, both forms are finite and
@@ -442,7 +445,7 @@ fn mandelbulb_at_the_origin_and_at_points_that_never_escape() {
         }
     }
     for power in [2.0, 3.0, 8.0, 16.0, 32.0] {
-        let [d, trap] = sdf::de_mandelbulb(v3(0.0f32, 0.0, 0.0), power, 64, 256.0);
+        let [d, trap] = formula::de_mandelbulb(v3(0.0f32, 0.0, 0.0), power, 64, 256.0);
         assert!(d.is_finite() && d <= 0.0 && (0.0..=1.0).contains(&trap), "power {power}: {d}, {trap}");
     }
 }
@@ -478,12 +481,12 @@ fn high_power_mandelbulbs_stay_finite_in_f64() {
     }
 }
 
-/// Case 3 in f32. `sdf::mandelbulb_escape` keeps |z|^power below 2^120, but `length` squares the new z, which overflows
+/// Case 3 in f32. `formula::mandelbulb_escape` keeps |z|^power below 2^120, but `length` squares the new z, which overflows
 /// f32 (2^128) once |z| passes 2^64: the estimate becomes +∞. With bailout 256, 15% of points within 1.5 of the origin
 /// at power 16 and 3% at power 32 are affected (measured over 100 000 points).
 #[test]
 fn high_power_mandelbulbs_stay_finite_in_f32() {
-    let d = sdf::de_mandelbulb(v3(-0.73857415f32, -1.087467, 0.24681997), 16.0, 8, 256.0)[0];
+    let d = formula::de_mandelbulb(v3(-0.73857415f32, -1.087467, 0.24681997), 16.0, 8, 256.0)[0];
     assert!(d.is_finite(), "power 16 × 8, bailout 256 at (-0.73857415, -1.087467, 0.24681997): {d}");
     for power in [16.0, 32.0] {
         for iterations in [8, 32, MAX_ITERATIONS] {
@@ -542,20 +545,20 @@ fn smooth_union_at_zero_and_huge_blend_radius() {
         assert!(d32(&huge, p).is_finite());
     }
     // Equal distances with k = 0: h = 0 / TINY, not 0 / 0.
-    assert_eq!(sdf::smooth_min(0.25f32, 0.25, 0.0), 0.25);
-    assert_eq!(sdf::blend_weight(0.25f32, 0.25, 0.0), 0.5);
+    assert_eq!(formula::smooth_min(0.25f32, 0.25, 0.0), 0.25);
+    assert_eq!(formula::blend_weight(0.25f32, 0.25, 0.0), 0.5);
     let twins = Interpreter::new(&scene(smooth_union(sphere(1.0), sphere(1.0), 0.0))).unwrap();
     let s = sample64(&twins, [0.0, 2.0, 0.0]);
     assert!(s.distance == 1.0 && s.albedo.x.is_finite());
 }
 
 /// The quaternion Julia estimate at the critical point: z = 0 has a vanishing derivative, so the formula divides
-/// 0 by 0 when c = 0 (NaN) and a positive log by 0 for escaping c (+∞). Kept as a record until `sdf::de_julia` guards
+/// 0 by 0 when c = 0 (NaN) and a positive log by 0 for escaping c (+∞). Kept as a record until `formula::de_julia` guards
 /// the division.
 #[test]
 fn julia_at_its_critical_point_is_finite() {
     for c in [[0.0; 4], [0.3, 0.0, 0.0, 0.0]] {
-        let d = sdf::de_julia(v3(0.0f64, 0.0, 0.0), c[0], c[1], c[2], c[3], 11, 4.0)[0];
+        let d = formula::de_julia(v3(0.0f64, 0.0, 0.0), c[0], c[1], c[2], c[3], 11, 4.0)[0];
         assert!(d.is_finite(), "c = {c:?}: {d}");
     }
 }

@@ -5,19 +5,19 @@
 
 mod common;
 
-use fractal_dsl::lanes::{F32x8, LANES};
-use fractal_dsl::leaf::{ArgKind, LeafArg, LeafOut};
+use fractal_dsl::formula::leaf::{ArgKind, LeafArg, LeafOut};
+use fractal_dsl::formula::Leaf;
 use fractal_dsl::lower::code::{Body, CmpOp, LogicOp, MathFn, Op, Stmt, Ty, Val};
 use fractal_dsl::lower::trace::trace_leaf;
-use fractal_dsl::math::{v3, Num, V3};
-use fractal_dsl::sdf::Leaf;
+use fractal_dsl::number::lanes::{F32x8, LANES};
+use fractal_dsl::number::math::{v3, Num, V3};
 
 // ---- arguments for every leaf ---------------------------------------------------------------------------------------
 
 /// The reference orbit perturbed patterns are given: that of c = −0.75 + 0.1i, near the neck of the set, so it
 /// stays bounded for the 8 iterations the patterns run.
 static REFERENCE_ORBIT: std::sync::LazyLock<Vec<[f32; 2]>> =
-    std::sync::LazyLock::new(|| fractal_dsl::mandelbrot::reference_orbit(-0.75, 0.1, 8));
+    std::sync::LazyLock::new(|| fractal_dsl::formula::mandelbrot::reference_orbit(-0.75, 0.1, 8));
 
 /// Arguments for `leaf` at the point `p`, in any precision, from a table of plausible values per parameter name.
 fn args<F: Num>(leaf: Leaf, p: V3<F>, f: impl Fn(f64) -> F) -> Vec<LeafArg<'static, F>> {

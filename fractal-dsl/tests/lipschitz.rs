@@ -4,14 +4,14 @@
 
 use fractal_dsl::builder::*;
 use fractal_dsl::eval::interp::Interpreter;
-use fractal_dsl::sdf;
+use fractal_dsl::formula;
 use fractal_dsl::*;
 use proptest::prelude::*;
 
 mod common;
 use common::{d64, declared_args, unit_axis, vec3_in, Rng};
 use fractal_dsl::ir::op::Operands;
-use fractal_dsl::ops::decl::OPS;
+use fractal_dsl::vocab::ops::decl::OPS;
 
 fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
     ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
@@ -132,18 +132,18 @@ impl Rng {
     }
 }
 
-/// Whether the Mandelbulb orbit of `p` escapes (the same iteration as [`sdf::de_mandelbulb`]): outside the set the
+/// Whether the Mandelbulb orbit of `p` escapes (the same iteration as [`formula::de_mandelbulb`]): outside the set the
 /// estimate is a distance; inside it is not (its value there says only "inside").
 fn mandelbulb_escapes(p: [f64; 3], power: f64, iterations: u32, bailout: f64) -> bool {
-    let escape = sdf::mandelbulb_escape(power, bailout);
+    let escape = formula::mandelbulb_escape(power, bailout);
     let mut z = p;
     let mut dr = 1.0f64;
     let mut r = (z[0] * z[0] + z[1] * z[1] + z[2] * z[2]).sqrt();
     for _ in 0..iterations {
-        if r > escape || dr > sdf::DR_MAX {
+        if r > escape || dr > formula::DR_MAX {
             break;
         }
-        let theta = (z[2] / r.max(sdf::TINY)).clamp(-1.0, 1.0).acos() * power;
+        let theta = (z[2] / r.max(formula::TINY)).clamp(-1.0, 1.0).acos() * power;
         let phi = z[1].atan2(z[0]) * power;
         dr = power * r.powf(power - 1.0) * dr + 1.0;
         let zr = r.powf(power);
@@ -153,7 +153,7 @@ fn mandelbulb_escapes(p: [f64; 3], power: f64, iterations: u32, bailout: f64) ->
     r > escape
 }
 
-/// Whether the quaternion Julia orbit of `p` escapes (the iteration of [`sdf::de_julia`]).
+/// Whether the quaternion Julia orbit of `p` escapes (the iteration of [`formula::de_julia`]).
 /// Whether the Juliabulb orbit z ← z^power + c from p leaves radius 2 within `iterations` steps (f64, spherical
 /// form).
 fn juliabulb_escapes(p: [f64; 3], c: [f64; 3], iterations: u32) -> bool {
@@ -310,7 +310,7 @@ fn julia_step_factor_keeps_the_estimate_within_the_lipschitz_bound() {
 }
 
 /// The Juliabulb's Lipschitz ratios, printed for the record, not asserted. Its estimate takes the map's azimuthal
-/// stretch (`sdf::de_juliabulb`), which bounds the true distance far more tightly (largest estimate / true distance
+/// stretch (`formula::de_juliabulb`), which bounds the true distance far more tightly (largest estimate / true distance
 /// 0.63, against 2.8 with the plain derivative) but varies faster: the ratio at 1 % separations is 3.7, against 2.3
 /// before. What a march needs is the estimate below the true distance, so its step factor is set from that study
 /// (`fractal-runtime/src/truth/estimate.rs`, which asserts it).

@@ -4,12 +4,12 @@
 //! surface is well away it says outside.
 
 use fractal_dsl::builder::*;
-use fractal_dsl::fractals::families::FRACTALS;
+use fractal_dsl::formula::leaf::{LeafArg, LeafOut};
+use fractal_dsl::formula::Leaf;
 use fractal_dsl::ir::fractal::CallArg;
 use fractal_dsl::ir::Fractal;
-use fractal_dsl::leaf::{LeafArg, LeafOut};
-use fractal_dsl::math::v3;
-use fractal_dsl::sdf::Leaf;
+use fractal_dsl::number::math::v3;
+use fractal_dsl::vocab::fractals::families::FRACTALS;
 
 mod common;
 use common::Rng;

@@ -271,10 +271,10 @@ fn example(arg: &ArgDecl, index: usize) -> ArgValue {
     }
 }
 
-/// Operators are read from their declarations (`fractal_dsl::ops`) too, each over the shapes it takes.
+/// Operators are read from their declarations (`fractal_dsl::vocab::ops`) too, each over the shapes it takes.
 #[test]
 fn every_declared_operator_reads_back_from_its_printed_source() {
-    for decl in fractal_dsl::ops::decl::OPS {
+    for decl in fractal_dsl::vocab::ops::decl::OPS {
         let shapes = match decl.operands {
             Operands::Many => vec![sphere(1.0), box3(vec3(1.0, 1.0, 1.0)), torus(1.0, 0.2)],
             Operands::Two => vec![box3(vec3(1.0, 1.0, 1.0)), sphere(1.2)],
@@ -289,10 +289,10 @@ fn every_declared_operator_reads_back_from_its_printed_source() {
     }
 }
 
-/// Primitives are read from their declarations (`fractal_dsl::prims`), so the parser knows each one it is given.
+/// Primitives are read from their declarations (`fractal_dsl::vocab::prims`), so the parser knows each one it is given.
 #[test]
 fn every_declared_primitive_reads_back_from_its_printed_source() {
-    for decl in fractal_dsl::prims::decl::PRIMS {
+    for decl in fractal_dsl::vocab::prims::decl::PRIMS {
         let node = decl.node(decl.args.iter().enumerate().map(|(i, a)| example(a, i)).collect());
         let written = scene(node);
         let src = fractal_dsl::print::to_source(&written);
@@ -301,11 +301,11 @@ fn every_declared_primitive_reads_back_from_its_printed_source() {
     }
 }
 
-/// Fractal families are read from their declarations (`fractal_dsl::fractals`) too.
+/// Fractal families are read from their declarations (`fractal_dsl::vocab::fractals`) too.
 #[test]
 fn every_declared_fractal_family_reads_back_from_its_printed_source() {
     use fractal_dsl::ir::fractal::{FractalArgShape, FractalArgValue, FractalRule};
-    for decl in fractal_dsl::fractals::families::FRACTALS {
+    for decl in fractal_dsl::vocab::fractals::families::FRACTALS {
         let value = match decl.arg.rule {
             FractalRule::Between(lo, hi) | FractalRule::AbsBetween(lo, hi) => 0.5 * (lo + hi),
             FractalRule::Finite | FractalRule::Count => 0.25,
@@ -332,7 +332,8 @@ fn the_cases_use_every_word_of_the_vocabulary() {
     assert!(words.len() > 70, "vocabulary unexpectedly small: {}", words.len());
     for sig in &words {
         let head = sig.split(['(', ' ']).next().unwrap_or_default();
-        if fractal_dsl::prims::decl::by_name(head).is_some() || fractal_dsl::fractals::families::by_name(head).is_some()
+        if fractal_dsl::vocab::prims::decl::by_name(head).is_some()
+            || fractal_dsl::vocab::fractals::families::by_name(head).is_some()
         {
             continue; // covered for every declaration by the tests above
         }

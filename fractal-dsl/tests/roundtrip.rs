@@ -6,11 +6,11 @@ use fractal_dsl::builder::*;
 use fractal_dsl::ir::arg::{ArgDecl, ArgShape, Rule};
 use fractal_dsl::ir::op::Operands;
 use fractal_dsl::ir::*;
-use fractal_dsl::ops::decl::OPS;
 use fractal_dsl::parse::parse_str;
-use fractal_dsl::prims::decl::PRIMS;
 use fractal_dsl::print::to_source;
 use fractal_dsl::validate::validate;
+use fractal_dsl::vocab::ops::decl::OPS;
+use fractal_dsl::vocab::prims::decl::PRIMS;
 use glam::DVec3;
 use proptest::prelude::*;
 
@@ -245,13 +245,13 @@ fn args(decls: &[ArgDecl]) -> Vec<BoxedStrategy<ArgValue>> {
     decls.iter().map(arg_value).collect()
 }
 
-/// Every declared primitive (`fractal_dsl::prims`): a new one is drawn here without being listed.
+/// Every declared primitive (`fractal_dsl::vocab::prims`): a new one is drawn here without being listed.
 fn primitive() -> impl Strategy<Value = Node> {
     let kinds: Vec<PrimKind> = PRIMS.iter().copied().map(PrimKind).collect();
     prop::sample::select(kinds).prop_flat_map(|k| args(k.0.args).prop_map(move |a| k.0.node(a)))
 }
 
-/// Every declared operator (`fractal_dsl::ops`) over shapes drawn from `inner`.
+/// Every declared operator (`fractal_dsl::vocab::ops`) over shapes drawn from `inner`.
 fn operator(inner: BoxedStrategy<Node>) -> impl Strategy<Value = Node> {
     let kinds: Vec<OpKind> = OPS.iter().copied().map(OpKind).collect();
     prop::sample::select(kinds).prop_flat_map(move |OpKind(d)| {

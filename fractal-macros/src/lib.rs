@@ -112,8 +112,8 @@ fn expand(scene: &fractal_dsl::Scene, span: Span) -> TokenStream2 {
     let ir = fractal_dsl::back::rust::ir_tokens::scene(scene, &krate);
     let (defaults_f32, defaults_f64) = fractal_dsl::back::rust::ir_tokens::default_params(scene);
     let (source, opencl, wgsl) = (kernels.source, kernels.opencl, kernels.wgsl);
-    let lanes = quote! { #krate::lanes::F32x8 };
-    let point = quote! { #krate::math::V3<#lanes> };
+    let lanes = quote! { #krate::number::lanes::F32x8 };
+    let point = quote! { #krate::number::math::V3<#lanes> };
     let env = quote! { &#krate::eval::Env<#lanes> };
     let sample_x8 = quote! { #krate::eval::Sample<#lanes> };
     quote! {{
@@ -128,7 +128,7 @@ fn expand(scene: &fractal_dsl::Scene, span: Span) -> TokenStream2 {
                 unsafe fn wide(p: #point, env: #env) -> #lanes {
                     #distance::<#lanes>(p, env)
                 }
-                if #krate::lanes::has_avx2() {
+                if #krate::number::lanes::has_avx2() {
                     // SAFETY: the CPU has AVX2, checked just above.
                     return unsafe { wide(p, env) };
                 }
@@ -144,7 +144,7 @@ fn expand(scene: &fractal_dsl::Scene, span: Span) -> TokenStream2 {
                     #krate::eval::packet::each_packet(
                         #[inline(always)] |p| #distance::<#lanes>(p, env), x, y, z, out)
                 }
-                if #krate::lanes::has_avx2() {
+                if #krate::number::lanes::has_avx2() {
                     // SAFETY: the CPU has AVX2, checked just above.
                     return unsafe { wide(x, y, z, out, env) };
                 }
@@ -159,7 +159,7 @@ fn expand(scene: &fractal_dsl::Scene, span: Span) -> TokenStream2 {
                 unsafe fn wide(p: #point, env: #env) -> #sample_x8 {
                     #sample::<#lanes>(p, env)
                 }
-                if #krate::lanes::has_avx2() {
+                if #krate::number::lanes::has_avx2() {
                     // SAFETY: the CPU has AVX2, checked just above.
                     return unsafe { wide(p, env) };
                 }

@@ -4,7 +4,7 @@
 //! Lights are expressions of `t` and `param(..)`; they are evaluated here (in f64, then rounded to f32), so a kernel
 //! only reads numbers and a moving light never recompiles anything.
 //!
-//! A scene with perturbed Mandelbrot patterns ([`fractal_dsl::mandelbrot`]) also gets the reference orbit of the
+//! A scene with perturbed Mandelbrot patterns ([`fractal_dsl::formula::mandelbrot`]) also gets the reference orbit of the
 //! camera position's pattern coordinates, computed here in f64 from the f64 pose: that is what lets a zoom go past
 //! what the kernels' f32 can resolve.
 
@@ -241,7 +241,7 @@ impl Frame {
         if let Some(spec) = reference {
             let position = pose.position.to_array();
             let [a, b] = spec.axes.map(|axis| position[axis as usize % 3]);
-            let orbit = fractal_dsl::mandelbrot::reference_orbit(a, b, spec.iterations);
+            let orbit = fractal_dsl::formula::mandelbrot::reference_orbit(a, b, spec.iterations);
             slots[layout.reference_slot()] = [(orbit.len() - 1) as f32, 0.0, 0.0, 0.0];
             for (k, pair) in orbit.chunks(2).enumerate() {
                 let second = pair.get(1).copied().unwrap_or([0.0, 0.0]);

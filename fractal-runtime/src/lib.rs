@@ -21,7 +21,7 @@
 //! ```
 //! use fractal_dsl::builder::{scene, sphere};
 //! use fractal_dsl::eval::{Env, Evaluator, Sample};
-//! use fractal_dsl::math::{length, v3, V3};
+//! use fractal_dsl::number::math::{length, v3, V3};
 //! use fractal_runtime::{CpuRenderer, Frame, KernelSources, ParamValues, Pose, RenderJob, Renderer};
 //!
 //! /// A unit sphere, evaluated by hand (the `scene!` macro generates evaluators like this one).

@@ -7,7 +7,7 @@
 use std::fmt;
 
 use fractal_dsl::eval::{Env, Evaluator, Sample};
-use fractal_dsl::math::{Real, V3};
+use fractal_dsl::number::math::{Real, V3};
 use fractal_dsl::{Fractal, HitEpsilon, Node, Op, Scene};
 
 /// One point of a sweep; `None` keeps the scene's own value.

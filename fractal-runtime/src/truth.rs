@@ -43,7 +43,7 @@ mod ray;
 
 use fractal_dsl::eval::interp::Interpreter;
 use fractal_dsl::eval::Env;
-use fractal_dsl::math::{v3, V3};
+use fractal_dsl::number::math::{v3, V3};
 use fractal_dsl::Scene;
 use rayon::prelude::*;
 use std::sync::OnceLock;
@@ -266,8 +266,8 @@ impl Truth {
         NEIGHBOURS[4..].iter().all(|&(i, j)| {
             self.neighbour(px + i * d, py + j * d, t).is_some_and(|q| {
                 let off = q - centre;
-                fractal_dsl::math::dot(off, n).abs()
-                    <= ROUGH_DEGREES.to_radians().sin() * fractal_dsl::math::length(off)
+                fractal_dsl::number::math::dot(off, n).abs()
+                    <= ROUGH_DEGREES.to_radians().sin() * fractal_dsl::number::math::length(off)
             })
         })
     }
@@ -292,7 +292,7 @@ impl Truth {
     /// the value there is an exact distance (see [`Truth::exact_gradient`]).
     fn exact_normal(&self, p: V3<f64>, rd: V3<f64>, t: f64) -> Option<[f64; 3]> {
         let n = self.exact_gradient(p, t)?;
-        let n = if fractal_dsl::math::dot(n, rd) > 0.0 { -n } else { n };
+        let n = if fractal_dsl::number::math::dot(n, rd) > 0.0 { -n } else { n };
         Some([n.x, n.y, n.z])
     }
 
@@ -315,7 +315,7 @@ impl Truth {
             *slope = 0.5 * (ahead + behind);
         }
         let n = v3(g[0], g[1], g[2]);
-        let len = fractal_dsl::math::length(n);
+        let len = fractal_dsl::number::math::length(n);
         let exact = ((1.0 - 1e-3)..=(1.0 + 1e-3)).contains(&len) || (self.valued && len > 0.0);
         exact.then(|| n / len)
     }
@@ -330,7 +330,7 @@ impl Truth {
         let n = v3(n[0], n[1], n[2]);
         let r = NORMAL_OFFSET * self.footprint_at(t);
         let cos_rough = ROUGH_DEGREES.to_radians().cos();
-        let same = |g: Option<V3<f64>>| g.is_some_and(|g| fractal_dsl::math::dot(g, n).abs() >= cos_rough);
+        let same = |g: Option<V3<f64>>| g.is_some_and(|g| fractal_dsl::number::math::dot(g, n).abs() >= cos_rough);
         let d = NORMAL_OFFSET;
         (0..6).all(|k| same(self.exact_gradient(p + axis_step(k / 2, if k % 2 == 0 { r } else { -r }), t)))
             && NEIGHBOURS.iter().all(|&(i, j)| {
@@ -346,12 +346,13 @@ impl Truth {
         let centre = ro + rd * t;
         let d = offset;
         let bent = |a: V3<f64>, b: V3<f64>| {
-            let cos = fractal_dsl::math::dot(a, b) / (fractal_dsl::math::length(a) * fractal_dsl::math::length(b));
+            let cos = fractal_dsl::number::math::dot(a, b)
+                / (fractal_dsl::number::math::length(a) * fractal_dsl::number::math::length(b));
             // A NaN (a zero-length difference) counts as bent.
             cos.is_nan() || cos < ROUGH_DEGREES.to_radians().cos()
         };
         let across = |minus: Option<V3<f64>>, plus: Option<V3<f64>>| -> Option<(V3<f64>, bool)> {
-            let gap = |q: V3<f64>| fractal_dsl::math::length(q - centre);
+            let gap = |q: V3<f64>| fractal_dsl::number::math::length(q - centre);
             match (minus, plus) {
                 // Central where both sides continue the surface about equally, else the nearer side.
                 (Some(m), Some(p)) if gap(m) < 2.0 * gap(p) && gap(p) < 2.0 * gap(m) => {
@@ -368,13 +369,13 @@ impl Truth {
         };
         let (dx, crease_x) = across(self.neighbour(px - d, py, t), self.neighbour(px + d, py, t))?;
         let (dy, crease_y) = across(self.neighbour(px, py - d, t), self.neighbour(px, py + d, t))?;
-        let n = fractal_dsl::math::cross(dx, dy);
-        let len = fractal_dsl::math::length(n);
+        let n = fractal_dsl::number::math::cross(dx, dy);
+        let len = fractal_dsl::number::math::length(n);
         if len.is_nan() || len <= 0.0 {
             return None;
         }
         let n = n / len;
-        let n = if fractal_dsl::math::dot(n, rd) > 0.0 { -n } else { n };
+        let n = if fractal_dsl::number::math::dot(n, rd) > 0.0 { -n } else { n };
         Some(([n.x, n.y, n.z], crease_x || crease_y))
     }
 }
@@ -419,8 +420,8 @@ mod tests {
                 let (ro, rd) = truth.view.ray(x as f64 + 0.5, y as f64 + 0.5);
                 // |ro + t·rd − c|² = 1 with |rd| = 1: t² + 2bt + (|oc|² − 1) = 0.
                 let oc = ro - centre;
-                let b = fractal_dsl::math::dot(oc, rd);
-                let disc = b * b - (fractal_dsl::math::dot(oc, oc) - 1.0);
+                let b = fractal_dsl::number::math::dot(oc, rd);
+                let disc = b * b - (fractal_dsl::number::math::dot(oc, oc) - 1.0);
                 let pixel = truth.at(x, y);
                 if disc.abs() < 1e-3 {
                     continue; // grazing: either answer is right to within the march step
@@ -431,13 +432,13 @@ mod tests {
                     let t = -b - disc.sqrt();
                     assert!((pixel.t - t).abs() < 1e-9, "pixel ({x}, {y}): {} against {t}", pixel.t);
                     let p = ro + rd * t;
-                    let n = (p - centre) / fractal_dsl::math::length(p - centre);
+                    let n = (p - centre) / fractal_dsl::number::math::length(p - centre);
                     // The exact distance's own gradient, at the silhouette too.
                     let got = pixel.normal.expect("a normal");
                     let cos = n.x * got[0] + n.y * got[1] + n.z * got[2];
                     assert!(cos > 1.0 - 1e-9, "pixel ({x}, {y}): normal {got:?} against {n:?}");
                     // Only near the silhouette does the normal turn by more than the rough angle within a pixel.
-                    let facing = -fractal_dsl::math::dot(n, rd);
+                    let facing = -fractal_dsl::number::math::dot(n, rd);
                     assert!(!pixel.rough || facing < 0.5, "pixel ({x}, {y}) of a sphere is rough, facing {facing}");
                     rough += pixel.rough as usize;
                 }
@@ -461,8 +462,8 @@ mod tests {
                 let (Some(own), false) = (pixel.normal, pixel.rough) else { continue };
                 let (ro, rd) = truth.view.ray(x as f64 + 0.75, y as f64 + 0.5);
                 let oc = ro - centre;
-                let b = fractal_dsl::math::dot(oc, rd);
-                let disc = b * b - (fractal_dsl::math::dot(oc, oc) - 1.0);
+                let b = fractal_dsl::number::math::dot(oc, rd);
+                let disc = b * b - (fractal_dsl::number::math::dot(oc, oc) - 1.0);
                 if disc <= 0.0 {
                     continue;
                 }

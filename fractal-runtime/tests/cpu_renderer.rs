@@ -6,7 +6,7 @@ mod common;
 use common::frame_for;
 use fractal_dsl::builder::{plane, scene, sphere, union, ShapeExt};
 use fractal_dsl::eval::{Env, Evaluator, Sample};
-use fractal_dsl::math::{length, v3, Real, V3};
+use fractal_dsl::number::math::{length, v3, Real, V3};
 use fractal_dsl::Scene;
 use fractal_runtime::{
     render_scene, Backend, CpuRenderer, Frame, KernelSources, ParamValues, RenderError, RenderJob, Renderer,

@@ -15,8 +15,8 @@ use common::{run_validator, tool_available};
 
 use fractal_dsl::builder::{scene, sphere};
 use fractal_dsl::eval::{Env, Sample};
-use fractal_dsl::lanes::F32x8;
-use fractal_dsl::math::{v3, Num, V3};
+use fractal_dsl::number::lanes::F32x8;
+use fractal_dsl::number::math::{v3, Num, V3};
 use fractal_dsl::{compile, CompiledScene, DefaultParams, Kernels, NativeFns, Scene};
 use fractal_runtime::export::{export, export_compiled, export_scene, ExportError, Exported, Target, ENTRY_POINT};
 

@@ -10,7 +10,7 @@ use fractal_dsl::back::{opencl, wgsl, Entry};
 use fractal_dsl::builder::*;
 use fractal_dsl::eval::interp::Interpreter;
 use fractal_dsl::eval::{Env, Evaluator};
-use fractal_dsl::math::v3;
+use fractal_dsl::number::math::v3;
 use fractal_dsl::Scene;
 use fractal_runtime::{CpuRenderer, Frame, Image, KernelSources, ParamValues, RenderJob, Renderer, WgpuRenderer};
 

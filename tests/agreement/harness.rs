@@ -9,7 +9,7 @@ use std::fmt::Write as _;
 
 use fractal::dsl::eval::interp::Interpreter;
 use fractal::dsl::eval::{Env, Evaluator, Sample};
-use fractal::dsl::math::{v3, Real, V3};
+use fractal::dsl::number::math::{v3, Real, V3};
 use fractal::dsl::{CompiledScene, Scene};
 
 use crate::tolerance::{distance_tolerance, material_tolerance, Class, Tol, MATERIAL_NEIGHBOUR_STEP, UNIT_ROUNDOFF};

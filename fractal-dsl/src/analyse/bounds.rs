@@ -14,13 +14,13 @@ use super::interval::{arg_range, Interval};
 pub use crate::geom::{Aabb, Bound};
 use crate::ir::{Fractal, Node, Prim};
 
-/// Signed distance from `p` to the box, by the same formula as [`crate::sdf::sd_box`] (so a guard computed here and one
+/// Signed distance from `p` to the box, by the same formula as [`crate::formula::sd_box`] (so a guard computed here and one
 /// computed in a kernel agree).
 pub fn sd_aabb(p: [f64; 3], b: &Aabb) -> f64 {
     let c = b.center();
     let h = b.half_extents();
-    let local = crate::math::v3(p[0] - c[0], p[1] - c[1], p[2] - c[2]);
-    crate::sdf::sd_box(local, crate::math::v3(h[0], h[1], h[2]))
+    let local = crate::number::math::v3(p[0] - c[0], p[1] - c[1], p[2] - c[2]);
+    crate::formula::sd_box(local, crate::number::math::v3(h[0], h[1], h[2]))
 }
 
 /// The bound of `node`, or `None` when it is unbounded.

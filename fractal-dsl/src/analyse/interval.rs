@@ -42,7 +42,9 @@ pub fn range(e: &Expr) -> Interval {
                 Func::Clamp => arg(0).clamp(arg(1), arg(2)),
                 Func::Mix => arg(0).mix(arg(1), arg(2)),
                 Func::Noise2 | Func::Noise3 => Interval::new(-1.0, 1.0),
-                Func::Fbm2 | Func::Fbm3 => Interval::new(-crate::noise::FBM_RANGE, crate::noise::FBM_RANGE),
+                Func::Fbm2 | Func::Fbm3 => {
+                    Interval::new(-crate::formula::noise::FBM_RANGE, crate::formula::noise::FBM_RANGE)
+                }
                 Func::Mandelbrot => Interval::new(0.0, 1.0),
             }
         }

@@ -1,4 +1,4 @@
-//! Which Mandelbrot patterns a frame's perturbation reference serves ([`crate::mandelbrot`]): the calls
+//! Which Mandelbrot patterns a frame's perturbation reference serves ([`crate::formula::mandelbrot`]): the calls
 //! `mandelbrot(a, b, n)` whose first two arguments are coordinates of the point, on a shape whose material reads
 //! world coordinates (nothing above it moves the point). The frame computes one reference orbit at the camera's
 //! position for those axes, long enough for the largest count; every such call with the same axes is computed by

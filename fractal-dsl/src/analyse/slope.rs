@@ -7,8 +7,8 @@
 //! exponent): validation refuses such a displacement with that reason.
 
 use super::interval::range;
+use crate::formula::noise::{NOISE2_SLOPE, NOISE3_SLOPE};
 use crate::ir::{BinOp, Expr, Func};
-use crate::noise::{NOISE2_SLOPE, NOISE3_SLOPE};
 
 /// An upper bound of |∇ₚ e| (0 for an expression that does not read the point).
 pub fn slope(e: &Expr) -> f64 {

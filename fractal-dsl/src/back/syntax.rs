@@ -6,11 +6,11 @@ use std::collections::{HashMap, HashSet};
 use std::fmt::Write;
 
 use super::Level;
+use crate::formula::Leaf;
 use crate::ir::BinOp;
 use crate::lower::code::SAMPLE_FIELDS;
 use crate::lower::code::{is_inline, operands, Body, CmpOp, FrameField, LogicOp, MathFn, Op, SceneFn, Stmt, Ty, Val};
 use crate::lower::SampleVals;
-use crate::sdf::Leaf;
 
 /// How one language spells values and statements. Operations every language spells alike (arithmetic, negation,
 /// comparisons) are spelled by the walker.

@@ -6,10 +6,10 @@
 use crate::eval::plan::Plan;
 use crate::eval::walk::Walk;
 use crate::eval::{Env, Evaluator, PacketEvaluator, Sample};
+use crate::formula::CallLeaf;
 use crate::ir::*;
-use crate::lanes::F32x8;
-use crate::math::{Real, V3};
-use crate::sdf::CallLeaf;
+use crate::number::lanes::F32x8;
+use crate::number::math::{Real, V3};
 
 /// Evaluates a scene by walking its plan; see [`crate::eval`] for the rules.
 #[derive(Clone, Debug)]

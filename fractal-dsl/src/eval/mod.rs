@@ -8,7 +8,7 @@
 //!   a child containing a fractal with a finite bound is skipped while the point is at least as far from its bound as
 //!   the nearest distance so far (its distance cannot be nearer);
 //! - intersect: the farthest child's material; subtract and smooth subtract: the left operand's material;
-//! - smooth union / intersect: materials mixed by [`crate::sdf::blend_weight`];
+//! - smooth union / intersect: materials mixed by [`crate::formula::blend_weight`];
 //! - fractal leaves: estimate × [`crate::Fractal::step_factor_or_default`]; an orbit-trap material mixes its two
 //!   colours by the trap; other leaves under an orbit-trap material take its first colour;
 //! - the innermost `.material(..)` wins; geometry under none gets [`crate::Material::default_surface`].
@@ -18,7 +18,7 @@ pub mod packet;
 pub mod plan;
 pub mod walk;
 
-use crate::math::{Num, Real, V3};
+use crate::number::math::{Num, Real, V3};
 
 /// What an expression may read besides literals: the time, the parameter values (in [`crate::Scene::params`]
 /// order), and — where a frame provides one — the perturbation reference of deep Mandelbrot patterns.
@@ -27,7 +27,7 @@ pub struct Env<'a, F> {
     pub time: F,
     pub params: &'a [F],
     /// The frame's perturbation reference at the point being sampled; `None` evaluates those patterns around the
-    /// reference point 0, which is the plain iteration ([`crate::mandelbrot`]).
+    /// reference point 0, which is the plain iteration ([`crate::formula::mandelbrot`]).
     pub reference: Option<Reference<'a, F>>,
 }
 
@@ -39,8 +39,8 @@ pub struct Reference<'a, F> {
     /// The point minus R: along a camera ray, the ray direction times t, exact to the precision of t however far
     /// the camera has zoomed in.
     pub offset: V3<F>,
-    /// The orbit of the reference point's pattern coordinates ([`crate::mandelbrot::reference_orbit`]).
-    pub orbit: crate::num::Orbit<'a>,
+    /// The orbit of the reference point's pattern coordinates ([`crate::formula::mandelbrot::reference_orbit`]).
+    pub orbit: crate::number::Orbit<'a>,
 }
 
 impl<'a, F: Num> Env<'a, F> {
@@ -60,8 +60,8 @@ impl<'a, F: Num> Env<'a, F> {
     }
     /// The perturbation reference orbit, or the orbit of 0.
     #[inline]
-    pub fn reference_orbit(&self) -> crate::num::Orbit<'a> {
-        self.reference.map_or(crate::num::ORBIT_AT_ZERO, |r| r.orbit)
+    pub fn reference_orbit(&self) -> crate::number::Orbit<'a> {
+        self.reference.map_or(crate::number::ORBIT_AT_ZERO, |r| r.orbit)
     }
 }
 
@@ -88,10 +88,18 @@ pub trait Evaluator<F: Real>: Sync {
     }
 }
 
-/// An evaluator of eight f32 points at a time ([`crate::lanes::F32x8`]), lane for lane the arithmetic of its f32
+/// An evaluator of eight f32 points at a time ([`crate::number::lanes::F32x8`]), lane for lane the arithmetic of its f32
 /// [`Evaluator`].
 pub trait PacketEvaluator: Sync {
-    fn distance_x8(&self, p: V3<crate::lanes::F32x8>, env: &Env<crate::lanes::F32x8>) -> crate::lanes::F32x8;
+    fn distance_x8(
+        &self,
+        p: V3<crate::number::lanes::F32x8>,
+        env: &Env<crate::number::lanes::F32x8>,
+    ) -> crate::number::lanes::F32x8;
     /// Distances and materials at eight points.
-    fn sample_x8(&self, p: V3<crate::lanes::F32x8>, env: &Env<crate::lanes::F32x8>) -> Sample<crate::lanes::F32x8>;
+    fn sample_x8(
+        &self,
+        p: V3<crate::number::lanes::F32x8>,
+        env: &Env<crate::number::lanes::F32x8>,
+    ) -> Sample<crate::number::lanes::F32x8>;
 }

@@ -4,8 +4,8 @@
 //! padding's results are dropped).
 
 use crate::eval::{Env, Sample};
-use crate::lanes::{F32x8, LANES};
-use crate::math::V3;
+use crate::number::lanes::{F32x8, LANES};
+use crate::number::math::V3;
 
 /// Panics unless the four slices have one length; returns it.
 pub fn common_length(x: &[f32], y: &[f32], z: &[f32], out: usize) -> usize {

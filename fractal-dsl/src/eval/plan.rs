@@ -1,16 +1,16 @@
 //! The plan: a scene folded and prepared for evaluation, with everything that does not depend on the point settled
 //! ahead — union order and guard boxes, parameter slots, which leaf function each primitive and fractal calls,
-//! rotation constants. The walker ([`super::walk`]) runs a plan in any [`crate::num::Num`]: the interpreter runs it
+//! rotation constants. The walker ([`super::walk`]) runs a plan in any [`crate::number::Num`]: the interpreter runs it
 //! in f32 and f64, the lowering traces it into kernel code.
 
 use crate::analyse::{fold, guarded_bound, union_order};
 use crate::eval::Env;
+use crate::formula::leaf::LeafArg;
+use crate::formula::{CallLeaf, Leaf};
 use crate::ir::fractal::CallArg;
 use crate::ir::op::Meaning;
 use crate::ir::*;
-use crate::leaf::LeafArg;
-use crate::math::{v3, V3};
-use crate::sdf::{CallLeaf, Leaf};
+use crate::number::math::{v3, V3};
 
 /// A compiled scalar expression.
 #[derive(Clone, Debug)]
@@ -95,7 +95,7 @@ impl Term {
                     LeafArg::F(offset[axes[0] as usize % 3]),
                     LeafArg::F(offset[axes[1] as usize % 3]),
                     LeafArg::Count(F::count(*iterations)),
-                    LeafArg::F(F::lit(crate::mandelbrot::inverse_count(*iterations))),
+                    LeafArg::F(F::lit(crate::formula::mandelbrot::inverse_count(*iterations))),
                     LeafArg::Orbit(env.reference_orbit()),
                 ];
                 F::leaf(Leaf::MandelbrotPerturbed, &args).distance()

@@ -5,10 +5,10 @@
 
 use crate::eval::plan::{Guard, LeafCall, Mat, OpStep, Paint, Plan, Step, Term};
 use crate::eval::{Env, Sample};
+use crate::formula::leaf::{LeafArg, LeafOut};
+use crate::formula::{CallLeaf, Leaf, TINY};
 use crate::ir::op::Meaning;
-use crate::leaf::{LeafArg, LeafOut};
-use crate::math::*;
-use crate::sdf::{CallLeaf, Leaf, TINY};
+use crate::number::math::*;
 
 /// Most arguments a leaf function takes, the point included.
 const MAX_LEAF_ARGS: usize = 8;

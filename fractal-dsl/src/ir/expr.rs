@@ -32,7 +32,7 @@ pub enum Func {
     Pow,
     Clamp,
     Mix,
-    /// 2D gradient noise ([`crate::noise`]).
+    /// 2D gradient noise ([`crate::formula::noise`]).
     Noise2,
     Noise3,
     /// Octaves of 2D noise; the last argument is the octave count, a whole-number literal.
@@ -96,8 +96,8 @@ impl Func {
     /// largest count allowed.
     pub fn count_arg(self) -> Option<(&'static str, u32)> {
         match self {
-            Func::Fbm2 | Func::Fbm3 => Some(("octaves", crate::noise::MAX_OCTAVES)),
-            Func::Mandelbrot => Some(("iterations", crate::mandelbrot::MAX_MANDELBROT_ITERATIONS)),
+            Func::Fbm2 | Func::Fbm3 => Some(("octaves", crate::formula::noise::MAX_OCTAVES)),
+            Func::Mandelbrot => Some(("iterations", crate::formula::mandelbrot::MAX_MANDELBROT_ITERATIONS)),
             _ => None,
         }
     }
@@ -203,8 +203,8 @@ impl Expr {
 }
 
 impl BinOp {
-    /// Applies the operator in any [`crate::num::Num`] (f64 for folding).
-    pub fn apply<F: crate::num::Num>(self, a: F, b: F) -> F {
+    /// Applies the operator in any [`crate::number::Num`] (f64 for folding).
+    pub fn apply<F: crate::number::Num>(self, a: F, b: F) -> F {
         match self {
             BinOp::Add => a + b,
             BinOp::Sub => a - b,
@@ -226,10 +226,10 @@ impl Func {
     /// Applies the function: the semantics every backend must reproduce, in f64 for folding and host-side values and
     /// in f32 or f64 for the interpreter. Noise and the Mandelbrot pattern run through the leaf table (one function
     /// per kernel); `count` is the literal count of those that take one (see [`Func::count`]), unused otherwise.
-    pub fn apply<F: crate::sdf::CallLeaf>(self, v: &[F], count: u32) -> F {
-        use crate::leaf::LeafArg;
-        use crate::num::*;
-        use crate::sdf::Leaf;
+    pub fn apply<F: crate::formula::CallLeaf>(self, v: &[F], count: u32) -> F {
+        use crate::formula::leaf::LeafArg;
+        use crate::formula::Leaf;
+        use crate::number::*;
         // Made only for the functions that take a count, so the others trace no extra constant.
         let counted = || LeafArg::Count(F::count(count));
         match self {
@@ -243,11 +243,13 @@ impl Func {
             Func::Clamp => clamp(v[0], v[1], v[2]),
             Func::Mix => mix(v[0], v[1], v[2]),
             Func::Noise2 => F::leaf(Leaf::Noise2, &[LeafArg::F(v[0]), LeafArg::F(v[1])]).distance(),
-            Func::Noise3 => F::leaf(Leaf::Noise3, &[LeafArg::V3(crate::math::v3(v[0], v[1], v[2]))]).distance(),
+            Func::Noise3 => F::leaf(Leaf::Noise3, &[LeafArg::V3(crate::number::math::v3(v[0], v[1], v[2]))]).distance(),
             Func::Fbm2 => F::leaf(Leaf::Fbm2, &[LeafArg::F(v[0]), LeafArg::F(v[1]), counted()]).distance(),
-            Func::Fbm3 => F::leaf(Leaf::Fbm3, &[LeafArg::V3(crate::math::v3(v[0], v[1], v[2])), counted()]).distance(),
+            Func::Fbm3 => {
+                F::leaf(Leaf::Fbm3, &[LeafArg::V3(crate::number::math::v3(v[0], v[1], v[2])), counted()]).distance()
+            }
             Func::Mandelbrot => {
-                let inverse = LeafArg::F(F::lit(crate::mandelbrot::inverse_count(count)));
+                let inverse = LeafArg::F(F::lit(crate::formula::mandelbrot::inverse_count(count)));
                 F::leaf(Leaf::Mandelbrot, &[LeafArg::F(v[0]), LeafArg::F(v[1]), counted(), inverse]).distance()
             }
         }

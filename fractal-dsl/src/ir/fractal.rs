@@ -1,10 +1,10 @@
 //! Fractals in the IR: a [`Fractal`] is a [`FractalDecl`] (the family: name, constructor argument, iteration rule,
 //! which settings apply, the leaf call, step factor and bound) with its values. Families are declared once
-//! (`crate::fractals`); every reader works from the declaration.
+//! (`crate::vocab::fractals`); every reader works from the declaration.
 
 use super::prim::PrimBound;
 use super::{Expr, Vec3Expr, Vec4Expr};
-use crate::sdf::Leaf;
+use crate::formula::Leaf;
 
 /// The constructor argument of a family: `mandelbulb(power)`, `juliabulb(c)`, `julia(c)`, `menger(levels)`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -93,7 +93,7 @@ pub struct FractalDecl {
     pub settings: &'static [(Setting, f64)],
     /// The leaf function and its arguments after the point.
     pub call: fn(&Fractal) -> (Leaf, Vec<CallArg>),
-    /// Factor on the estimate so a step never overshoots the surface (measured; see `crate::fractals`).
+    /// Factor on the estimate so a step never overshoots the surface (measured; see `crate::vocab::fractals`).
     pub step_factor: fn(&Fractal) -> f64,
     /// A conservative bound; `None` when no bound is known for the values' ranges.
     pub bound: fn(&Fractal) -> Option<PrimBound>,
@@ -105,7 +105,7 @@ pub struct FractalDecl {
 #[derive(Clone, Copy, Debug)]
 pub struct Membership {
     /// For each leaf [`FractalDecl::call`] can give, the leaf that is −1 inside the set and positive outside, called
-    /// with the same arguments ([`crate::sdf`], `in_*`).
+    /// with the same arguments ([`crate::formula`], `in_*`).
     pub leaves: &'static [(Leaf, Leaf)],
     /// Whether the estimate approximates the limit of the iteration — escape-time sets, where more iterations shrink
     /// the set towards the limit — rather than the set at the drawn count (IFS levels, where the count is the shape).
@@ -239,7 +239,7 @@ impl Fractal {
         self.setting_or_default(Setting::FoldLimit)
     }
     /// Factor applied to the estimate so a step never overshoots the surface: the scene's choice, else the family's
-    /// measured one for this fractal's arguments (see `crate::fractals`).
+    /// measured one for this fractal's arguments (see `crate::vocab::fractals`).
     pub fn step_factor_or_default(&self) -> f64 {
         self.step_factor.unwrap_or_else(|| (self.kind.0.step_factor)(self))
     }

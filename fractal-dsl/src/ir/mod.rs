@@ -65,7 +65,7 @@ pub use prim::{Prim, PrimDecl, PrimKind};
 pub enum Node {
     Prim(Prim),
     Fractal(Box<Fractal>),
-    /// CSG, transforms and domain operations ([`crate::ops`]).
+    /// CSG, transforms and domain operations ([`crate::vocab::ops`]).
     Op(Op),
     Material(Box<Node>, Box<Material>),
 }
@@ -300,8 +300,11 @@ impl Node {
         match self {
             Node::Op(op) => into.append(&mut op.shapes),
             Node::Material(inner, _) if !inner.children().is_empty() => {
-                let leaf =
-                    Node::Op(Op { kind: OpKind(&crate::ops::decl::UNION), shapes: Vec::new(), args: Vec::new() });
+                let leaf = Node::Op(Op {
+                    kind: OpKind(&crate::vocab::ops::decl::UNION),
+                    shapes: Vec::new(),
+                    args: Vec::new(),
+                });
                 into.push(std::mem::replace(inner, leaf));
             }
             _ => {}

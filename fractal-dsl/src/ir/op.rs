@@ -1,7 +1,7 @@
 //! Operators in the IR: CSG, transforms and domain operations. An [`Op`] is an [`OpDecl`] (what the operator is:
 //! name, how it takes its shapes, typed arguments with their rules, identity, bound, meaning) with its shapes and
 //! argument values. Parser, printer, validation, folding, bounds, the plan and the kernels all read the declaration
-//! (`crate::ops`), so an operator is declared once.
+//! (`crate::vocab::ops`), so an operator is declared once.
 
 use super::arg::{normalise_directions, ArgDecl, ArgRange, ArgValue};
 use super::Node;

@@ -1,11 +1,11 @@
 //! Primitives in the IR: a [`Prim`] is a [`PrimDecl`] (what the primitive is: name, typed arguments with their rules,
 //! leaf function, bound) and the argument values. Every reader — parser, printer, validation, folding, bounds, the
-//! evaluators and the kernels — works from the declaration, so a primitive is declared once (`crate::prims`) and
+//! evaluators and the kernels — works from the declaration, so a primitive is declared once (`crate::vocab::prims`) and
 //! means the same everywhere.
 
 use super::arg::{normalise_directions, ArgDecl, ArgRange, ArgValue};
+use crate::formula::Leaf;
 use crate::geom::Aabb;
-use crate::sdf::Leaf;
 
 /// A primitive's bound: the box the shape lies in, and how its distance relates to the box outside it.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -4,8 +4,8 @@
 
 use std::collections::HashMap;
 
+use crate::formula::Leaf;
 use crate::ir::BinOp;
-use crate::sdf::Leaf;
 
 /// The type of a value.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -17,7 +17,7 @@ pub enum Ty {
     Bool,
     /// A loop count.
     Int,
-    /// The frame's perturbation reference orbit ([`crate::num::Orbit`]), handed to the leaf function that reads it.
+    /// The frame's perturbation reference orbit ([`crate::number::Orbit`]), handed to the leaf function that reads it.
     Orbit,
     /// The scene's sample: distance and material ([`crate::eval::Sample`]).
     Sample,
@@ -435,8 +435,8 @@ impl Builder {
     }
     pub fn call(&mut self, leaf: Leaf, args: Vec<Val>) -> Val {
         let ty = match leaf.returns() {
-            crate::leaf::RetKind::F => Ty::F,
-            crate::leaf::RetKind::Pair => Ty::Pair,
+            crate::formula::leaf::RetKind::F => Ty::F,
+            crate::formula::leaf::RetKind::Pair => Ty::Pair,
         };
         self.emit(ty, Op::Call(leaf, args))
     }

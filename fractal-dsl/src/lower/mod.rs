@@ -4,7 +4,7 @@
 //! meaning.
 //!
 //! Nothing here restates a formula: the scene functions are the scene walker ([`crate::eval::walk`], the code the
-//! interpreter runs) traced on symbolic values, and each leaf function is its [`crate::sdf`] body traced once
+//! interpreter runs) traced on symbolic values, and each leaf function is its [`crate::formula`] body traced once
 //! ([`mod@trace`]).
 
 pub mod code;
@@ -53,7 +53,7 @@ pub struct Program {
     pub distance_result: Val,
     pub sample: Body,
     pub sample_result: SampleVals,
-    /// The leaf functions the bodies call, traced, in [`crate::sdf::Leaf`] order.
+    /// The leaf functions the bodies call, traced, in [`crate::formula::Leaf`] order.
     pub functions: Vec<Function>,
     /// Uniform parameters, in slot order.
     pub params: Vec<ParamDecl>,
@@ -158,7 +158,7 @@ fn lower_with(scene: &Scene, perturb: bool) -> Program {
 }
 
 /// The scene functions' inputs while tracing: the point `p` and a value per parameter slot.
-fn scene_inputs(params: usize) -> (crate::math::V3<Sym>, Vec<Sym>) {
+fn scene_inputs(params: usize) -> (crate::number::math::V3<Sym>, Vec<Sym>) {
     let p = Sym::components(Sym::arg_of("p", Ty::V3));
     (p, (0..params).map(Sym::param).collect())
 }

@@ -7,8 +7,8 @@ use super::code::{Body, FrameField, SceneFn, Ty, Val};
 use super::trace::{trace, Sym, SymMask};
 use super::Program;
 use crate::eval::Sample;
-use crate::math::{v3, V3};
-use crate::num::{Mask, Num};
+use crate::number::math::{v3, V3};
+use crate::number::{Mask, Num};
 use crate::ray::{march, shade, Light, Rules, SceneFns, View};
 
 /// The scene as the traced program reads it: calls of the kernel's scene functions.

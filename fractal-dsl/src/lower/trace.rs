@@ -10,11 +10,11 @@ use std::cell::RefCell;
 use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
 use super::code::{Body, Builder, CmpOp, FrameField, LogicOp, MathFn, SceneFn, Ty, Val};
+use crate::formula::leaf::{ArgKind, LeafArg, LeafOut, RetKind};
+use crate::formula::{CallLeaf, Leaf};
 use crate::ir::BinOp;
-use crate::leaf::{ArgKind, LeafArg, LeafOut, RetKind};
-use crate::math::{v3, V3};
-use crate::num::{Carry, Mask, Num};
-use crate::sdf::{CallLeaf, Leaf};
+use crate::number::math::{v3, V3};
+use crate::number::{Carry, Mask, Num};
 
 thread_local! {
     /// The builders of the functions being traced on this thread, innermost last.
@@ -253,11 +253,11 @@ impl Num for Sym {
         load_all(vars)
     }
 
-    fn orbit_entry(_orbit: crate::num::Orbit<'_>, index: Self) -> [Self; 2] {
+    fn orbit_entry(_orbit: crate::number::Orbit<'_>, index: Self) -> [Self; 2] {
         let entry = with(|b| b.orbit_entry(index.0));
         [0, 1].map(|i| Sym(with(|b| b.comp(entry, i))))
     }
-    fn orbit_last(_orbit: crate::num::Orbit<'_>) -> Self {
+    fn orbit_last(_orbit: crate::number::Orbit<'_>) -> Self {
         Sym(with(|b| b.orbit_last()))
     }
 

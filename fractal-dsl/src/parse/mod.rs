@@ -7,22 +7,22 @@
 //! - `scan`: a pass over the raw tokens that refuses what the language never uses and bounds nesting, so hostile
 //!   input cannot make syn recurse without limit;
 //! - syn parses the tokens as a `syn::Expr`;
-//! - `lower`: looks every call up in the `vocab` table, checks arity and argument types, builds the value with the
+//! - `build`: looks every call up in the `names` table, checks arity and argument types, builds the value with the
 //!   builder API (one place defines what a word means) and checks it with the rules of [`crate::validate`], so each
 //!   broken rule is reported at the offending argument.
 //!
 //! Smooth CSG takes its blend radius last: `smooth_union(a, b, k)`, `smooth_union(a, b, c, k)`,
 //! `smooth_intersect(a, b, k)`, `smooth_subtract(a, b, k)`. `box` is a Rust keyword, so the box is `box3(half)`.
 
-mod lower;
+mod build;
+mod names;
 mod scan;
-mod vocab;
 
 use std::str::FromStr;
 
 use crate::ir::Scene;
 
-pub use lower::MAX_EVAL_DEPTH;
+pub use build::MAX_EVAL_DEPTH;
 pub use scan::{MAX_NESTING_COST, MAX_PAREN_NESTING, MAX_TOKENS};
 
 /// An error in scene text, located at `line:column` (both 1-based).
@@ -56,7 +56,7 @@ pub fn read_source(path: &std::path::Path) -> std::io::Result<String> {
 
 /// Parses scene text (the contents of a `.fractal` file).
 pub fn parse_str(src: &str) -> Result<Scene, SourceError> {
-    parse_str_on_own_thread(src).map_err(|e| SourceError { message: crate::echo::tidy(&e.message), ..e })
+    parse_str_on_own_thread(src).map_err(|e| SourceError { message: crate::sanitise::tidy(&e.message), ..e })
 }
 
 fn parse_str_on_own_thread(src: &str) -> Result<Scene, SourceError> {
@@ -113,12 +113,12 @@ fn lex_error(src: &str, e: &proc_macro2::LexError) -> SourceError {
 pub fn parse_tokens(tokens: proc_macro2::TokenStream) -> Result<Scene, syn::Error> {
     scan::check(&tokens)?;
     let expr: syn::Expr = syn::parse2(tokens)?;
-    lower::scene(&expr)
+    build::scene(&expr)
 }
 
 /// Every function and method of the language with its signature, e.g. `sphere(radius: number) -> shape` and
 /// `shape.translate(offset: vec3) -> shape`, followed by the names `t` and `PI`.
 pub fn vocabulary() -> Vec<String> {
-    let calls = vocab::functions().chain(vocab::methods()).map(|e| e.signature());
+    let calls = names::functions().chain(names::methods()).map(|e| e.signature());
     calls.chain(["t -> number".to_string(), "PI -> number".to_string()]).collect()
 }

@@ -5,9 +5,9 @@
 use super::{Rules, SceneFns, View, GLOW_FALLOFF, MEMBERSHIP_STEP, MIN_DIRECTION, PROBE_REACH, PROBE_SHARE};
 use super::{REFINE_STEPS, T_SPACING};
 use crate::analyse::SignRefinement;
-use crate::lanes::F32x8;
-use crate::math::V3;
-use crate::num::{Carry, Mask, Num};
+use crate::number::lanes::F32x8;
+use crate::number::math::V3;
+use crate::number::{Carry, Mask, Num};
 use crate::HitEpsilon;
 
 /// A march in progress, or its end. Truth values are numbers (0 or 1) so the state is one [`Carry`].

@@ -1,6 +1,6 @@
 //! The ray program: every step of a pixel's ray — camera ray, bound clip, march with its variants, sign refinement,
 //! normal, material, lights, shadows, occlusion, glow and fog — written once over any [`Num`], as the leaf formulas
-//! are. The CPU renderer runs it in f32, f64 and [`crate::lanes::F32x8`] packets; what a renderer adds is only how it
+//! are. The CPU renderer runs it in f32, f64 and [`crate::number::lanes::F32x8`] packets; what a renderer adds is only how it
 //! finds its pixels, schedules rays and writes its image.
 //!
 //! The program reads a scene through [`SceneFns`] (distance and material, from whichever evaluator runs it), its
@@ -23,8 +23,8 @@ pub mod shade;
 
 use crate::analyse::{self, fold::fold_node, Aabb, SignRefinement};
 use crate::eval::Sample;
-use crate::math::{normalize, V3};
-use crate::num::Num;
+use crate::number::math::{normalize, V3};
+use crate::number::Num;
 use crate::{HitEpsilon, RenderSettings, Scene, Shadows};
 
 /// Relative float spacing of t that the hit epsilon never goes below: 4 ulps of an f32 (2⁻²¹ ≈ 4.77e-7), so every

@@ -4,8 +4,8 @@
 use super::march::March;
 use super::{lit3, Light, Rules, SceneFns, View};
 use super::{AO_SAMPLES, AO_SPAN, AO_START, GLOW_NORM, REFINED_NORMAL_SHARE};
-use crate::math::{dot, length, normalize, v3, V3};
-use crate::num::{Mask, Num};
+use crate::number::math::{dot, length, normalize, v3, V3};
+use crate::number::{Mask, Num};
 use crate::Shadows;
 
 /// A shaded ray: its linear colour (before display) and, at a hit, its normal (zero on a miss).

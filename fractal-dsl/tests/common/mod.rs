@@ -7,8 +7,8 @@ use fractal_dsl::eval::interp::Interpreter;
 use fractal_dsl::eval::Env;
 use fractal_dsl::geom::Interval;
 use fractal_dsl::ir::arg::{ArgDecl, ArgRange, ArgShape, Rule};
-use fractal_dsl::math::v3;
-use fractal_dsl::prims::decl::PRIMS;
+use fractal_dsl::number::math::v3;
+use fractal_dsl::vocab::prims::decl::PRIMS;
 use fractal_dsl::*;
 use proptest::prelude::*;
 
@@ -104,7 +104,7 @@ pub fn declared_args(decls: &'static [ArgDecl]) -> BoxedStrategy<Vec<ArgValue>> 
         .boxed()
 }
 
-/// Every declared primitive whose distance is exact and bounded (`fractal_dsl::prims`), with valid constant
+/// Every declared primitive whose distance is exact and bounded (`fractal_dsl::vocab::prims`), with valid constant
 /// arguments: a new primitive is in every test that draws from here without being listed.
 pub fn exact_bounded_primitive() -> impl Strategy<Value = Node> {
     let kinds: Vec<PrimKind> = PRIMS.iter().copied().filter(|d| exactly_bounded(d)).map(PrimKind).collect();

@@ -30,7 +30,7 @@
 //! From an image alone (the GPU backends) only the hit mask (a pixel of the background colour is a miss) and PSNR can
 //! be read; where glow tints the misses, the mask comes from a second image ([`TrueError::with_hit_mask`]).
 
-use fractal_dsl::math::v3;
+use fractal_dsl::number::math::v3;
 use fractal_dsl::Scene;
 
 use crate::backend::cpu::{pack, PixelTrace};

@@ -8,9 +8,9 @@
 
 use fractal_dsl::analyse::{bound, fold::fold_node, Aabb};
 use fractal_dsl::eval::{Env, Evaluator, PacketEvaluator, Reference, Sample};
-use fractal_dsl::lanes::{F32x8, LANES};
-use fractal_dsl::math::{v3, Real, V3};
-use fractal_dsl::num::Num;
+use fractal_dsl::number::lanes::{F32x8, LANES};
+use fractal_dsl::number::math::{v3, Real, V3};
+use fractal_dsl::number::Num;
 use fractal_dsl::ray::march::{self, March};
 use fractal_dsl::ray::{self, shade, Light, Rules, SceneFns};
 use fractal_dsl::Scene;
@@ -65,7 +65,7 @@ impl Renderer for CpuRenderer {
             driver: format!(
                 "{} threads, rays in packets of {LANES} f32 lanes, {}",
                 rayon::current_num_threads(),
-                fractal_dsl::lanes::instruction_set()
+                fractal_dsl::number::lanes::instruction_set()
             ),
             device_type: "Cpu".to_string(),
         }
@@ -495,7 +495,7 @@ mod tests {
     use super::*;
     use fractal_dsl::analyse::has_specular;
     use fractal_dsl::builder::*;
-    use fractal_dsl::math::length;
+    use fractal_dsl::number::math::length;
 
     #[test]
     fn packing_rounds_and_applies_gamma() {

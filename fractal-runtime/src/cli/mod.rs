@@ -50,7 +50,7 @@ pub fn run_with_args(args: impl IntoIterator<Item = OsString>, library: &SceneLi
     match run(cli.command, library) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {}", fractal_dsl::echo::tidy(&e.to_string()));
+            eprintln!("error: {}", fractal_dsl::sanitise::tidy(&e.to_string()));
             e.exit_code()
         }
     }
@@ -62,7 +62,7 @@ fn clap_exit(e: clap::Error) -> ExitCode {
     match e.kind() {
         ClapErrorKind::InvalidValue | ClapErrorKind::ValueValidation => {
             let text = e.to_string();
-            eprintln!("{}", fractal_dsl::echo::tidy(text.lines().next().unwrap_or("error: invalid value")));
+            eprintln!("{}", fractal_dsl::sanitise::tidy(text.lines().next().unwrap_or("error: invalid value")));
             ExitCode::from(2)
         }
         _ => {

@@ -12,7 +12,7 @@
 //! differ in sign joins the four cells around it in a quad, wound so its normal points from inside to outside.
 
 use fractal_dsl::eval::{Env, Evaluator};
-use fractal_dsl::math::{v3, V3};
+use fractal_dsl::number::math::{v3, V3};
 use rayon::prelude::*;
 
 use super::{Mesh, MeshSettings};

@@ -34,7 +34,7 @@ impl Truth {
                 let (px, py) = (cx + i as f64 * d, cy + j as f64 * d);
                 let Some(q) = self.neighbour(px, py, centre.t) else { continue };
                 let (ro, rd) = self.view.ray(px, py);
-                let t = fractal_dsl::math::dot(q - ro, rd);
+                let t = fractal_dsl::number::math::dot(q - ro, rd);
                 let normal = self.exact_normal(q, rd, t).or_else(|| self.normal(px, py, t, d).map(|(n, _)| n));
                 normals.extend(normal);
             }

@@ -31,7 +31,7 @@ use fractal_dsl::analyse::{bound, fold::fold_node};
 use fractal_dsl::builder::*;
 use fractal_dsl::eval::interp::Interpreter;
 use fractal_dsl::eval::Env;
-use fractal_dsl::math::v3;
+use fractal_dsl::number::math::v3;
 use fractal_dsl::{Fractal, Scene};
 use rayon::prelude::*;
 
@@ -311,7 +311,7 @@ mod tests {
     }
 
     /// The Juliabulb's step factor is set from this study, not from a Lipschitz bound (its estimate takes the
-    /// map's azimuthal stretch, `fractal_dsl::sdf::de_juliabulb`): in every region, near its singular axes too,
+    /// map's azimuthal stretch, `fractal_dsl::formula::de_juliabulb`): in every region, near its singular axes too,
     /// factor × estimate stays below the true distance. (`fractal accuracy --estimators` measures the same at 300
     /// points per region: largest ratio 0.63 before the factor.)
     #[test]
@@ -325,7 +325,7 @@ mod tests {
     }
 
     /// Below power 4 the Mandelbulb's estimate takes the map's azimuthal stretch
-    /// (`fractal_dsl::sdf::de_mandelbulb_stretched`) and the factor 1: in every region the typical point steps at
+    /// (`fractal_dsl::formula::de_mandelbulb_stretched`) and the factor 1: in every region the typical point steps at
     /// most half its true distance, and at most one point in 60 over-reaches (the study finds a few near the x axis
     /// and the coordinate planes, where the stretch is 1, as the plain estimate's at 0.35).
     #[test]
@@ -351,7 +351,7 @@ mod tests {
         let factor = fractal.step_factor_or_default();
         let aabb = bound(&fold_node(&scene(fractal.clone()).root)).expect("the Mandelbox is bounded");
         let farthest = aabb.min.iter().chain(&aabb.max).fold(0.0, |m: f64, c| m.max(c.abs())) * 3f64.sqrt();
-        let escape = fractal_dsl::sdf::mandelbox_escape_radius(farthest, scale, 1.0);
+        let escape = fractal_dsl::formula::mandelbox_escape_radius(farthest, scale, 1.0);
         let floor = factor * escape / scale.powi(iterations as i32);
         let rows = study("mandelbox(2)", fractal, 40, 2, 11);
         assert!(rows.iter().any(|r| r.unsafe_stepped > 0.0), "the tail is sampled: {rows:?}");

@@ -13,10 +13,10 @@ use std::ops::{Add, Div, Mul, Neg, Sub};
 use fractal_dsl::eval::plan::Plan;
 use fractal_dsl::eval::walk::Walk;
 use fractal_dsl::eval::Env;
-use fractal_dsl::fractals::families::FRACTALS;
-use fractal_dsl::leaf::{LeafArg, LeafOut};
-use fractal_dsl::math::{v3, Carry, Num};
-use fractal_dsl::sdf::{CallLeaf, Leaf};
+use fractal_dsl::formula::leaf::{LeafArg, LeafOut};
+use fractal_dsl::formula::{CallLeaf, Leaf};
+use fractal_dsl::number::math::{v3, Carry, Num};
+use fractal_dsl::vocab::fractals::families::FRACTALS;
 use fractal_dsl::Scene;
 
 /// An f64 whose fractal leaves answer membership instead of the estimate.

@@ -10,11 +10,11 @@
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
-use crate::fractals::families::FRACTALS;
 use crate::ir::fractal::FractalArgValue;
 use crate::ir::*;
-use crate::ops::decl::OPS;
-use crate::prims::decl::PRIMS;
+use crate::vocab::fractals::families::FRACTALS;
+use crate::vocab::ops::decl::OPS;
+use crate::vocab::prims::decl::PRIMS;
 
 /// A Rust expression of type `Scene` (named through `krate`) that constructs `scene` exactly.
 pub fn scene(scene: &Scene, krate: &TokenStream) -> TokenStream {
@@ -35,7 +35,7 @@ pub fn scene(scene: &Scene, krate: &TokenStream) -> TokenStream {
 }
 
 /// Constant expressions of type `&'static [f32]` and `&'static [f64]`: the defaults of the scene's parameters in
-/// [`Scene::params`] order (uniform slot order), rounded to f32 the way [`crate::math::Real::c`] rounds them.
+/// [`Scene::params`] order (uniform slot order), rounded to f32 the way [`crate::number::math::Real::c`] rounds them.
 pub fn default_params(scene: &Scene) -> (TokenStream, TokenStream) {
     let params = scene.params();
     let single = params.iter().map(|p| f32_lit(p.default as f32));
@@ -236,7 +236,7 @@ impl Writer<'_> {
         let k = self.k;
         let index = PRIMS.iter().position(|d| d.name == p.name()).unwrap_or_default();
         let args = self.args(&p.args);
-        quote!(#k::Prim { kind: #k::PrimKind(#k::prims::decl::PRIMS[#index]), args: #args })
+        quote!(#k::Prim { kind: #k::PrimKind(#k::vocab::prims::decl::PRIMS[#index]), args: #args })
     }
 
     /// An operator names its declaration by its place in the table (the same table the macro read).
@@ -246,7 +246,7 @@ impl Writer<'_> {
         let shapes = op.shapes.iter().map(|s| self.node(s));
         let args = self.args(&op.args);
         quote! {
-            #k::Op { kind: #k::OpKind(#k::ops::decl::OPS[#index]), shapes: ::std::vec![#(#shapes),*], args: #args }
+            #k::Op { kind: #k::OpKind(#k::vocab::ops::decl::OPS[#index]), shapes: ::std::vec![#(#shapes),*], args: #args }
         }
     }
 
@@ -278,7 +278,7 @@ impl Writer<'_> {
         let step_factor = self.option(step_factor, |&k| f64_lit(k));
         quote! {
             #k::Fractal {
-                kind: #k::FractalKind(#k::fractals::families::FRACTALS[#index]),
+                kind: #k::FractalKind(#k::vocab::fractals::families::FRACTALS[#index]),
                 arg: #arg,
                 iterations: #iterations,
                 settings: [#(#settings),*],
@@ -460,7 +460,9 @@ mod tests {
         let parsed: syn::Expr = syn::parse2(tokens.clone()).expect("the emitted scene is a Rust expression");
         assert!(matches!(parsed, syn::Expr::Struct(_)));
         let written = text(tokens);
-        for part in [":: fractal_dsl :: Scene", ":: fractal_dsl :: ops :: decl :: OPS [0usize]", "\"r\"", "1.5f64"] {
+        for part in
+            [":: fractal_dsl :: Scene", ":: fractal_dsl :: vocab :: ops :: decl :: OPS [0usize]", "\"r\"", "1.5f64"]
+        {
             assert!(written.contains(part), "{part} missing from {written}");
         }
     }

@@ -1,16 +1,16 @@
 //! The Rust writer: spells the lowered scene functions as two generic functions — distance and sample — that the
 //! `scene!` macro compiles into the user's crate as the native evaluator (f32, f64 and eight-lane packet instances of
 //! the same code: choices are masks, see [`Syntax::per_lane`]).
-//! Leaves call [`crate::sdf`] directly: the functions the interpreter runs and the kernels' leaf functions are traced
+//! Leaves call [`crate::formula`] directly: the functions the interpreter runs and the kernels' leaf functions are traced
 //! from.
 
 use std::fmt::Write;
 
 use crate::back::syntax::{self, common_math_name, Spelling, Syntax};
 use crate::back::Level;
+use crate::formula::Leaf;
 use crate::lower::code::{CmpOp, LogicOp, MathFn, Ty};
 use crate::lower::Program;
-use crate::sdf::Leaf;
 
 struct RustSyntax;
 
@@ -71,7 +71,7 @@ impl Syntax for RustSyntax {
         common_math_name(f)
     }
     fn call(&self, leaf: Leaf, args: &[String]) -> String {
-        format!("sdf::{}({})", leaf.name(), args.join(", "))
+        format!("formula::{}({})", leaf.name(), args.join(", "))
     }
     fn select(&self, cond: &str, if_true: &str, if_false: &str) -> String {
         format!("select({cond}, {if_true}, {if_false})")
@@ -113,10 +113,10 @@ pub fn write(program: &Program, krate: &str) -> String {
         let _ = writeln!(out, "#[inline(always)]");
         let _ = writeln!(
             out,
-            "fn {name}<F: {krate}::sdf::HostNum>(p: {krate}::math::V3<F>, env: &{krate}::eval::Env<F>) -> {ret} {{"
+            "fn {name}<F: {krate}::formula::HostNum>(p: {krate}::number::math::V3<F>, env: &{krate}::eval::Env<F>) -> {ret} {{"
         );
-        let _ = writeln!(out, "    use {krate}::math::*;");
-        let _ = writeln!(out, "    use {krate}::sdf;");
+        let _ = writeln!(out, "    use {krate}::number::math::*;");
+        let _ = writeln!(out, "    use {krate}::formula;");
     };
     header(&mut out, DISTANCE_FN, "F");
     let spelling = Spelling::new(&program.distance, &RustSyntax, &[program.distance_result]);

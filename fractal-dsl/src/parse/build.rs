@@ -1,4 +1,4 @@
-//! Lowering: syn's expression tree to IR values. Calls and methods are looked up in the vocabulary table (`vocab`),
+//! Building: syn's expression tree to IR values. Calls and methods are looked up in the parser's name table (`names`),
 //! their arguments evaluated and coerced to the declared types, and the builder function named there builds the
 //! value; then the validation rules check it while the argument spans are still at hand.
 //!
@@ -9,7 +9,7 @@ use proc_macro2::Span;
 use quote::ToTokens;
 use syn::spanned::Spanned;
 
-use super::vocab::{self, Args, Entry, Ty, Value};
+use super::names::{self, Args, Entry, Ty, Value};
 use crate::builder::{self as b, Color};
 use crate::ir::*;
 use crate::validate::{self as v, Problem};
@@ -234,14 +234,14 @@ impl Lower {
             }
             _ => {}
         }
-        let message = if vocab::function(&name).is_some() {
+        let message = if names::function(&name).is_some() {
             format!("`{name}` is a function: call it, e.g. {name}(..)")
-        } else if let Some(m) = vocab::method(&name) {
+        } else if let Some(m) = names::method(&name) {
             let receiver = m.receiver.map(Ty::name).unwrap_or("value");
             format!("`{name}` is a method: write {receiver}.{name}(..)")
         } else {
-            let candidates = vocab::NAMES.iter().copied().chain(vocab::functions().map(|f| f.name));
-            match vocab::suggest(&name, candidates) {
+            let candidates = names::NAMES.iter().copied().chain(names::functions().map(|f| f.name));
+            match names::suggest(&name, candidates) {
                 Some(s) => format!("unknown name `{name}`; did you mean `{s}`?"),
                 None => format!("unknown name `{name}` (the names are `t`, the time in seconds, and `PI`)"),
             }
@@ -296,12 +296,12 @@ impl Lower {
             return Err(error(&c.func, "only the scene language's functions can be called here"));
         };
         let name = ident.to_string();
-        let Some(entry) = vocab::function(&name) else {
-            let message = if let Some(m) = vocab::method(&name) {
+        let Some(entry) = names::function(&name) else {
+            let message = if let Some(m) = names::method(&name) {
                 let receiver = m.receiver.map(Ty::name).unwrap_or("value");
                 format!("`{name}` is a method, not a function: write {receiver}.{name}(..)")
             } else {
-                match vocab::suggest(&name, vocab::functions().map(|f| f.name)) {
+                match names::suggest(&name, names::functions().map(|f| f.name)) {
                     Some(s) => format!("unknown function `{name}`; did you mean `{s}`?"),
                     None => format!("unknown function `{name}`"),
                 }
@@ -329,14 +329,14 @@ impl Lower {
     fn method(&mut self, receiver: Value, m: &syn::ExprMethodCall, depth: usize) -> syn::Result<Value> {
         let name = m.method.to_string();
         let found = receiver.ty();
-        let Some(entry) = vocab::method(&name) else {
-            let message = if vocab::function(&name).is_some() {
+        let Some(entry) = names::method(&name) else {
+            let message = if names::function(&name).is_some() {
                 format!("`{name}` is a function, not a method: call it as {name}(..)")
             } else {
-                let fitting = vocab::methods().filter(|e| e.receiver.is_some_and(|r| accepts(r, found)));
-                let any = vocab::methods();
-                match vocab::suggest(&name, fitting.map(|e| e.name))
-                    .or_else(|| vocab::suggest(&name, any.map(|e| e.name)))
+                let fitting = names::methods().filter(|e| e.receiver.is_some_and(|r| accepts(r, found)));
+                let any = names::methods();
+                match names::suggest(&name, fitting.map(|e| e.name))
+                    .or_else(|| names::suggest(&name, any.map(|e| e.name)))
                 {
                     Some(s) => format!("unknown method `{name}` on {}; did you mean `{s}`?", found.a()),
                     None => format!("unknown method `{name}` on {}", found.a()),
@@ -407,7 +407,7 @@ impl Lower {
         }
     }
 
-    fn argument(&mut self, entry: &Entry, param: &vocab::Param, arg: &syn::Expr, depth: usize) -> syn::Result<Value> {
+    fn argument(&mut self, entry: &Entry, param: &names::Param, arg: &syn::Expr, depth: usize) -> syn::Result<Value> {
         let slot = format!("`{}` argument `{}`", entry.name, param.name);
         let wrong = |what: &str| error(arg, format!("{slot} must be {what}, found `{}`", snippet(arg)));
         match param.ty {

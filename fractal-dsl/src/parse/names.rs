@@ -7,13 +7,13 @@ use std::collections::VecDeque;
 use std::sync::OnceLock;
 
 use crate::builder::{self as b, Color, ShapeExt};
-use crate::fractals::families::FRACTALS;
 use crate::ir::arg::{ArgDecl, ArgShape};
 use crate::ir::fractal::{FractalArgShape, FractalArgValue, Setting};
 use crate::ir::op::Operands;
 use crate::ir::*;
-use crate::ops::decl::OPS;
-use crate::prims::decl::PRIMS;
+use crate::vocab::fractals::families::FRACTALS;
+use crate::vocab::ops::decl::OPS;
+use crate::vocab::prims::decl::PRIMS;
 
 /// The type of a value or of an argument slot.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -156,8 +156,8 @@ const fn many(name: &'static str, ty: Ty) -> Param {
 /// Builds the value of a call from its coerced arguments (the receiver first, for methods).
 pub(crate) type BuildFn = fn(&mut Args) -> Result<Value, String>;
 
-/// What gives a call its meaning: a builder call, a declared primitive ([`crate::prims`]), fractal family
-/// ([`crate::fractals`]), fractal setting ([`Setting`]) or operator ([`crate::ops`]).
+/// What gives a call its meaning: a builder call, a declared primitive ([`crate::vocab::prims`]), fractal family
+/// ([`crate::vocab::fractals`]), fractal setting ([`Setting`]) or operator ([`crate::vocab::ops`]).
 pub(crate) enum Build {
     Fn(BuildFn),
     Prim(&'static PrimDecl),
@@ -478,7 +478,7 @@ pub(crate) static METHODS: &[Entry] = &[
         fractal(a.fractal()?.step_factor(a.konst()?))
     }),
     // (the settings that take a number, `.bailout(b)` and the rest, are made from [`Setting::ALL`])
-    // ---- materials (the operators are declared in `crate::ops`)
+    // ---- materials (the operators are declared in `crate::vocab::ops`)
     meth(T::Shape, "material", &[p("material", T::Material)], T::Shape, |a| shape(a.shape()?.material(a.material()?))),
     // ---- material terms (a color becomes a material with default terms first)
     meth(T::Material, "ambient", &[p("ambient", T::Number)], T::Material, |a| {

@@ -1,15 +1,19 @@
 //! The leaf functions: distance to each primitive, each fractal estimator, and the smooth CSG blends, each written
 //! once, generic over [`Num`]. `f32` and `f64` run them directly (interpreter, native evaluator, reference); the
 //! tracer records them into the kernels' named functions (`sd_box`, `de_mandelbulb8`, …) and a lane type runs them a
-//! packet at a time. So they branch with [`select`] and loop with [`Num::iterate`] (see [`crate::num`]), and the guard
+//! packet at a time. So they branch with [`select`] and loop with [`Num::iterate`] (see [`crate::number`]), and the guard
 //! constants below reach every kernel as traced literals. The table just below lists them with their signatures.
 
-use crate::leaf::{leaves, LeafArg, LeafOut};
-pub use crate::mandelbrot::{mandelbrot, mandelbrot_perturbed};
-use crate::math::*;
-pub use crate::noise::{fbm2, fbm3, noise2, noise3};
+pub mod leaf;
+pub mod mandelbrot;
+pub mod noise;
 
-// The leaf table: every function below with its parameters' kinds and its result ([`crate::leaf`]).
+use crate::formula::leaf::{leaves, LeafArg, LeafOut};
+pub use crate::formula::mandelbrot::{mandelbrot, mandelbrot_perturbed};
+pub use crate::formula::noise::{fbm2, fbm3, noise2, noise3};
+use crate::number::math::*;
+
+// The leaf table: every function below with its parameters' kinds and its result ([`crate::formula::leaf`]).
 leaves! {
     SdSphere => sd_sphere(p: V3, r: F) -> F;
     SdBox => sd_box(p: V3, b: V3) -> F;
@@ -69,7 +73,7 @@ pub trait CallLeaf: Num {
 impl CallLeaf for f32 {}
 impl CallLeaf for f64 {}
 
-/// A number type the host evaluates in — f32, f64 and the packet [`crate::lanes::F32x8`] — whose masks it can
+/// A number type the host evaluates in — f32, f64 and the packet [`crate::number::lanes::F32x8`] — whose masks it can
 /// inspect: the native evaluator the `scene!` macro compiles is generic over it.
 pub trait HostNum: CallLeaf + Num<Mask: AnyLane, Count = u32> + Send + Sync {}
 

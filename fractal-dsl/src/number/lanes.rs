@@ -5,13 +5,13 @@
 //! The lanes are plain arrays operated on lane by lane in `#[inline(always)]` loops that LLVM turns into vector
 //! instructions of whatever the build targets (two 4-wide SSE2 operations per packet on a baseline x86-64 build, one
 //! 8-wide AVX operation where AVX is enabled, NEON pairs on aarch64). The elementary functions are the branch-free
-//! ones of [`crate::elementary`], which f32 runs too, so they vectorise the same way and agree with the scalar
+//! ones of [`crate::number::elementary`], which f32 runs too, so they vectorise the same way and agree with the scalar
 //! results bit for bit. Masks are lanes of 0 / −1 (all bits set), as vector compares produce.
 
 use core::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
-use crate::elementary;
-use crate::num::{AnyLane, Carry, Mask, Num, Orbit};
+use crate::number::elementary;
+use crate::number::{AnyLane, Carry, Mask, Num, Orbit};
 
 /// Lanes in a packet.
 pub const LANES: usize = 8;
@@ -380,9 +380,12 @@ impl Num for F32x8 {
 /// The interpreter's packets call leaves through here (the native evaluator calls its leaves directly, inside its
 /// own AVX2 copy): the leaf's formula runs in an AVX2 copy where the CPU has one. The walker around it stays baseline
 /// code: it recurses, so no AVX2 function can inline it whole.
-impl crate::sdf::CallLeaf for F32x8 {
+impl crate::formula::CallLeaf for F32x8 {
     #[inline]
-    fn leaf(leaf: crate::sdf::Leaf, args: &[crate::leaf::LeafArg<Self>]) -> crate::leaf::LeafOut<Self> {
+    fn leaf(
+        leaf: crate::formula::Leaf,
+        args: &[crate::formula::leaf::LeafArg<Self>],
+    ) -> crate::formula::leaf::LeafOut<Self> {
         #[cfg(target_arch = "x86_64")]
         if has_avx2() {
             // SAFETY: the CPU has AVX2.
@@ -395,7 +398,10 @@ impl crate::sdf::CallLeaf for F32x8 {
 /// A leaf on packets compiled for AVX2; callers check [`has_avx2`].
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-unsafe fn leaf_avx2(leaf: crate::sdf::Leaf, args: &[crate::leaf::LeafArg<F32x8>]) -> crate::leaf::LeafOut<F32x8> {
+unsafe fn leaf_avx2(
+    leaf: crate::formula::Leaf,
+    args: &[crate::formula::leaf::LeafArg<F32x8>],
+) -> crate::formula::leaf::LeafOut<F32x8> {
     leaf.eval(args)
 }
-impl crate::sdf::HostNum for F32x8 {}
+impl crate::formula::HostNum for F32x8 {}

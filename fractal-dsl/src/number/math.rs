@@ -8,7 +8,7 @@
 use core::ops::{Add, Div, Mul, Neg, Sub};
 use num_traits::Float;
 
-pub use crate::num::*;
+pub use crate::number::*;
 
 /// A floating-point type an evaluator runs in on the host.
 pub trait Real: Float + Num<Mask = bool, Count = u32> + Send + Sync {

@@ -12,11 +12,11 @@
 //! **Rebasing** (Zhuoran, 2021): when |z| < |δ| — the pixel's orbit passed nearer to 0 than to the reference's — or when
 //! the reference orbit runs out (it escaped, or its count ended), the iteration goes on from z itself, as δ around the
 //! reference's start (Z₀ = 0, index 0). This removes the "glitches" of plain perturbation without a second reference.
-//! Around the reference point 0, whose orbit is the single entry [0, 0] ([`crate::num::ORBIT_AT_ZERO`]), the step is
+//! Around the reference point 0, whose orbit is the single entry [0, 0] ([`crate::number::ORBIT_AT_ZERO`]), the step is
 //! exactly the plain iteration's: that is what an evaluator without a frame (a probe, `CompiledScene::sample`) runs.
 
-use crate::math::*;
-use crate::num::Orbit;
+use crate::number::math::*;
+use crate::number::Orbit;
 
 /// Most iterations of the Mandelbrot pattern. The reference orbit of a perturbed pattern lives in the frame uniform,
 /// two entries per 16-byte slot; 7500 iterations fill 3751 of the 4096 slots of a 64 KiB uniform buffer (the limit

@@ -1,6 +1,6 @@
 //! The f32 elementary functions the host evaluates in — `ln`, `exp2`, `pow`, `sin`, `cos`, `atan2`, `acos`,
 //! `floor` — written without branches, so that a loop over eight lanes of them becomes vector instructions instead of
-//! eight calls into libm. Scalar f32 ([`crate::num::Num`] for `f32`) and the packet type ([`crate::lanes::F32x8`])
+//! eight calls into libm. Scalar f32 ([`crate::number::Num`] for `f32`) and the packet type ([`crate::number::lanes::F32x8`])
 //! both call these same functions, so a packet's lanes equal the scalar results bit for bit; f64 (the reference)
 //! keeps the platform's libm.
 //!

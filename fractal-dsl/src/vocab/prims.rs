@@ -10,10 +10,10 @@ use decl::*;
 
 /// The declarations, and the table the parser looks names up in.
 pub mod decl {
+    use crate::formula::Leaf;
     use crate::geom::Aabb;
     use crate::ir::arg::{num, vec, Rule};
     use crate::ir::prim::{PrimBound, PrimDecl};
-    use crate::sdf::Leaf;
 
     use Rule::*;
 

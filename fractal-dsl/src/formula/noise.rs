@@ -1,6 +1,6 @@
 //! Gradient noise (Perlin's improved noise) in 2D and 3D and its fractal sums (fbm), patterns expressions can call —
 //! written once, generic over [`Num`], and reached through the leaf table (`noise2`, `noise3`, `fbm2`, `fbm3` in every
-//! kernel that uses them). The other pattern, the Mandelbrot set, is [`crate::mandelbrot`].
+//! kernel that uses them). The other pattern, the Mandelbrot set, is [`crate::formula::mandelbrot`].
 //!
 //! The lattice hash is the permutation polynomial (34x² + x) mod 289 (Gustavson and McEwan's table-free noise), on
 //! whole numbers below 2^23, so every product is exact in f32 and every backend picks the same gradients: there is no
@@ -12,7 +12,7 @@
 //! [`NOISE2_SLOPE`] and [`NOISE3_SLOPE`] (measured in `fractal-dsl/tests/noise.rs`), which the displacement's
 //! Lipschitz bound reads ([`crate::analyse::slope`]).
 
-use crate::math::*;
+use crate::number::math::*;
 
 /// Largest |∇ noise2|: measured 2.75 over 400 000 points (`tests/noise.rs`), with a third more for what sampling
 /// misses.

@@ -2,8 +2,8 @@
 //! `leaves!` macro that writes the table — the `Leaf` enum with each function's name, typed parameters and result,
 //! and one dispatcher that calls it in any [`Num`]. The table itself stands in `sdf.rs`, beside the functions.
 
-use crate::math::V3;
-use crate::num::{Num, Orbit};
+use crate::number::math::V3;
+use crate::number::{Num, Orbit};
 
 /// The type of a leaf function's parameter.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -72,25 +72,25 @@ impl<F: Copy> LeafOut<F> {
 macro_rules! take {
     ($it:ident, F) => {
         match $it.next() {
-            Some($crate::leaf::LeafArg::F(v)) => *v,
+            Some($crate::formula::leaf::LeafArg::F(v)) => *v,
             _ => unreachable!("leaf arguments are built from Leaf::params"),
         }
     };
     ($it:ident, V3) => {
         match $it.next() {
-            Some($crate::leaf::LeafArg::V3(v)) => *v,
+            Some($crate::formula::leaf::LeafArg::V3(v)) => *v,
             _ => unreachable!("leaf arguments are built from Leaf::params"),
         }
     };
     ($it:ident, Count) => {
         match $it.next() {
-            Some($crate::leaf::LeafArg::Count(v)) => *v,
+            Some($crate::formula::leaf::LeafArg::Count(v)) => *v,
             _ => unreachable!("leaf arguments are built from Leaf::params"),
         }
     };
     ($it:ident, Orbit) => {
         match $it.next() {
-            Some($crate::leaf::LeafArg::Orbit(v)) => *v,
+            Some($crate::formula::leaf::LeafArg::Orbit(v)) => *v,
             _ => unreachable!("leaf arguments are built from Leaf::params"),
         }
     };
@@ -100,7 +100,7 @@ macro_rules! take {
 /// Result F or Pair, each row naming a function of the module it is written in.
 macro_rules! leaves {
     ($($variant:ident => $func:ident($($arg:ident: $kind:ident),*) -> $ret:ident;)*) => {
-        /// A leaf function of [`crate::sdf`]; the kernels name it [`Leaf::name`].
+        /// A leaf function of [`crate::formula`]; the kernels name it [`Leaf::name`].
         #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
         pub enum Leaf {
             $($variant,)*
@@ -118,37 +118,37 @@ macro_rules! leaves {
             }
 
             /// Parameter names and types, in order.
-            pub fn params(self) -> &'static [(&'static str, $crate::leaf::ArgKind)] {
+            pub fn params(self) -> &'static [(&'static str, $crate::formula::leaf::ArgKind)] {
                 match self {
-                    $(Leaf::$variant => &[$((stringify!($arg), $crate::leaf::ArgKind::$kind),)*],)*
+                    $(Leaf::$variant => &[$((stringify!($arg), $crate::formula::leaf::ArgKind::$kind),)*],)*
                 }
             }
 
-            pub fn returns(self) -> $crate::leaf::RetKind {
+            pub fn returns(self) -> $crate::formula::leaf::RetKind {
                 match self {
-                    $(Leaf::$variant => $crate::leaf::RetKind::$ret,)*
+                    $(Leaf::$variant => $crate::formula::leaf::RetKind::$ret,)*
                 }
             }
 
             /// Runs the formula in `F` on arguments of the types [`Leaf::params`] lists.
             #[inline(always)]
-            pub fn eval<F: $crate::num::Num>(
+            pub fn eval<F: $crate::number::Num>(
                 self,
-                args: &[$crate::leaf::LeafArg<F>],
-            ) -> $crate::leaf::LeafOut<F> {
+                args: &[$crate::formula::leaf::LeafArg<F>],
+            ) -> $crate::formula::leaf::LeafOut<F> {
                 #[allow(unused_mut, unused_variables)]
                 let mut it = args.iter();
                 match self {
                     $(Leaf::$variant => {
-                        $(let $arg = $crate::leaf::take!(it, $kind);)*
-                        $crate::leaf::leaves!(@ret $ret, $func($($arg),*))
+                        $(let $arg = $crate::formula::leaf::take!(it, $kind);)*
+                        $crate::formula::leaf::leaves!(@ret $ret, $func($($arg),*))
                     })*
                 }
             }
         }
     };
-    (@ret F, $e:expr) => { $crate::leaf::LeafOut::F($e) };
-    (@ret Pair, $e:expr) => { $crate::leaf::LeafOut::Pair($e) };
+    (@ret F, $e:expr) => { $crate::formula::leaf::LeafOut::F($e) };
+    (@ret Pair, $e:expr) => { $crate::formula::leaf::LeafOut::Pair($e) };
 }
 
 pub(crate) use {leaves, take};

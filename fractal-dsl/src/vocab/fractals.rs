@@ -41,13 +41,13 @@ use families::*;
 pub mod families {
     use crate::analyse::bounds::{julia_radius, juliabulb_radius, mandelbox_half_extent, mandelbulb_radius};
     use crate::analyse::interval::range;
+    use crate::formula::Leaf;
     use crate::geom::{Aabb, Interval};
     use crate::ir::fractal::{
         CallArg, FractalArg, FractalArgShape, FractalDecl, FractalRule, Iterations, Membership, Setting, MAX_ITERATIONS,
     };
     use crate::ir::prim::PrimBound;
     use crate::ir::Fractal;
-    use crate::sdf::Leaf;
 
     /// The family called `name` in scene source.
     pub fn by_name(name: &str) -> Option<&'static FractalDecl> {
@@ -328,7 +328,7 @@ pub mod families {
     }
 
     /// Whether the Mandelbulb's estimate takes the map's azimuthal stretch
-    /// ([`crate::sdf::de_mandelbulb_stretched`]): where its power stays below 4. The stretch divides the estimate by
+    /// ([`crate::formula::de_mandelbulb_stretched`]): where its power stays below 4. The stretch divides the estimate by
     /// up to the power near the poles, so a power that can grow past it keeps the plain estimate (over a range
     /// reaching power 9 the stretched one fell to 0.17 × the distance to the bound, against 0.83 plain).
     fn stretched_bulb(f: &Fractal) -> bool {

@@ -8,10 +8,14 @@
 //! - a loop with an early exit is [`Num::iterate`]: a fixed count and a mask of lanes still running;
 //! - work worth skipping when no lane needs it (a union child behind its bound) is [`Num::when`].
 //!
-//! How a leaf function is called (directly, or as a named kernel function) is [`crate::sdf::CallLeaf`].
+//! How a leaf function is called (directly, or as a named kernel function) is [`crate::formula::CallLeaf`].
 //!
 //! The math is spelled as free functions (`sqrt(x)`, `max(a, b)`, `lt(a, b)`) so formulas read like the kernels they
 //! become, and so `f32`'s own methods (and `num_traits::Float`'s) never clash with the trait's.
+
+pub mod elementary;
+pub mod lanes;
+pub mod math;
 
 use core::fmt::Debug;
 use core::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
@@ -140,7 +144,7 @@ pub trait Num:
 }
 
 /// A perturbation reference orbit: Z₀, Z₁, … of z ← z² + C at one reference point C, in f32 as the kernels hold it
-/// (see [`crate::mandelbrot::mandelbrot_perturbed`]). Where a kernel computes, the orbit is the frame's, and the slice a
+/// (see [`crate::formula::mandelbrot::mandelbrot_perturbed`]). Where a kernel computes, the orbit is the frame's, and the slice a
 /// traced formula is handed is empty.
 pub type Orbit<'a> = &'a [[f32; 2]];
 
@@ -265,7 +269,7 @@ macro_rules! scalar_num {
 }
 // f32 computes its elementary functions without branches, as the packet type does lane by lane (so the two agree
 // bit for bit); f64, the reference, keeps the platform's libm.
-use crate::elementary as f32_math;
+use crate::number::elementary as f32_math;
 scalar_num!(f32, f32_math);
 scalar_num!(f64, f64_math);
 
