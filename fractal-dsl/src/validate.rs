@@ -16,11 +16,9 @@ use crate::analyse::interval::{range, Interval};
 use crate::ir::arg::{ArgDecl, ArgShape, Rule};
 use crate::ir::fractal::{FractalArg, FractalArgShape, FractalArgValue, FractalRule, Setting, STEP_FACTOR_RANGE};
 use crate::ir::op::{Meaning, Operands};
+pub use crate::ir::MAX_NODES;
 use crate::ir::*;
 use crate::vocab::fractals::families::FRACTALS;
-
-/// Most nodes a distance tree may have.
-pub const MAX_NODES: usize = 10_000;
 /// Deepest a distance tree may nest.
 pub const MAX_DEPTH: usize = 64;
 /// Deepest one scalar expression may nest.

@@ -3,13 +3,14 @@
 //! change a union's value where the analysis says they are exact and never change its sign anywhere, and the value
 //! ranges bounds are built from contain every value an expression takes.
 
-use fractal_dsl::analyse::bounds::{bound_info, julia_radius, mandelbox_half_extent, mandelbulb_radius, sd_aabb, Aabb};
+use fractal_dsl::analyse::bounds::{bound_info, sd_aabb, Aabb};
 use fractal_dsl::analyse::interval::{range, Interval};
 use fractal_dsl::analyse::{bound, fold::fold_node};
 use fractal_dsl::builder::*;
 use fractal_dsl::eval::interp::Interpreter;
 use fractal_dsl::eval::Env;
 use fractal_dsl::number::math::v3;
+use fractal_dsl::vocab::radius::{julia_radius, mandelbox_half_extent, mandelbulb_radius};
 use fractal_dsl::*;
 use proptest::prelude::*;
 

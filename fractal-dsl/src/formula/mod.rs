@@ -11,6 +11,7 @@ pub mod noise;
 use crate::formula::leaf::{leaves, LeafArg, LeafOut};
 pub use crate::formula::mandelbrot::{mandelbrot, mandelbrot_perturbed};
 pub use crate::formula::noise::{fbm2, fbm3, noise2, noise3};
+use crate::number::lanes::{has_avx2, F32x8};
 use crate::number::math::*;
 
 // The leaf table: every function below with its parameters' kinds and its result ([`crate::formula::leaf`]).
@@ -72,6 +73,29 @@ pub trait CallLeaf: Num {
 
 impl CallLeaf for f32 {}
 impl CallLeaf for f64 {}
+
+/// The interpreter's packets call leaves through here (the native evaluator calls its leaves directly, inside its
+/// own AVX2 copy): the leaf's formula runs in an AVX2 copy where the CPU has one. The walker around it stays baseline
+/// code: it recurses, so no AVX2 function can inline it whole.
+impl CallLeaf for F32x8 {
+    #[inline]
+    fn leaf(leaf: Leaf, args: &[leaf::LeafArg<Self>]) -> leaf::LeafOut<Self> {
+        #[cfg(target_arch = "x86_64")]
+        if has_avx2() {
+            // SAFETY: the CPU has AVX2.
+            return unsafe { leaf_avx2(leaf, args) };
+        }
+        leaf.eval(args)
+    }
+}
+
+/// A leaf on packets compiled for AVX2; callers check [`has_avx2`].
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn leaf_avx2(leaf: Leaf, args: &[leaf::LeafArg<F32x8>]) -> leaf::LeafOut<F32x8> {
+    leaf.eval(args)
+}
+impl HostNum for F32x8 {}
 
 /// A number type the host evaluates in — f32, f64 and the packet [`crate::number::lanes::F32x8`] — whose masks it can
 /// inspect: the native evaluator the `scene!` macro compiles is generic over it.

@@ -283,31 +283,5 @@ pub struct Scene {
     pub settings: RenderSettings,
 }
 
-/// Trees from the builder may nest far deeper than the native stack allows (validation refuses them, but they must
-/// still drop): the children are moved onto a heap stack, so every node drops with no children left to recurse into.
-impl Drop for Node {
-    fn drop(&mut self) {
-        let mut pending = Vec::new();
-        self.detach_children(&mut pending);
-        while let Some(mut node) = pending.pop() {
-            node.detach_children(&mut pending);
-        }
-    }
-}
-
-impl Node {
-    fn detach_children(&mut self, into: &mut Vec<Node>) {
-        match self {
-            Node::Op(op) => into.append(&mut op.shapes),
-            Node::Material(inner, _) if !inner.children().is_empty() => {
-                let leaf = Node::Op(Op {
-                    kind: OpKind(&crate::vocab::ops::decl::UNION),
-                    shapes: Vec::new(),
-                    args: Vec::new(),
-                });
-                into.push(std::mem::replace(inner, leaf));
-            }
-            _ => {}
-        }
-    }
-}
+/// Most nodes a distance tree may have.
+pub const MAX_NODES: usize = 10_000;

@@ -5,8 +5,8 @@
 
 use super::arg::{normalise_directions, ArgDecl, ArgRange, ArgValue};
 use super::Node;
+use super::MAX_NODES;
 use crate::geom::Bound;
-use crate::validate::MAX_NODES;
 
 /// How an operator takes its shapes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -176,3 +176,41 @@ pub struct Op {
 }
 
 super::declared_item!(Op, OpDecl);
+
+/// Trees from the builder may nest far deeper than the native stack allows (validation refuses them, but they must
+/// still drop): the children are moved onto a heap stack, so every node drops with no children left to recurse into.
+impl Drop for Node {
+    fn drop(&mut self) {
+        let mut pending = Vec::new();
+        self.detach_children(&mut pending);
+        while let Some(mut node) = pending.pop() {
+            node.detach_children(&mut pending);
+        }
+    }
+}
+
+impl Node {
+    fn detach_children(&mut self, into: &mut Vec<Node>) {
+        match self {
+            Node::Op(op) => into.append(&mut op.shapes),
+            Node::Material(inner, _) if !inner.children().is_empty() => {
+                let leaf = Node::Op(Op { kind: OpKind(&DETACHED), shapes: Vec::new(), args: Vec::new() });
+                into.push(std::mem::replace(inner, leaf));
+            }
+            _ => {}
+        }
+    }
+}
+
+/// The childless node left where a material's subtree was moved out while a tree drops; never part of a scene.
+static DETACHED: OpDecl = OpDecl {
+    name: "union",
+    doc: "",
+    operands: Operands::Many,
+    args: &[],
+    meaning: Meaning::Union,
+    identity: Identity::Never,
+    flattens: false,
+    lipschitz: true,
+    bound: |s, _| Bound::hull(s),
+};

@@ -84,9 +84,9 @@ pub fn functions(program: &Program) -> Vec<RayFunction> {
                 let v = |i: usize| Sym::components(Sym::arg_of(params[i].0, Ty::V3));
                 let s = |i: usize| Sym::arg(params[i].0);
                 match f {
-                    SceneFn::Normal => Sym::vector(shade::normal(&scene, v(0), s(1))),
-                    SceneFn::Occlusion => shade::occlusion(&rules, &scene, v(0), v(1)).0,
-                    _ => shade::shadow(&rules, &scene, (v(0), v(1)), s(2), s(3), SymMask::splat(true)).0,
+                    SceneFn::Normal => Sym::vector(crate::ray::scene::normal(&scene, v(0), s(1))),
+                    SceneFn::Occlusion => crate::ray::scene::occlusion(&rules, &scene, v(0), v(1)).0,
+                    _ => crate::ray::scene::shadow(&rules, &scene, (v(0), v(1)), s(2), s(3), SymMask::splat(true)).0,
                 }
             });
             RayFunction { f, params, body: body.pruned(&[result]), result }

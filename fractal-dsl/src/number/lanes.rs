@@ -376,32 +376,3 @@ impl Num for F32x8 {
         entry
     }
 }
-
-/// The interpreter's packets call leaves through here (the native evaluator calls its leaves directly, inside its
-/// own AVX2 copy): the leaf's formula runs in an AVX2 copy where the CPU has one. The walker around it stays baseline
-/// code: it recurses, so no AVX2 function can inline it whole.
-impl crate::formula::CallLeaf for F32x8 {
-    #[inline]
-    fn leaf(
-        leaf: crate::formula::Leaf,
-        args: &[crate::formula::leaf::LeafArg<Self>],
-    ) -> crate::formula::leaf::LeafOut<Self> {
-        #[cfg(target_arch = "x86_64")]
-        if has_avx2() {
-            // SAFETY: the CPU has AVX2.
-            return unsafe { leaf_avx2(leaf, args) };
-        }
-        leaf.eval(args)
-    }
-}
-
-/// A leaf on packets compiled for AVX2; callers check [`has_avx2`].
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-unsafe fn leaf_avx2(
-    leaf: crate::formula::Leaf,
-    args: &[crate::formula::leaf::LeafArg<F32x8>],
-) -> crate::formula::leaf::LeafOut<F32x8> {
-    leaf.eval(args)
-}
-impl crate::formula::HostNum for F32x8 {}

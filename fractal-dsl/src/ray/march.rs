@@ -2,8 +2,9 @@
 //! tracing, glow, sign steps and the refined hit). The step is its own function so a renderer that refills packet
 //! lanes (the CPU's) runs exactly the steps [`march`] runs.
 
-use super::{Rules, SceneFns, View, GLOW_FALLOFF, MEMBERSHIP_STEP, MIN_DIRECTION, PROBE_REACH, PROBE_SHARE};
-use super::{REFINE_STEPS, T_SPACING};
+use super::rules::{Rules, View, GLOW_FALLOFF, MEMBERSHIP_STEP, MIN_DIRECTION, PROBE_REACH, PROBE_SHARE};
+use super::rules::{REFINE_STEPS, T_SPACING};
+use super::scene::SceneFns;
 use crate::analyse::SignRefinement;
 use crate::number::lanes::F32x8;
 use crate::number::math::V3;

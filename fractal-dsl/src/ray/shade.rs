@@ -2,10 +2,10 @@
 //! lights with their shadows and specular terms, and fog; the background on a miss; glow on both.
 
 use super::march::March;
-use super::{lit3, Light, Rules, SceneFns, View};
-use super::{AO_SAMPLES, AO_SPAN, AO_START, GLOW_NORM, REFINED_NORMAL_SHARE};
-use crate::number::math::{dot, length, normalize, v3, V3};
-use crate::number::{Mask, Num};
+use super::rules::{lit3, Light, Rules, View, GLOW_NORM, REFINED_NORMAL_SHARE};
+use super::scene::SceneFns;
+use crate::number::math::{dot, length, normalize, V3};
+use crate::number::Num;
 use crate::Shadows;
 
 /// A shaded ray: its linear colour (before display) and, at a hit, its normal (zero on a miss).
@@ -46,28 +46,6 @@ pub fn normal_tap<N: Num>(rules: &Rules, view: &View<N>, t: N, eps: N) -> N {
         None if rules.refine.is_some() => eps * N::lit(REFINED_NORMAL_SHARE),
         None => eps,
     }
-}
-
-/// The tetrahedron of offsets the normal samples the distance at.
-#[inline(always)]
-pub fn tetrahedron<N: Num>() -> [V3<N>; 4] {
-    let (one, neg) = (N::lit(1.0), N::lit(-1.0));
-    [v3(one, neg, neg), v3(neg, neg, one), v3(neg, one, neg), v3(one, one, one)]
-}
-
-/// Step 4's normal at `p`: the normalised tetrahedral gradient of the distance, taps `h` apart (a flat gradient has
-/// no direction and gives +y).
-#[inline(always)]
-pub fn normal<N: Num, S: SceneFns<N>>(scene: &S, p: V3<N>, h: N) -> V3<N> {
-    let mut gradient = V3::splat(N::lit(0.0));
-    for k in tetrahedron::<N>() {
-        gradient = gradient + k * scene.distance(p + k * h);
-    }
-    let len = length(gradient);
-    let up = v3(N::lit(0.0), N::lit(1.0), N::lit(0.0));
-    let found = N::lt(N::lit(0.0), len);
-    let unit = gradient / len;
-    v3(N::select(found, unit.x, up.x), N::select(found, unit.y, up.y), N::select(found, unit.z, up.z))
 }
 
 /// The colour of the surface at `p` (normal `n`, distance `t` along `rd`, hit epsilon `eps`): ambient light times
@@ -123,63 +101,6 @@ pub fn light_at<N: Num>(rules: &Rules, light: &Light<N>, p: V3<N>) -> (V3<N>, V3
             let distance = length(to_light);
             (to_light / distance, radiance / (distance * distance), distance)
         }
-    }
-}
-
-/// Ambient occlusion at `p` along the normal `n`: 1 − 3·strength·Σ (h_i − d(p + n·h_i))·0.95^i, clamped to [0, 1]
-/// (1 where the scene has none).
-#[inline(always)]
-pub fn occlusion<N: Num, S: SceneFns<N>>(rules: &Rules, scene: &S, p: V3<N>, n: V3<N>) -> N {
-    let (zero, one) = (N::lit(0.0), N::lit(1.0));
-    let Some(strength) = rules.ambient_occlusion else { return one };
-    let [occ, _, _] = N::iterate(
-        N::count(AO_SAMPLES),
-        [zero, one, zero],
-        |_| N::Mask::splat(true),
-        |[occ, w, i]| {
-            let h = N::lit(AO_START) + N::lit(AO_SPAN) * i / N::lit(f64::from(AO_SAMPLES - 1));
-            [occ + (h - scene.distance(p + n * h)) * w, w * N::lit(0.95), i + one]
-        },
-    );
-    N::min(N::max(one - N::lit(3.0 * strength) * occ, zero), one)
-}
-
-/// Light reaching `origin` from direction `l` within `limit`: 1 lit, 0 blocked, soft shadows in between. Soft
-/// shadows divide by t, so they start one step out; the origin is already off the surface. Lanes outside `live`
-/// take no steps.
-#[inline(always)]
-pub fn shadow<N: Num, S: SceneFns<N>>(
-    rules: &Rules,
-    scene: &S,
-    (origin, l): (V3<N>, V3<N>),
-    limit: N,
-    eps: N,
-    live: N::Mask,
-) -> N {
-    let (zero, one) = (N::lit(0.0), N::lit(1.0));
-    let soft = match rules.shadows {
-        Shadows::Soft(k) => Some(k),
-        _ => None,
-    };
-    let t0 = if soft.is_some() { N::lit(2.0) * eps } else { zero };
-    let [_, res, _] = N::iterate(
-        N::count(rules.max_steps),
-        [t0, one, zero],
-        |[t, _, blocked]| live & !N::lt(zero, *blocked) & N::lt(*t, limit),
-        |[t, res, blocked]| {
-            let running = live & !N::lt(zero, blocked) & N::lt(t, limit);
-            let d = scene.distance((origin + l * t).map(|c| N::stand_in(running, c)));
-            let blocked = N::lt(d, eps);
-            let res = match soft {
-                Some(k) => N::min(res, N::lit(k) * d / t),
-                None => res,
-            };
-            [N::select(blocked, t, t + d), N::select(blocked, zero, res), N::select(blocked, one, zero)]
-        },
-    );
-    match soft {
-        Some(_) => res * res * (N::lit(3.0) - N::lit(2.0) * res),
-        None => res,
     }
 }
 

@@ -39,7 +39,6 @@ use families::*;
 
 /// The declarations, and the table the parser looks names up in.
 pub mod families {
-    use crate::analyse::bounds::{julia_radius, juliabulb_radius, mandelbox_half_extent, mandelbulb_radius};
     use crate::analyse::interval::range;
     use crate::formula::Leaf;
     use crate::geom::{Aabb, Interval};
@@ -48,6 +47,7 @@ pub mod families {
     };
     use crate::ir::prim::PrimBound;
     use crate::ir::Fractal;
+    use crate::vocab::radius::{julia_radius, juliabulb_radius, mandelbox_half_extent, mandelbulb_radius};
 
     /// The family called `name` in scene source.
     pub fn by_name(name: &str) -> Option<&'static FractalDecl> {

@@ -5,3 +5,4 @@
 pub mod fractals;
 pub mod ops;
 pub mod prims;
+pub mod radius;

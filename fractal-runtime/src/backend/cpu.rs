@@ -573,7 +573,7 @@ mod tests {
             let (x, y) = ((i % 40) as f64 + 0.5, (i / 40) as f64 + 0.5);
             let (ro, rd) = view.ray(x, y);
             let p = ro + rd * b.t;
-            let expected = shade::normal(&on, p, view.footprint() * b.t);
+            let expected = fractal_dsl::ray::scene::normal(&on, p, view.footprint() * b.t);
             let cos = expected.x * n[0] + expected.y * n[1] + expected.z * n[2];
             assert!(cos > 1.0 - 1e-9, "pixel {i}: normal {n:?}, taps a footprint apart give {expected:?}");
             hits += 1;
