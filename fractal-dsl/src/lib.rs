@@ -18,7 +18,7 @@
 //! let d = reference.distance_in(v3(0.0, 0.0, -3.0), &Env::still());
 //! assert!((d - 2.0f64).abs() < 1e-12);
 //!
-//! // The sphere's formula (written once in `sdf.rs`) becomes one named function in each kernel.
+//! // The sphere's formula (written once in `formula/shapes.rs`) becomes one named function in each kernel.
 //! let kernels = fractal_dsl::compile(&parsed).expect("parsed scenes are valid");
 //! assert!(kernels.opencl.contains("float sd_sphere(float3 p, float r) {"));
 //! assert!(kernels.wgsl.contains("fn sd_sphere(p: vec3<f32>, r: f32) -> f32 {"));

@@ -300,7 +300,7 @@ fn every_traced_leaf_validates_as_wgsl_and_guard_constants_arrive_as_literals() 
     for leaf in Leaf::ALL {
         assert!(module.contains(&format!("fn {}(", leaf.name())), "{} missing", leaf.name());
     }
-    // DR_MAX and TINY are written once in sdf.rs and reach the kernel as literals.
+    // DR_MAX and TINY are written once in formula/common.rs and reach the kernel as literals.
     assert!(module.contains("1e17"), "DR_MAX is not in the traced estimators");
     assert!(module.contains("1e-30"), "TINY is not in the traced functions");
 }

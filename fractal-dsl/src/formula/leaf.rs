@@ -1,6 +1,6 @@
 //! What a table of leaf functions is made of: argument and result kinds, argument and result values, and the
 //! `leaves!` macro that writes the table — the `Leaf` enum with each function's name, typed parameters and result,
-//! and one dispatcher that calls it in any [`Num`]. The table itself stands in `sdf.rs`, beside the functions.
+//! and one dispatcher that calls it in any [`Num`]. The table itself stands in `formula/mod.rs`.
 
 use crate::number::math::V3;
 use crate::number::{Num, Orbit};
@@ -110,7 +110,7 @@ macro_rules! leaves {
             /// Every leaf, in the order kernels define them.
             pub const ALL: &'static [Leaf] = &[$(Leaf::$variant,)*];
 
-            /// The function's name, the same in `sdf.rs` and in every kernel.
+            /// The function's name, the same in `formula/` and in every kernel.
             pub fn name(self) -> &'static str {
                 match self {
                     $(Leaf::$variant => stringify!($func),)*
