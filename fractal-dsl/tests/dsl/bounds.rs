@@ -14,8 +14,7 @@ use fractal_dsl::vocab::radius::{julia_radius, mandelbox_half_extent, mandelbulb
 use fractal_dsl::*;
 use proptest::prelude::*;
 
-mod common;
-use common::{exact_bounded_primitive, unit_axis, vec3_in, Rng};
+use crate::common::{exact_bounded_primitive, unit_axis, vec3_in, Rng};
 
 // ---- sampling -------------------------------------------------------------------------------------------------------
 

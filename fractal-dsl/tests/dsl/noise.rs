@@ -5,8 +5,7 @@
 use fractal_dsl::formula::noise::{fbm2, fbm3, noise2, noise3, NOISE2_SLOPE, NOISE3_SLOPE};
 use fractal_dsl::number::math::v3;
 
-mod common;
-use common::Rng;
+use crate::common::Rng;
 
 impl Rng {
     /// Uniform in [−half, half).

@@ -219,7 +219,7 @@ fn mutate(rng: &mut Rng, seeds: &[Vec<String>], words: &[String]) -> String {
 fn seeds() -> Vec<Vec<String>> {
     let mut texts: Vec<String> = scenes::ALL.iter().map(|(_, compiled)| to_source(compiled.scene())).collect();
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
-    for dir in ["scenes/fractal", "tests/cli"] {
+    for dir in ["scenes/fractal", "tests/fractal/cli"] {
         let mut files: Vec<_> = std::fs::read_dir(root.join(dir)).unwrap().map(|e| e.unwrap().path()).collect();
         files.sort();
         texts.extend(

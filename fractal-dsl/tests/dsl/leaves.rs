@@ -3,8 +3,6 @@
 //! named function whose lowered code — run here by a small evaluator of the lowered form — gives exactly the direct
 //! f64 results, and whose WGSL validates with naga.
 
-mod common;
-
 use fractal_dsl::formula::leaf::{ArgKind, LeafArg, LeafOut};
 use fractal_dsl::formula::Leaf;
 use fractal_dsl::lower::code::{Body, CmpOp, LogicOp, MathFn, Op, Stmt, Ty, Val};
@@ -66,7 +64,7 @@ fn outputs<F: Copy>(out: LeafOut<F>) -> Vec<F> {
 /// Points near and on the shapes, the origin and the axes included (where the estimators have singular sets).
 fn points() -> Vec<[f64; 3]> {
     let mut pts = vec![[0.0; 3], [0.0, 0.0, 0.7], [0.0, 0.9, 0.0], [1e-7, 0.0, 0.5], [0.5, 0.5, 0.5]];
-    let mut rng = common::Rng(0x9e37_79b9_7f4a_7c15);
+    let mut rng = crate::common::Rng(0x9e37_79b9_7f4a_7c15);
     pts.extend((0..200).map(|_| [0, 1, 2].map(|_| (rng.unit() * 2.0 - 1.0) * 1.6)));
     pts
 }

@@ -12,7 +12,7 @@ use fractal::dsl::eval::{Env, Evaluator, Sample};
 use fractal::dsl::number::math::{v3, Real, V3};
 use fractal::dsl::{CompiledScene, Scene};
 
-use crate::tolerance::{distance_tolerance, material_tolerance, Class, Tol, MATERIAL_NEIGHBOUR_STEP, UNIT_ROUNDOFF};
+use super::tolerance::{distance_tolerance, material_tolerance, Class, Tol, MATERIAL_NEIGHBOUR_STEP, UNIT_ROUNDOFF};
 
 /// Which tolerance a row's distances are held to: exact formulas with basic arithmetic and square roots, formulas
 /// that also call sin/cos/pow at run time, and one family per fractal estimator.

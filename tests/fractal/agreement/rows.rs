@@ -4,7 +4,7 @@
 
 use fractal::dsl::CompiledScene;
 
-use crate::harness::{Family, Row};
+use super::harness::{Family, Row};
 
 /// A row from the scene written once: `row!("name", Family, { scene tokens })`, then chained settings.
 macro_rules! row {

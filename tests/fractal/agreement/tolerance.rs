@@ -14,7 +14,7 @@
 //! the distance tolerance of p; or, at a boundary between materials, when it is the whole material the reference
 //! gives a point [`MATERIAL_NEIGHBOUR_STEP`] away. The tables count the last two cases ("steep", "bndry").
 
-use crate::harness::Family;
+use super::harness::Family;
 
 /// The f32 unit roundoff, 2^-24: the largest relative error of one correctly rounded f32 operation.
 pub const UNIT_ROUNDOFF: f64 = 1.0 / 16_777_216.0;

@@ -1,7 +1,5 @@
 //! Helpers shared by the integration tests: a deterministic point generator, the random-tree building blocks
 //! (coordinate boxes, unit axes, exact bounded primitives) and distance evaluation at rest.
-// Each test crate compiles its own copy of this module and uses only part of it.
-#![allow(dead_code)]
 
 use fractal_dsl::eval::interp::Interpreter;
 use fractal_dsl::eval::Env;

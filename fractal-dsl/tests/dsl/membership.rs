@@ -11,8 +11,7 @@ use fractal_dsl::ir::Fractal;
 use fractal_dsl::number::math::v3;
 use fractal_dsl::vocab::fractals::families::FRACTALS;
 
-mod common;
-use common::Rng;
+use crate::common::Rng;
 
 /// One fractal of every family, and the other leaf forms a family's call can take (the Mandelbulb of a power other
 /// than 8).

@@ -9,11 +9,8 @@
 //! the rows × evaluators summary. GPU evaluators are skipped with a note when their driver is missing, and fail
 //! instead when `FRACTAL_REQUIRE_GPU_BACKENDS=1`.
 
-#[path = "agreement/harness.rs"]
 mod harness;
-#[path = "agreement/rows.rs"]
 mod rows;
-#[path = "agreement/tolerance.rs"]
 mod tolerance;
 
 use std::sync::Mutex;

@@ -10,8 +10,7 @@ use fractal_dsl::number::math::{v3, V3};
 use fractal_dsl::*;
 use proptest::prelude::*;
 
-mod common;
-use common::{d64, exact_bounded_primitive, vec3_in};
+use crate::common::{d64, exact_bounded_primitive, vec3_in};
 
 fn d32(i: &Interpreter, p: [f64; 3]) -> f32 {
     i.distance_in(v3(p[0] as f32, p[1] as f32, p[2] as f32), &Env::<f32>::still())

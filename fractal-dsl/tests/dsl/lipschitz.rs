@@ -8,8 +8,7 @@ use fractal_dsl::formula;
 use fractal_dsl::*;
 use proptest::prelude::*;
 
-mod common;
-use common::{d64, declared_args, unit_axis, vec3_in, Rng};
+use crate::common::{d64, declared_args, unit_axis, vec3_in, Rng};
 use fractal_dsl::ir::op::Operands;
 use fractal_dsl::vocab::ops::decl::OPS;
 
