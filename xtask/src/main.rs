@@ -1,6 +1,7 @@
 //! Project automation. `cargo xtask test` is the one test command: it installs the system packages the tests need
 //! (when it can), then runs every test of the workspace with the `opencl` feature, and the format and lint checks.
 
+mod house;
 mod layers;
 
 use std::process::{exit, Command};
@@ -158,8 +159,12 @@ fn layers(dir: Option<&str>) {
         }
         return;
     }
+    let long = house::long_files(root);
+    for (file, lines) in &long {
+        eprintln!("long file: {} has {lines} lines (at most {})", file.display(), house::MAX_LINES);
+    }
     match layers::workspace_cycles(root) {
-        Ok(cycles) if cycles.is_empty() => println!("xtask: no module cycles"),
+        Ok(cycles) if cycles.is_empty() && long.is_empty() => println!("xtask: no module cycles, no long files"),
         Ok(cycles) => {
             cycles.iter().for_each(|c| eprintln!("cycle: {c}"));
             exit(1);
