@@ -92,11 +92,11 @@ pub fn vec4(x: impl Into<Expr>, y: impl Into<Expr>, z: impl Into<Expr>, w: impl 
     Vec4Expr([x.into(), y.into(), z.into(), w.into()])
 }
 
-// ---- primitives: declared with their builder functions in `crate::vocab::prims` ---------------------------------------
+// ---- primitives: declared with their builder functions in `crate::vocab::prims` ------------------------------------
 
 pub use crate::vocab::prims::*;
 
-// ---- fractals: declared with their builder functions in `crate::vocab::fractals` -------------------------------------
+// ---- fractals: declared with their builder functions in `crate::vocab::fractals` ----------------------------------
 
 pub use crate::vocab::fractals::*;
 

@@ -1,8 +1,8 @@
 //! Writes a scene back as canonical scene source: `parse_str(&to_source(s))` rebuilds `s` exactly.
 //!
 //! Canonical form: `scene(<shape>)` followed by the lights, the camera if it is not the default one, and the render
-//! settings that differ from their defaults, one per indented line. CSG calls put each child on its own line. Numbers are
-//! written with `{:?}`, the shortest text that reads back as the same `f64`; a negative literal is written `-1.0`
+//! settings that differ from their defaults, one per indented line. CSG calls put each child on its own line. Numbers
+//! are written with `{:?}`, the shortest text that reads back as the same `f64`; a negative literal is written `-1.0`
 //! (which reads back as one literal) and a negation of a literal `-(1.0)` (which reads back as a negation).
 //! Settings left at `None` (fractal iterations, bailout, ...) are not written, so they read back as `None`.
 //!

@@ -5,8 +5,9 @@
 //! the point is at least as far from the child's bound as the nearest distance so far. The second use is exact (it
 //! never changes the union's value) when the child's distance is never below the distance to its bound. This module
 //! tracks that per node as a *reach ratio* κ: outside its box, a node's distance is at least κ times the distance to
-//! the box. κ = 1 for exact primitives and CSG over them; fractal radii are chosen (from measurements, see the
-//! constants below) so that Menger, Mandelbulb and Julia reach κ = 1 too. Operations that grow a shape by a distance
+//! the box. κ = 1 for exact primitives, CSG over them and the Menger sponge; every other fractal family declares the
+//! κ its estimate keeps outside its box, with radii from [`crate::vocab::radius`] (both in [`crate::vocab::fractals`];
+//! measured: `docs/settings.md`, “Bounds of the fractal families”). Operations that grow a shape by a distance
 //! (round, onion, smooth union) grow the box by that distance divided by κ, which keeps them conservative over
 //! estimators that fall short of the true distance (Sierpinski, Mandelbox, twist, bend).
 
@@ -14,8 +15,8 @@ use super::interval::arg_range;
 pub use crate::geom::{Aabb, Bound};
 use crate::ir::{Fractal, Node, Prim};
 
-/// Signed distance from `p` to the box, by the same formula as [`crate::formula::sd_box`] (so a guard computed here and one
-/// computed in a kernel agree).
+/// Signed distance from `p` to the box, by the same formula as [`crate::formula::sd_box`] (so a guard computed here and
+/// one computed in a kernel agree).
 pub fn sd_aabb(p: [f64; 3], b: &Aabb) -> f64 {
     let c = b.center();
     let h = b.half_extents();

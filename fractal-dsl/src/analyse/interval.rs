@@ -4,8 +4,8 @@
 //! Every operation is conservative: the value of the expression lies in the interval for every time and every
 //! parameter setting. Where an operation can produce NaN or has no useful limit (division by an interval containing
 //! zero, the square root of a possibly negative value, a fractional power of a possibly negative base), the answer is
-//! [`Interval::ENTIRE`]. NaN itself is no value: an expression that produces one somewhere (and then perhaps loses it in
-//! a `min`, which each shading language treats differently) is outside what a range promises.
+//! [`Interval::ENTIRE`]. NaN itself is no value: an expression that produces one somewhere (and then perhaps loses it
+//! in a `min`, which each shading language treats differently) is outside what a range promises.
 
 pub use crate::geom::Interval;
 use crate::ir::{BinOp, Expr, Func};

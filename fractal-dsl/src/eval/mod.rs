@@ -88,8 +88,8 @@ pub trait Evaluator<F: Real>: Sync {
     }
 }
 
-/// An evaluator of eight f32 points at a time ([`crate::number::lanes::F32x8`]), lane for lane the arithmetic of its f32
-/// [`Evaluator`].
+/// An evaluator of eight f32 points at a time ([`crate::number::lanes::F32x8`]), lane for lane the arithmetic of its
+/// f32 [`Evaluator`].
 pub trait PacketEvaluator: Sync {
     fn distance_x8(
         &self,

@@ -5,7 +5,7 @@ use super::shapes::sd_box;
 use crate::number::math::*;
 use crate::number::{Mask, Num};
 
-// ---- fractals: each returns (distance estimate, orbit trap in [0, 1]) --------------------------------------------------
+// ---- fractals: each returns (distance estimate, orbit trap in [0, 1]) ---------------------------------------------
 
 /// Escape radius that keeps r^power finite in f32 and below the user's bailout.
 #[inline(always)]
@@ -35,7 +35,7 @@ fn signed_by_membership<F: Num>(estimate: F, bounded: F::Mask) -> F {
     select(bounded, -abs(estimate), estimate)
 }
 
-/// The orbit of an escape-time map from z = p: z ← map(z, #[inline(always)] |z|, dr) + offset with dr ← its derivative, while |z|
+/// The orbit of an escape-time map from z = p: z ← map(z, |z|, dr) + offset with dr ← its derivative, while |z|
 /// stays within `escape` and dr below [`DR_MAX`]; returns the distance estimate (if `SIGNED`, signed by membership:
 /// [`signed_by_membership`], an orbit stopped by the derivative cap alone staying in) and the orbit trap (closest
 /// approach to the origin, at most 1). The offset is p for Mandelbrot-type sets, a constant for Julia-type ones.
@@ -78,11 +78,10 @@ pub fn de_mandelbulb_signed<F: Num>(p: V3<F>, power: F, iterations: F::Count, ba
 }
 
 /// [`de_mandelbulb`] with the derivative taking the map's azimuthal stretch (`bulb_power`), as the Juliabulb's
-/// does: the estimate of the low powers. Below power 4 the plain derivative over-reaches near the coordinate axes
-/// (largest estimate / true distance 66 at power 2, 21 at power 3) and was stepped at the factor 0.35 everywhere.
-/// The stretched estimate is smaller wherever the azimuth stretches more than the radius and steps at the factor 1:
-/// it over-reaches on about as few points, near the x axis and the coordinate planes where the stretch is 1, and on
-/// `mandelbulb_powers` the march takes 40 % fewer evaluations with no ray through the surface (`vocab/fractals.rs`).
+/// does: the estimate of the low powers. Below power 4 the plain derivative over-reaches far near the coordinate axes
+/// and needs a small step factor everywhere; the stretched estimate is smaller wherever the azimuth stretches more
+/// than the radius, steps at the factor 1 and over-reaches on about as few points, near the x axis and the coordinate
+/// planes where the stretch is 1 (measured: `docs/settings.md`, “Step factors of the fractal families”).
 #[inline(always)]
 pub fn de_mandelbulb_stretched<F: Num>(p: V3<F>, power: F, iterations: F::Count, bailout: F) -> [F; 2] {
     mandelbulb_trigonometric::<F, true, false>(p, power, iterations, bailout)
@@ -118,9 +117,9 @@ fn mandelbulb_trigonometric<F: Num, const STRETCHED: bool, const SIGNED: bool>(
 /// dr ↦ power·r^(power−1)·dr, times k if `STRETCHED`. k = max(1, |sin(power·θ) / sin θ|) (θ from the polar axis) is
 /// how much more the map stretches along the azimuth than along the radius: its Jacobian's largest singular value over
 /// the radial one, which tends to the power near the polar axis. With it the Juliabulb's estimate stays below the true
-/// distance (largest measured ratio 0.63 against 2.8 without, `fractal accuracy --estimators`). The Mandelbulb keeps
-/// the plain rule from power 4 up, as the correction leaves its outliers near the x and y axes and its smaller
-/// estimate stops rays further in front of the power-8 bulb (see `vocab/fractals.rs`); below it, it takes the stretch.
+/// distance. The Mandelbulb keeps the plain rule from power 4 up, as the correction leaves its outliers near the x and
+/// y axes and its smaller estimate stops rays further in front of the power-8 bulb; below it, it takes the stretch
+/// (measured: `docs/settings.md`, “Step factors of the fractal families”).
 #[inline(always)]
 pub(super) fn bulb_power<F: Num, const STRETCHED: bool>(z: V3<F>, r: F, dr: F, power: F) -> (V3<F>, F) {
     // θ from atan2(ρ, z), not acos(z/r): acos is ill-conditioned at ±1, where GPU drivers' approximations lose most

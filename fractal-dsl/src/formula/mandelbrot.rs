@@ -9,11 +9,12 @@
 //! kernels pass the hit point relative to the camera, see [`crate::eval::Reference`]), so pixels 10⁻¹⁵ apart stay
 //! apart while z = Zₙ + δₙ decides escape.
 //!
-//! **Rebasing** (Zhuoran, 2021): when |z| < |δ| — the pixel's orbit passed nearer to 0 than to the reference's — or when
-//! the reference orbit runs out (it escaped, or its count ended), the iteration goes on from z itself, as δ around the
-//! reference's start (Z₀ = 0, index 0). This removes the "glitches" of plain perturbation without a second reference.
-//! Around the reference point 0, whose orbit is the single entry [0, 0] ([`crate::number::ORBIT_AT_ZERO`]), the step is
-//! exactly the plain iteration's: that is what an evaluator without a frame (a probe, `CompiledScene::sample`) runs.
+//! **Rebasing** (Zhuoran, 2021): when |z| < |δ| — the pixel's orbit passed nearer to 0 than to the reference's — or
+//! when the reference orbit runs out (it escaped, or its count ended), the iteration goes on from z itself, as δ around
+//! the reference's start (Z₀ = 0, index 0). This removes the "glitches" of plain perturbation without a second
+//! reference. Around the reference point 0, whose orbit is the single entry [0, 0] ([`crate::number::ORBIT_AT_ZERO`]),
+//! the step is exactly the plain iteration's: that is what an evaluator without a frame (a probe,
+//! `CompiledScene::sample`) runs.
 
 use crate::number::math::*;
 use crate::number::Orbit;

@@ -32,8 +32,8 @@ fn first_step_radius<F: Num>(power: F, bailout: F) -> F {
     )
 }
 
-/// Whether the orbit z ← map(z, #[inline(always)] |z|) + offset from z = p stays within `escape` for `iterations` steps; `radius` holds
-/// the set.
+/// Whether the orbit z ← map(z, |z|) + offset from z = p stays within `escape` for `iterations` steps; `radius`
+/// holds the set.
 #[inline(always)]
 fn escape_time_membership<F: Num>(
     p: V3<F>,

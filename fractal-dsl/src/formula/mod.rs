@@ -1,8 +1,9 @@
 //! The leaf functions: distance to each primitive, each fractal estimator, and the smooth CSG blends, each written
 //! once, generic over [`Num`]. `f32` and `f64` run them directly (interpreter, native evaluator, reference); the
 //! tracer records them into the kernels' named functions (`sd_box`, `de_mandelbulb8`, …) and a lane type runs them a
-//! packet at a time. So they branch with [`select`] and loop with [`Num::iterate`] (see [`crate::number`]), and the guard
-//! constants below reach every kernel as traced literals. The table just below lists them with their signatures.
+//! packet at a time. So they branch with [`select`] and loop with [`Num::iterate`] (see [`crate::number`]), and the
+//! guard constants below reach every kernel as traced literals. The table just below lists them with their
+//! signatures.
 
 mod common;
 mod estimate;

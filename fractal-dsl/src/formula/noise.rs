@@ -9,13 +9,13 @@
 //! the floor. Lattice coordinates are reduced mod 289 first, so the noise repeats every 289 units.
 //!
 //! Values lie in [−1, 1] (clamped there; the sums of octaves in [−2, 2]); the slopes |∇| stay below
-//! [`NOISE2_SLOPE`] and [`NOISE3_SLOPE`] (measured in `fractal-dsl/tests/noise.rs`), which the displacement's
+//! [`NOISE2_SLOPE`] and [`NOISE3_SLOPE`] (measured in `fractal-dsl/tests/dsl/noise.rs`), which the displacement's
 //! Lipschitz bound reads ([`crate::analyse::slope`]).
 
 use crate::number::math::*;
 
-/// Largest |∇ noise2|: measured 2.75 over 400 000 points (`tests/noise.rs`), with a third more for what sampling
-/// misses.
+/// Largest |∇ noise2|: measured 2.75 over 400 000 points (`fractal-dsl/tests/dsl/noise.rs`), with a third more for what
+/// sampling misses.
 pub const NOISE2_SLOPE: f64 = 3.6;
 /// Largest |∇ noise3|: measured 3.09 over 400 000 points, with a third more for what sampling misses.
 pub const NOISE3_SLOPE: f64 = 4.1;

@@ -111,8 +111,8 @@ pub struct Membership {
     /// the set towards the limit — rather than the set at the drawn count (IFS levels, where the count is the shape).
     pub approaches_limit: bool,
     /// For each estimator leaf, the same estimate signed by membership: ≤ 0 exactly where the family's orbit stays
-    /// bounded (`sdf::signed_by_membership`), which a scene with `membership_hits` calls instead, to take its hits on
-    /// the drawn set itself. Empty where the estimate has no such sign (IFS folds, the Mandelbox).
+    /// bounded (`signed_by_membership` in `formula/estimate.rs`), which a scene with `membership_hits` calls instead,
+    /// to take its hits on the drawn set itself. Empty where the estimate has no such sign (IFS folds, the Mandelbox).
     pub signed: &'static [(Leaf, Leaf)],
 }
 

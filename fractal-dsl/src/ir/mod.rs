@@ -253,10 +253,9 @@ pub struct RenderSettings {
 impl Default for RenderSettings {
     fn default() -> Self {
         RenderSettings {
-            // A ray grazing a surface at just over the hit epsilon takes steps of about that epsilon along it: past a
-            // unit sphere at the default epsilon, 0.03 % of a 1920×1080 frame's rays ran out of 128 steps and none of
-            // 256, at the same 4.5 distance evaluations per pixel (`fractal accuracy` of `sphere(1.0)`; 0.02 % of
-            // 384×216 already).
+            // A ray grazing a surface at just over the hit epsilon takes steps of about that epsilon along it: even
+            // past a unit sphere some rays ran out of 128 steps, none of 256, at the same cost (measured:
+            // `docs/settings.md`, “The default step budget”).
             max_steps: 256,
             max_distance: 20.0,
             epsilon: HitEpsilon::Fixed(0.0005),

@@ -1,8 +1,8 @@
 //! The f32 elementary functions the host evaluates in — `ln`, `exp2`, `pow`, `sin`, `cos`, `atan2`, `acos`,
 //! `floor` — written without branches, so that a loop over eight lanes of them becomes vector instructions instead of
-//! eight calls into libm. Scalar f32 ([`crate::number::Num`] for `f32`) and the packet type ([`crate::number::lanes::F32x8`])
-//! both call these same functions, so a packet's lanes equal the scalar results bit for bit; f64 (the reference)
-//! keeps the platform's libm.
+//! eight calls into libm. Scalar f32 ([`crate::number::Num`] for `f32`) and the packet type
+//! ([`crate::number::lanes::F32x8`]) both call these same functions, so a packet's lanes equal the scalar results bit
+//! for bit; f64 (the reference) keeps the platform's libm.
 //!
 //! The approximations are Cephes' single-precision ones (range reduction plus a minimax polynomial); their error
 //! against the correctly rounded result is stated per function and checked over dense sweeps by this module's tests.
@@ -105,7 +105,8 @@ pub fn ln(x: f32) -> f32 {
     pick(x < 0.0 || x.is_nan(), f32::NAN, r)
 }
 
-/// 2^x (Cephes `exp2f`): within 1.2 ulp (measured); overflows to ∞ past 128, and goes through the subnormals to 0 below −150.
+/// 2^x (Cephes `exp2f`): within 1.2 ulp (measured); overflows to ∞ past 128, and goes through the subnormals to 0
+/// below −150.
 #[inline(always)]
 pub fn exp2(x: f32) -> f32 {
     let clamped = pick(x > 129.0, 129.0, pick(x < -151.0, -151.0, x));

@@ -144,8 +144,8 @@ pub trait Num:
 }
 
 /// A perturbation reference orbit: Z₀, Z₁, … of z ← z² + C at one reference point C, in f32 as the kernels hold it
-/// (see [`crate::formula::mandelbrot::mandelbrot_perturbed`]). Where a kernel computes, the orbit is the frame's, and the slice a
-/// traced formula is handed is empty.
+/// (see [`crate::formula::mandelbrot::mandelbrot_perturbed`]). Where a kernel computes, the orbit is the frame's, and
+/// the slice a traced formula is handed is empty.
 pub type Orbit<'a> = &'a [[f32; 2]];
 
 /// The orbit of the reference point 0 (which never moves): perturbation around it is the plain iteration.

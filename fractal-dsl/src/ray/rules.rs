@@ -26,7 +26,8 @@ pub const AO_SAMPLES: u32 = 5;
 pub const PROBE_SHARE: f64 = 0.5;
 /// Sign refinement: the longest sign step, in hit epsilons.
 pub const PROBE_REACH: f64 = 16.0;
-/// Sign refinement of membership hits: the sign step, in hit epsilons (`docs/accuracy.md` gives the measurement).
+/// Sign refinement of membership hits: the sign step, in hit epsilons. Half, not a whole one: whole steps passed
+/// through more of the sets and missed more of them (measured: `docs/settings.md`, “The sign step of membership hits”).
 pub const MEMBERSHIP_STEP: f64 = 0.5;
 /// Sign refinement: Illinois steps on a bracketed crossing.
 pub const REFINE_STEPS: u32 = 6;

@@ -1,37 +1,14 @@
 //! The fractal families, each declared once: name, constructor argument with its rule, iteration counts, the settings
-//! that apply, the leaf call, the measured step factor, the bound and the membership test — and its builder function.
-//! The parser, printer, validation, folding, bounds, evaluation and the ground truth read these declarations
+//! that apply, the leaf call, the step factor, the bound and the membership test — and its builder function. The
+//! parser, printer, validation, folding, bounds, evaluation and the ground truth read these declarations
 //! ([`crate::ir::fractal`]).
 //!
-//! Step factors are the inverse of the largest |f(p) − f(q)| / |p − q| measured by the Lipschitz tests
-//! (`fractal-dsl/tests/lipschitz.rs`), rounded down to 0.05. Pairs lie outside the set (both orbits escape), near the
-//! surface (estimate below 10% of the bound's half extent) and 1% of the bound's half extent apart: at smaller
-//! separations the escape-time estimators have ever finer detail and the largest ratio keeps growing with the sample
-//! count, and inside the set their values are not distances. Largest ratios over 20 million pairs per variant:
-//! Mandelbulb power 8 at 4–16 iterations and bailout 2 or 256, 1.28 → 0.75; Juliabulb below power 8 0.2 (power 3
-//! measures 2.6; where the set is dust the estimate bounds nothing — power 5 at the first c measures 299); quaternion Julia with connected sets
-//! (c = (−0.2, 0.6, 0.2, 0), (−0.4, 0.6, 0, 0)), 1.15 → 0.85; Mandelbox at scales −2, −1.5, 2, 3, 1.30 → 0.75. Menger
-//! and Sierpinski are 1-Lipschitz: 1. The Mandelbulb's ratio depends on the power (measured: power 3 → 2.7, 4 → 1.4,
-//! 5.5 → 1.5, 8 → 1.28, 16 → 0.93), so its factor follows the lowest power the expression can take.
-//!
-//! The Juliabulb at power 8 is the exception: its estimate takes the map's azimuthal stretch (`sdf::de_juliabulb`),
-//! which keeps it below the true distance — the criterion a march needs — by a wide margin, while its Lipschitz ratio
-//! grows (3.7). Its factor comes from the estimator study against the true distance (`fractal accuracy --estimators`,
-//! asserted in `fractal-runtime/src/truth/estimate.rs`): largest estimate / true distance 0.63 near the axes, the
-//! planes and anywhere (300 points each), so 1.4. The plain derivative measured 2.8 there and needed 0.4; on the
-//! `juliabulb` scene the change took 19.1 distance evaluations per pixel to 10.4 and its false hits from 8.9 % to
-//! 4.1 % (96×54, CPU), with no ray through the surface.
-//!
-//! A Mandelbulb whose power stays below 4 takes the same stretch (`sdf::de_mandelbulb_stretched`). With the plain
-//! derivative its largest estimate / true distance was 66 (power 2) and 21 (power 3) near the coordinate axes, and at
-//! its factor 0.35 the power-3 points still unsafe were 1.00 % of those near the planes and 0.67 % of those near the
-//! axes (the study's 300 points a region). The stretched estimate at the factor 1: none near the planes, 1.00 % near
-//! the axes, all at the x axis, where the stretch is 1 and the estimate is the plain one; power 2 at most 1.03 (near
-//! the axes), with one point in 60 above 1 at another seed. On `mandelbulb_powers` (192×108, CPU) the march took 9.4
-//! distance evaluations per pixel instead of 15.8, 31 ms instead of 44, its cone-consistent false hits went from
-//! 8.1 % to 5.7 %, and no ray passed through the surface. From power 4 up the plain rule stays: on the power-8
-//! showcase the stretched estimate, smaller near the poles, stopped rays up to 2.8 footprints (interior p99) in front
-//! of the surface at the same epsilon, for no fewer evaluations.
+//! A step factor keeps a march from stepping through the surface: the inverse of the estimate's largest Lipschitz
+//! ratio near the set, rounded down to 0.05 (`fractal-dsl/tests/dsl/lipschitz.rs`), or, for an estimate that takes
+//! the map's azimuthal stretch (the Juliabulb at power 8, the Mandelbulb below power 4), the factor that keeps it
+//! below the true distance in the estimator study (`fractal accuracy --estimators`). Figures and commands:
+//! `docs/settings.md`, “Step factors of the fractal families”; the bounds' margins and reaches: “Bounds of the
+//! fractal families”.
 
 use crate::ir::fractal::FractalArgValue;
 use crate::ir::{Expr, Fractal, Vec3Expr, Vec4Expr};
@@ -74,16 +51,16 @@ pub mod families {
     }
     use crate::ir::Expr;
 
-    /// Escape-time estimators: outside the box the raw estimate is at least 0.67 (Mandelbulb, powers 2–32; Julia)
-    /// times the distance to the box, measured (0.50 and 0.57 after the factors 0.75 and 0.85); the reach takes
-    /// [`PLAIN_OUTSIDE`] × the step factor, or `outside` × it for an estimate that is a fraction of that one. Inside
-    /// the set the estimate is not a distance, so union guards over them are not exact (they stay safe: the box holds
-    /// the surface).
+    /// Escape-time estimators: outside the box the raw estimate keeps a measured share of the distance to the box, so
+    /// the reach takes [`PLAIN_OUTSIDE`] × the step factor, or `outside` × it for an estimate that is a fraction of
+    /// that one (measured: `docs/settings.md`, “Bounds of the fractal families”). Inside the set the estimate is not a
+    /// distance, so union guards over them are not exact (they stay safe: the box holds the surface).
     fn escape_time_bound(f: &Fractal, radius: Option<f64>, outside: f64) -> Option<PrimBound> {
         radius.map(|r| PrimBound { aabb: Aabb::cube(r), reach: outside * f.step_factor_or_default() })
     }
 
-    /// The plain escape-time estimate outside its box, in distances to the box (measured at no less than 0.67).
+    /// The plain escape-time estimate outside its box, in distances to the box: a little below the least share
+    /// measured (`docs/settings.md`, “Bounds of the fractal families”).
     const PLAIN_OUTSIDE: f64 = 0.6;
 
     pub static MANDELBULB: FractalDecl = FractalDecl {
@@ -108,8 +85,8 @@ pub mod families {
         },
         step_factor: |f| if stretched_bulb(f) { 1.0 } else { bulb_step_factor(bulb_powers(f).lo) },
         bound: |f| {
-            // The stretch divides the plain estimate by at most the power, below 4 (measured outside the box: 0.58
-            // at power 3, 0.21 just below 4).
+            // The stretch divides the plain estimate by at most the power, below 4 (measured outside the box:
+            // `docs/settings.md`, “Bounds of the fractal families”).
             let outside = if stretched_bulb(f) { PLAIN_OUTSIDE / 4.0 } else { PLAIN_OUTSIDE };
             escape_time_bound(f, mandelbulb_radius(bulb_powers(f).lo), outside)
         },
@@ -161,8 +138,9 @@ pub mod families {
         settings: &[],
         call: |f| (Leaf::DeSierpinski, vec![count(f)]),
         step_factor: |_| 1.0,
-        // The folds keep points in the tetrahedron's symmetry; far away the estimate is a plane distance, measured at
-        // no less than 0.334 × the distance to the cube along the diagonals.
+        // The folds keep points in the tetrahedron's symmetry; far away the estimate is a plane distance, which falls
+        // shortest of the distance to the cube along the diagonals (`docs/settings.md`, “Bounds of the fractal
+        // families”).
         bound: |f| Some(PrimBound { aabb: Aabb::cube(1.0), reach: 0.32 * f.step_factor_or_default() }),
         membership: Membership {
             leaves: &[(Leaf::DeSierpinski, Leaf::InSierpinski)],
@@ -272,8 +250,9 @@ pub mod families {
         vec![num(scale), num(f.setting_or_default(Setting::Angle)), count(f)]
     }
 
-    /// A kaleidoscopic IFS's set lies in the unit ball and its estimate is a true lower bound (`sdf::kifs_orbit`):
-    /// the step factor is 1, and outside the box the estimate is at least |p| − 1, at least the distance to the box.
+    /// A kaleidoscopic IFS's set lies in the unit ball and its estimate is a true lower bound (`kifs_orbit` in
+    /// `formula/estimate.rs`): the step factor is 1, and outside the box the estimate is at least |p| − 1, at least the
+    /// distance to the box.
     fn kifs_bound(_: &Fractal) -> Option<PrimBound> {
         Some(PrimBound { aabb: Aabb::cube(1.0), reach: 0.95 })
     }
@@ -317,8 +296,8 @@ pub mod families {
         &[(Leaf::DeIcosahedralKifs, Leaf::InIcosahedralKifs)],
     );
 
-    /// The Juliabulb's step factor for its lowest power (measured against the true distance at power 8, see the
-    /// module comment).
+    /// The Juliabulb's step factor for its lowest power: at power 8 from the estimator study, below it from the
+    /// Lipschitz tests (`docs/settings.md`, “Step factors of the fractal families”).
     fn juliabulb_step_factor(lowest: f64) -> f64 {
         if lowest >= 8.0 {
             1.4
@@ -328,9 +307,9 @@ pub mod families {
     }
 
     /// Whether the Mandelbulb's estimate takes the map's azimuthal stretch
-    /// ([`crate::formula::de_mandelbulb_stretched`]): where its power stays below 4. The stretch divides the estimate by
-    /// up to the power near the poles, so a power that can grow past it keeps the plain estimate (over a range
-    /// reaching power 9 the stretched one fell to 0.17 × the distance to the bound, against 0.83 plain).
+    /// ([`crate::formula::de_mandelbulb_stretched`]): where its power stays below 4. The stretch divides the estimate
+    /// by up to the power near the poles, so a power that can grow past it keeps the plain estimate, which keeps more
+    /// of the distance to the bound (`docs/settings.md`, “Bounds of the fractal families”).
     fn stretched_bulb(f: &Fractal) -> bool {
         f.number().is_some() && bulb_powers(f).hi < 4.0
     }
@@ -340,7 +319,8 @@ pub mod families {
         f.number().map_or(Interval::point(8.0), range)
     }
 
-    /// The plain Mandelbulb estimate's step factor for its lowest power (measured, see the module comment).
+    /// The plain Mandelbulb estimate's step factor for its lowest power, from the Lipschitz ratios by power
+    /// (`docs/settings.md`, “Step factors of the fractal families”).
     fn bulb_step_factor(lowest: f64) -> f64 {
         if lowest >= 8.0 {
             0.75

@@ -92,7 +92,7 @@ pub mod decl {
         identity: Identity::Never,
         flattens: false,
         lipschitz: true,
-        // Each step of the left fold subtracts at most k/4 from the plain minimum (sdf::smooth_min).
+        // Each step of the left fold subtracts at most k/4 from the plain minimum (`crate::formula::smooth_min`).
         bound: |s, a| Bound::hull(s).grown(s.len().saturating_sub(1) as f64 * a[0].hi() * 0.25),
     };
 

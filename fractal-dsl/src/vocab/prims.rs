@@ -2,8 +2,9 @@
 //! function. The parser, printer, validation, folding, bounds, evaluators and kernels all read these declarations
 //! ([`crate::ir::prim`]).
 //!
-//! Adding a primitive: its declaration and builder function here (and in [`decl::PRIMS`]), its leaf function in `formula/shapes.rs`
-//! (with its row in the leaf table there), a row in the agreement test, a line in the README's vocabulary.
+//! Adding a primitive: its declaration and builder function here (and in [`decl::PRIMS`]), its leaf function in
+//! `formula/shapes.rs` (with its row in the leaf table there), a row in the agreement test, a line in the README's
+//! vocabulary.
 
 use crate::ir::{Expr, Node, Vec3Expr};
 use decl::*;

@@ -5,8 +5,8 @@ use crate::geom::Interval;
 
 /// Radius of a sphere around the origin that bounds the Mandelbulb of any power ≥ `min_power`, at any iteration count
 /// and bailout. Points with |p|^(n−1) > 2 escape (|z^n + p| ≥ |z|^n − |p| > |z| keeps growing), so the set lies within
-/// 2^(1/(n−1)); the margin covers the rendered surface, where the estimate is below a hit epsilon (measured over powers
-/// 2–32 and 1–16 iterations: at most 0.035 beyond the set radius for estimates below 0.02).
+/// 2^(1/(n−1)); the margin covers the rendered surface, where the estimate is below a hit epsilon (measured:
+/// `docs/settings.md`, “Bounds of the fractal families”).
 pub fn mandelbulb_radius(min_power: f64) -> Option<f64> {
     if min_power.is_nan() || min_power <= 1.0 || min_power.is_infinite() {
         return None;

@@ -1,8 +1,7 @@
 //! The Rust writer: spells the lowered scene functions as two generic functions — distance and sample — that the
 //! `scene!` macro compiles into the user's crate as the native evaluator (f32, f64 and eight-lane packet instances of
-//! the same code: choices are masks, see [`Syntax::per_lane`]).
-//! Leaves call [`crate::formula`] directly: the functions the interpreter runs and the kernels' leaf functions are traced
-//! from.
+//! the same code: choices are masks, see [`Syntax::per_lane`]). Leaves call [`crate::formula`] directly: the
+//! functions the interpreter runs and the kernels' leaf functions are traced from.
 
 use std::fmt::Write;
 
