@@ -4,7 +4,9 @@
 //! declarations from the crate root, and draws an edge from a file to each file one of its paths names
 //! (`crate::..`, `super::..`, `self::..` or a child module). A path that names an item a module re-exports is followed
 //! to the file that defines it, so a facade's `pub use` is not itself a dependency. Test code (`#[cfg(test)]`) is left
-//! out: a test may read any module. A cycle is a strongly connected component of more than one file.
+//! out: a test may read any module. A cycle is a strongly connected component of more than one file, or of more than
+//! one sibling module taken whole (a folder module with everything under it), so a crate's modules form layers at
+//! every level of its tree.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -292,6 +294,56 @@ impl Graph {
         edges
     }
 
+    /// Cycles between sibling modules, each taken whole (a folder module with everything under it): for every module,
+    /// the strongly connected components of more than one child, with one loop spelled out.
+    pub fn sibling_cycles(&self) -> Vec<String> {
+        let edges = self.edges();
+        let mut out = Vec::new();
+        for (parent, file) in &self.files {
+            let children: Vec<&String> = file.children.iter().collect();
+            if children.len() < 2 {
+                continue;
+            }
+            // The child of `parent` a file lies under, if it lies under one.
+            let child_of = |m: &Vec<String>| -> Option<usize> {
+                (m.len() > parent.len() && m[..parent.len()] == parent[..])
+                    .then(|| children.iter().position(|c| **c == m[parent.len()]))
+                    .flatten()
+            };
+            let mut adj = vec![BTreeSet::new(); children.len()];
+            for (from, targets) in &edges {
+                let Some(a) = child_of(from) else { continue };
+                for t in targets {
+                    if let Some(b) = child_of(t) {
+                        if a != b {
+                            adj[a].insert(b);
+                        }
+                    }
+                }
+            }
+            let adj: Vec<Vec<usize>> = adj.into_iter().map(|s| s.into_iter().collect()).collect();
+            for c in tarjan(&adj).into_iter().filter(|c| c.len() > 1) {
+                let members: BTreeSet<usize> = c.iter().copied().collect();
+                let names: Vec<String> = a_loop(&adj, &members, c[0])
+                    .iter()
+                    .map(|&i| {
+                        let mut m = parent.clone();
+                        m.push(children[i].clone());
+                        m.join("::")
+                    })
+                    .collect();
+                let krate = self.root_name();
+                out.push(format!("{krate}: modules {}", names.join(" → ")));
+            }
+        }
+        out
+    }
+
+    fn root_name(&self) -> String {
+        let path = &self.files[&Vec::new()].path;
+        path.strip_prefix(&self.root).unwrap_or(path).display().to_string()
+    }
+
     /// The cycles: strongly connected components of more than one file (Tarjan), each with one loop spelled out.
     pub fn cycles(&self) -> Vec<String> {
         let edges = self.edges();
@@ -410,7 +462,9 @@ pub fn workspace_cycles(root: &Path) -> Result<Vec<String>, String> {
     for dir in CRATES {
         let dir = root.join(dir);
         if dir.exists() {
-            all.extend(Graph::read(&dir)?.cycles());
+            let graph = Graph::read(&dir)?;
+            all.extend(graph.cycles());
+            all.extend(graph.sibling_cycles());
         }
     }
     Ok(all)

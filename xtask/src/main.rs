@@ -146,7 +146,14 @@ fn run(cmd: &mut Command) {
 
 /// Prints each crate's module cycles and fails when there is one; with a crate's source folder, prints its edges.
 fn layers(dir: Option<&str>) {
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("xtask lives in the workspace");
+    // The workspace the command runs in (a second checkout reads its own files), else xtask's own.
+    let here = std::env::current_dir()
+        .ok()
+        .and_then(|d| d.ancestors().find(|a| a.join("Cargo.lock").exists()).map(Into::into));
+    let root: std::path::PathBuf = here.unwrap_or_else(|| {
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("xtask lives in the workspace").to_path_buf()
+    });
+    let root = root.as_path();
     if let Some(dir) = dir {
         match layers::Graph::read(&root.join(dir)) {
             Ok(graph) => {
