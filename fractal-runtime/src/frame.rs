@@ -15,9 +15,7 @@ use glam::DVec3;
 
 use crate::camera::Pose;
 use crate::error::FrameError;
-
-/// The largest image side any renderer accepts; larger sizes are refused before anything is allocated.
-pub const MAX_IMAGE_SIDE: u32 = 16384;
+pub use crate::limits::{MAX_IMAGE_SIDE, MAX_TIME};
 
 /// Values of a scene's parameters, in [`Scene::params`] order (the uniform order).
 #[derive(Clone, Debug, PartialEq)]
@@ -109,10 +107,6 @@ pub enum LightSlot {
     /// Position, and colour · intensity (falls off with the squared distance).
     Point { position: [f32; 3], radiance: [f32; 3] },
 }
-
-/// Largest |scene time| in seconds. The kernels receive time as f32, whose spacing at 1e5 s is 1/128 s: finer than a
-/// frame at 120 fps. Past it frames of an animation collapse onto the same time, and at 1e39 time is infinite.
-pub const MAX_TIME: f64 = 1e5;
 
 /// Checks a scene time against [`MAX_TIME`] (NaN fails too).
 pub fn check_time(time: f64) -> Result<(), FrameError> {

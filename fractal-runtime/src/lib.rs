@@ -56,6 +56,7 @@ pub mod error;
 pub mod export;
 pub mod frame;
 pub mod image;
+pub mod limits;
 pub mod mesh;
 pub mod output;
 pub mod package;
