@@ -5,8 +5,8 @@
 //! `cargo bench --bench renderer`; `fractal bench mandelbulb_bench --backend cpu|wgpu` times 1080p against lavapipe.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use fractal::runtime::backend::cpu::render_packets;
-use fractal::runtime::{render_scene, Frame, ParamValues, Pose};
+use fractal::render::backend::cpu::render_packets;
+use fractal::render::{render_scene, Frame, ParamValues, Pose};
 use std::hint::black_box;
 
 fn renderer(c: &mut Criterion) {

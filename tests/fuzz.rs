@@ -17,9 +17,7 @@ use fractal::dsl::math::v3;
 use fractal::dsl::parse::{parse_str, SourceError};
 use fractal::dsl::print::to_source;
 use fractal::dsl::{compile, Scene};
-use fractal::runtime::{
-    CpuRenderer, Frame, Image, KernelSources, ParamValues, Pose, RenderJob, Renderer, WgpuRenderer,
-};
+use fractal::render::{CpuRenderer, Frame, Image, KernelSources, ParamValues, Pose, RenderJob, Renderer, WgpuRenderer};
 use fractal::scenes;
 
 const DEFAULT_CASES: u64 = 20_000;

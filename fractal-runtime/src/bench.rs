@@ -37,15 +37,15 @@ use std::path::Path;
 use std::time::Instant;
 
 use fractal_dsl::{CameraPlacement, Scene};
+use fractal_render::camera::{CameraPath, Pose};
+use fractal_render::device::{Backend, DeviceInfo};
+use fractal_render::error::RenderError;
+use fractal_render::frame::{Frame, ParamValues};
+use fractal_render::renderer::{KernelSources, RenderJob};
+use fractal_render::select::{BackendChoice, RendererOptions};
 use glam::{DQuat, DVec3};
 
 use crate::accuracy::{measure, Observed, TrueError};
-use crate::camera::{CameraPath, Pose};
-use crate::device::{Backend, DeviceInfo};
-use crate::error::RenderError;
-use crate::frame::{Frame, ParamValues};
-use crate::renderer::{KernelSources, RenderJob};
-use crate::select::{BackendChoice, RendererOptions};
 use crate::truth::{Truth, TruthSettings};
 
 pub use precision::Accuracy;
@@ -216,7 +216,7 @@ pub fn bench_pose(
     params: &ParamValues,
     motion: CameraMotion,
     index: u64,
-) -> Result<(Pose, f64), crate::error::CameraError> {
+) -> Result<(Pose, f64), fractal_render::error::CameraError> {
     let lookup = |p: &fractal_dsl::ParamDecl| params.lookup(p);
     let fraction = (index % PATH_FRAMES) as f64 / PATH_FRAMES as f64;
     match (motion, &scene.camera.placement) {
@@ -255,7 +255,8 @@ pub fn error_size(width: u32, height: u32) -> (u32, u32) {
 }
 
 fn frame_at(spec: &BenchSpec, motion: CameraMotion, index: u64, size: (u32, u32)) -> Result<Frame, RenderError> {
-    let (pose, time) = bench_pose(spec.scene, spec.params, motion, index).map_err(crate::error::FrameError::from)?;
+    let (pose, time) =
+        bench_pose(spec.scene, spec.params, motion, index).map_err(fractal_render::error::FrameError::from)?;
     Ok(Frame::new(spec.scene, &pose, time, size.0, size.1, spec.params)?)
 }
 
@@ -292,7 +293,7 @@ fn open_timer(
 /// The true error of the timed march at `frame`: the same backend runs the scene's trace kernel, which keeps each
 /// pixel's depth, normal and steps beside the image.
 fn traced_error(spec: &BenchSpec, backend: Backend, frame: &Frame, truth: &Truth) -> Result<TrueError, RenderError> {
-    let mut renderer = crate::select::open(backend, &spec.options)?;
+    let mut renderer = fractal_render::select::open(backend, &spec.options)?;
     let tracing = fractal_dsl::compile(spec.scene)?.tracing();
     let sources = KernelSources { cpu: spec.kernels.cpu, ..KernelSources::compiled(&tracing) };
     let traced = renderer.trace(&RenderJob::new(sources, frame))?;

@@ -27,9 +27,9 @@
 //! detail below a pixel), or a ray half a pixel away on a diagonal finds no surface within [`ROUGH_DEGREES`] of the
 //! centre's plane (a hole or a rim between the axis neighbours).
 //!
-//! **Colour.** The true hit shaded by the render algorithm ([`crate::backend::cpu`]) in f64 with the true normal;
-//! materials, shadows and occlusion are what the algorithm defines them to be (from the f64 scene distance). Glow is
-//! left out: it is a sum along the march.
+//! **Colour.** The true hit shaded by the render algorithm ([`fractal_render::backend::cpu`]) in f64 with the true
+//! normal; materials, shadows and occlusion are what the algorithm defines them to be (from the f64 scene distance).
+//! Glow is left out: it is a sum along the march.
 //!
 //! **Iterations.** A finite-iteration membership test draws a fatter set than the limit an escape-time estimator
 //! approximates; [`TruthSettings::iteration_factor`] multiplies the iteration count of every fractal whose family
@@ -48,10 +48,10 @@ use fractal_dsl::Scene;
 use rayon::prelude::*;
 use std::sync::OnceLock;
 
-use crate::backend::cpu::View;
-use crate::error::RenderError;
-use crate::frame::Frame;
 use crate::quality::with_iterations_scaled;
+use fractal_render::backend::cpu::View;
+use fractal_render::error::RenderError;
+use fractal_render::frame::Frame;
 use member::{Member, SceneMembership};
 use ray::TruthRay;
 
@@ -397,10 +397,10 @@ fn axis_step(axis: usize, h: f64) -> V3<f64> {
 mod tests {
     use super::*;
     use crate::accuracy::{measure, Observed};
-    use crate::backend::cpu::trace_scene;
-    use crate::{ParamValues, Pose};
     use fractal_dsl::analyse::{sign_refinement, SignRefinement};
     use fractal_dsl::builder::*;
+    use fractal_render::backend::cpu::trace_scene;
+    use fractal_render::{ParamValues, Pose};
 
     fn frame(s: &Scene, w: u32, h: u32) -> Frame {
         let pose = Pose::from_camera(&s.camera, 0.0, &|p| p.default).unwrap();
@@ -682,7 +682,7 @@ mod tests {
         let glowing = scene(sphere(1.0)).camera(camera([0.0, 0.0, -3.0], [0.0; 3])).glow(rgb(0.2, 0.4, 1.0));
         let f = frame(&glowing, 32, 18);
         let truth = Truth::compute(&glowing, &f, TruthSettings::default()).unwrap();
-        let image = crate::render_scene::<f32, _>(&Interpreter::new(&glowing).unwrap(), &glowing, &f).unwrap();
+        let image = fractal_render::render_scene::<f32, _>(&Interpreter::new(&glowing).unwrap(), &glowing, &f).unwrap();
         let error = measure(&glowing, &truth, Observed::Image(&image));
         assert!(error.false_hits.is_nan() && error.false_misses.is_nan(), "{}", error.describe());
         assert!(error.describe().starts_with("hit mask not readable"), "{}", error.describe());

@@ -8,7 +8,7 @@ use fractal_dsl::builder::{plane, scene, sphere, union, ShapeExt};
 use fractal_dsl::eval::{Env, Evaluator, Sample};
 use fractal_dsl::math::{length, v3, Real, V3};
 use fractal_dsl::Scene;
-use fractal_runtime::{
+use fractal_render::{
     render_scene, Backend, CpuRenderer, Frame, KernelSources, ParamValues, RenderError, RenderJob, Renderer,
 };
 use glam::DVec3;
@@ -62,7 +62,7 @@ fn sphere_over_plane_scene() -> Scene {
         .light(fractal_dsl::builder::directional(LIGHT, fractal_dsl::builder::rgb(1.0, 1.0, 1.0)))
 }
 
-fn render_cpu(evaluator: &dyn Evaluator<f32>, s: &Scene, frame: &Frame) -> fractal_runtime::Image {
+fn render_cpu(evaluator: &dyn Evaluator<f32>, s: &Scene, frame: &Frame) -> fractal_render::Image {
     CpuRenderer::new()
         .render(&RenderJob::new(KernelSources::default().with_cpu(evaluator, s), frame))
         .expect("CPU render")
@@ -175,7 +175,7 @@ fn hard_shadows_darken_exactly_the_shadowed_ground() {
 }
 
 /// Pixels of `b` darker than `a` by more than 2 levels in some channel, and brighter likewise.
-fn darker_and_brighter(a: &fractal_runtime::Image, b: &fractal_runtime::Image) -> (usize, usize) {
+fn darker_and_brighter(a: &fractal_render::Image, b: &fractal_render::Image) -> (usize, usize) {
     let (mut darker, mut brighter) = (0, 0);
     for (p, q) in a.pixels.iter().zip(&b.pixels) {
         let (p, q) = (p.to_le_bytes(), q.to_le_bytes());
@@ -238,7 +238,7 @@ fn packet_marching_draws_the_scalar_renderers_image() {
         // 61 columns: the last packet of each row is partly padding.
         let frame = frame_for(&scene, 61, 20, &ParamValues::defaults(&scene));
         let packets = Evaluator::<f32>::packets(&interp).expect("the interpreter has a packet instance");
-        let packed = fractal_runtime::backend::cpu::render_packets(packets, &scene, &frame).expect("render");
+        let packed = fractal_render::backend::cpu::render_packets(packets, &scene, &frame).expect("render");
         let scalar = render_scene::<f32, _>(&interp, &scene, &frame).expect("render");
         let differing = packed.pixels.iter().zip(&scalar.pixels).filter(|(a, b)| a != b).count();
         assert_eq!(differing, 0, "{name}: {differing} pixels differ between packet and scalar marching");

@@ -17,8 +17,8 @@ use std::path::PathBuf;
 
 use common::{available, builtin_scenes, frame_for, run_validator, tool_available};
 use fractal_dsl::back::{wgsl, Entry};
+use fractal_render::{KernelSources, ParamValues, RenderJob, Renderer, WgpuRenderer};
 use fractal_runtime::package::{package, Engine, Package};
-use fractal_runtime::{KernelSources, ParamValues, RenderJob, Renderer, WgpuRenderer};
 use naga_oil::compose::{ComposableModuleDescriptor, Composer, NagaModuleDescriptor, ShaderDefValue};
 
 fn packaged(name: &str, scene: &fractal_dsl::Scene, engine: Engine) -> Package {

@@ -12,7 +12,7 @@ use fractal_dsl::eval::interp::Interpreter;
 use fractal_dsl::eval::{Env, Evaluator};
 use fractal_dsl::math::v3;
 use fractal_dsl::Scene;
-use fractal_runtime::{CpuRenderer, Frame, Image, KernelSources, ParamValues, RenderJob, Renderer, WgpuRenderer};
+use fractal_render::{CpuRenderer, Frame, Image, KernelSources, ParamValues, RenderJob, Renderer, WgpuRenderer};
 
 /// Scenes that between them use time, a parameter, both light kinds, specular, shadows, occlusion, glow and fog.
 fn scenes() -> Vec<(&'static str, Scene)> {
@@ -51,7 +51,7 @@ fn frame(s: &Scene) -> Frame {
     if params.get("radius").is_some() {
         params.set("radius", 0.9).expect("in range");
     }
-    let pose = fractal_runtime::Pose::from_camera(&s.camera, 0.7, &|p| params.lookup(p)).expect("camera");
+    let pose = fractal_render::Pose::from_camera(&s.camera, 0.7, &|p| params.lookup(p)).expect("camera");
     Frame::new(s, &pose, 0.7, 64, 64, &params).expect("frame")
 }
 
@@ -68,7 +68,7 @@ fn check_alike(name: &str, backend: &str, cpu: &Image, other: &Image) {
 fn compiled_scenes_render_alike_on_every_backend() {
     let mut gpu = available("wgpu", WgpuRenderer::new());
     #[cfg(feature = "opencl")]
-    let mut cl = available("OpenCL", fractal_runtime::OpenClRenderer::new(false));
+    let mut cl = available("OpenCL", fractal_render::OpenClRenderer::new(false));
     for (name, s) in scenes() {
         let kernels = fractal_dsl::compile(&s).unwrap();
         let interpreter = Interpreter::new(&s).unwrap();
@@ -139,7 +139,7 @@ fn compiled_probes_match_the_interpreter() {
         #[cfg(feature = "opencl")]
         if let Some(got) = available(
             "OpenCL",
-            fractal_runtime::probe_opencl(&opencl::write(&program, Entry::Probe), &frame, &points, true),
+            fractal_render::probe_opencl(&opencl::write(&program, Entry::Probe), &frame, &points, true),
         ) {
             check_probe(name, "OpenCL", &s, &frame, &points, &got);
         }

@@ -6,7 +6,7 @@ mod common;
 use fractal_dsl::builder::{scene, sphere};
 use fractal_dsl::eval::{Env, Evaluator, Sample};
 use fractal_dsl::math::{length, v3, V3};
-use fractal_runtime::{select, Backend, BackendChoice, KernelSources, ParamValues, RenderJob, RendererOptions};
+use fractal_render::{select, Backend, BackendChoice, KernelSources, ParamValues, RenderJob, RendererOptions};
 
 struct UnitSphere;
 

@@ -4,7 +4,7 @@
 mod common;
 
 use common::*;
-use fractal_runtime::{probe_wgsl, Backend, KernelSources, RenderError, RenderJob, Renderer, WgpuRenderer};
+use fractal_render::{probe_wgsl, Backend, KernelSources, RenderError, RenderJob, Renderer, WgpuRenderer};
 
 fn renderer() -> Option<WgpuRenderer> {
     available("wgpu", WgpuRenderer::new())

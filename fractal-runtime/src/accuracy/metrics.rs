@@ -32,10 +32,10 @@
 
 use fractal_dsl::math::v3;
 use fractal_dsl::Scene;
+use fractal_render::backend::cpu::{pack, PixelTrace};
+use fractal_render::image::{unpack_rgba8, Image};
 
-use crate::backend::cpu::{pack, PixelTrace};
 use crate::bench::precision::scene_hits;
-use crate::image::{unpack_rgba8, Image};
 use crate::truth::{angle_degrees, Truth};
 
 /// Largest thin-ray depth difference, in footprints, at which the render and the truth stand on the same surface and

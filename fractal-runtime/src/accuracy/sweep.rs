@@ -13,16 +13,16 @@ use fractal_dsl::eval::interp::Interpreter;
 use fractal_dsl::{HitEpsilon, Node, Scene};
 
 use crate::accuracy::metrics::{measure, Observed, TrueError};
-use crate::backend::cpu::{trace_scene_with, MarchLevers};
-use crate::device::Backend;
-use crate::error::RenderError;
-use crate::frame::Frame;
 use crate::quality::{Quality, StepScaled};
-use crate::renderer::{KernelSources, RenderJob, Renderer};
-use crate::select::RendererOptions;
 use crate::truth::Truth;
 use fractal_dsl::analyse::{bound, fold::fold_node};
 use fractal_dsl::validate::check_membership_hits;
+use fractal_render::backend::cpu::{trace_scene_with, MarchLevers};
+use fractal_render::device::Backend;
+use fractal_render::error::RenderError;
+use fractal_render::frame::Frame;
+use fractal_render::renderer::{KernelSources, RenderJob, Renderer};
+use fractal_render::select::RendererOptions;
 
 /// Renders per timing; the median is reported.
 pub const TIMING_RUNS: usize = 3;
@@ -351,7 +351,7 @@ pub fn run(
             (Backend::Cpu, _, _) | (_, None, _) => run_cpu(scene, q, frame, truth)?,
             // The other math is another build of the program: a renderer of its own.
             (_, Some(_), Some(precise)) => {
-                let mut other = crate::select::open(backend, &RendererOptions { precise })?;
+                let mut other = fractal_render::select::open(backend, &RendererOptions { precise })?;
                 run_kernels(other.as_mut(), scene, q, frame, truth)?
             }
             (_, Some(r), None) => run_kernels(r.as_mut(), scene, q, frame, truth)?,
@@ -386,8 +386,8 @@ pub fn recommended<'a>(points: &'a [SweepPoint], budget: &Budget) -> Option<&'a 
 mod tests {
     use super::*;
     use crate::truth::TruthSettings;
-    use crate::{ParamValues, Pose};
     use fractal_dsl::builder::*;
+    use fractal_render::{ParamValues, Pose};
 
     /// A verdict names what it did not judge: a normal p99 over too few normals passes, and says so.
     #[test]
@@ -467,7 +467,7 @@ mod tests {
         let pose = Pose::from_camera(&glowing.camera, 0.0, &|p| p.default).unwrap();
         let frame = Frame::new(&glowing, &pose, 0.0, 24, 16, &ParamValues::defaults(&glowing)).unwrap();
         let truth = Truth::compute(&glowing, &frame, TruthSettings::default()).unwrap();
-        let mut renderer = match crate::select::open(Backend::Wgpu, &RendererOptions::default()) {
+        let mut renderer = match fractal_render::select::open(Backend::Wgpu, &RendererOptions::default()) {
             Ok(r) => r,
             Err(e) if std::env::var("FRACTAL_REQUIRE_GPU_BACKENDS").is_ok_and(|v| v == "1") => {
                 panic!("wgpu required but unavailable: {e}")

@@ -2,9 +2,8 @@
 //! has a baseline on its own device too. Same constants, same operations in the same order as
 //! `baseline/mandelbulb.cl`; only the vector helpers are spelled out.
 
+use fractal_render::image::Image;
 use rayon::prelude::*;
-
-use crate::image::Image;
 
 const MAX_STEPS: i32 = 128;
 const ITERS: i32 = 8;

@@ -7,11 +7,10 @@
 
 use fractal_dsl::eval::interp::Interpreter;
 use fractal_dsl::Scene;
-
-use crate::backend::cpu::render_scene;
-use crate::error::RenderError;
-use crate::frame::Frame;
-use crate::image::{unpack_rgba8, Image};
+use fractal_render::backend::cpu::render_scene;
+use fractal_render::error::RenderError;
+use fractal_render::frame::Frame;
+use fractal_render::image::{unpack_rgba8, Image};
 
 /// Levels per channel within which a pixel still has the miss colour (driver rounding of sqrt and the like).
 pub const MISS_TOLERANCE: u8 = 2;
@@ -123,9 +122,9 @@ pub fn compare_baseline(scene: &Scene, image: &Image, reference: &Image) -> Accu
 mod tests {
     use super::*;
     use crate::bench::baseline_cpu;
-    use crate::frame::ParamValues;
-    use crate::Pose;
     use fractal_dsl::builder::{camera, mandelbulb, rgb, scene, sphere, ShapeExt};
+    use fractal_render::frame::ParamValues;
+    use fractal_render::Pose;
 
     fn frame(s: &Scene, w: u32, h: u32) -> Frame {
         let pose = Pose::from_camera(&s.camera, 0.0, &|p| p.default).unwrap();

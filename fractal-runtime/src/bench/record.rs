@@ -9,11 +9,11 @@ use std::path::Path;
 use std::time::{SystemTime, UNIX_EPOCH};
 
 use fractal_dsl::{HitEpsilon, Scene, Shadows};
+use fractal_render::frame::ParamValues;
+use fractal_render::select::RendererOptions;
 use serde::Serialize;
 
 use super::{Accuracy, BenchReport, Stats};
-use crate::frame::ParamValues;
-use crate::select::RendererOptions;
 
 /// How the program and its kernels were built.
 #[derive(Clone, Debug, PartialEq, Serialize)]

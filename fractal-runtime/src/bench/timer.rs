@@ -5,11 +5,11 @@
 //! kernels take other arguments than the generated ones (the image size instead of the frame uniforms). Both kernels
 //! go through the same dispatcher, so the ratio compares kernels, not plumbing.
 
-use crate::device::{Backend, DeviceInfo};
-use crate::error::RenderError;
-use crate::image::Image;
-use crate::renderer::RenderJob;
-use crate::select::RendererOptions;
+use fractal_render::device::{Backend, DeviceInfo};
+use fractal_render::error::RenderError;
+use fractal_render::image::Image;
+use fractal_render::renderer::RenderJob;
+use fractal_render::select::RendererOptions;
 
 mod cpu;
 #[cfg(feature = "opencl")]

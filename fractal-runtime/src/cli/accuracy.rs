@@ -6,19 +6,20 @@ use std::fmt::Write as _;
 use std::io::Write as _;
 use std::time::Instant;
 
+use fractal_render::device::Backend;
+use fractal_render::frame::Frame;
+use fractal_render::select::{BackendChoice, RendererOptions};
+use fractal_render::Pose;
+
 use crate::accuracy::sweep::{self, Budget};
 use crate::accuracy::{plot, table};
 use crate::cli::args::AccuracyArgs;
 use crate::cli::error::CliError;
 use crate::cli::scene::LoadedScene;
 use crate::cli::SceneLibrary;
-use crate::device::Backend;
-use crate::frame::Frame;
 use crate::output::png::prepare_output;
 use crate::quality::Quality;
-use crate::select::{BackendChoice, RendererOptions};
 use crate::truth::{self, Truth, TruthSettings};
-use crate::Pose;
 
 mod keys;
 
@@ -94,7 +95,7 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
 
     let mut renderer = match backend {
         Backend::Cpu => None,
-        other => Some(crate::select::open(other, &RendererOptions { precise: args.precise })?),
+        other => Some(fractal_render::select::open(other, &RendererOptions { precise: args.precise })?),
     };
     // The truth at the scene's iteration count, and for escape-time fractals at doubled counts until neither the hit
     // mask nor the scene default's judged figures move: the converged truth, judged against (`--truth-factor` names
@@ -199,7 +200,9 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
         .also_on
         .iter()
         .filter(|&&b| b != backend)
-        .map(|&b| (b, crate::select::open(b, &RendererOptions { precise: args.precise }).map_err(|e| e.to_string())))
+        .map(|&b| {
+            (b, fractal_render::select::open(b, &RendererOptions { precise: args.precise }).map_err(|e| e.to_string()))
+        })
         .collect();
     for (other, opened) in &mut others {
         let line = default_on(scene, &frame, judged, *other, opened, budget)?;
@@ -242,7 +245,7 @@ fn default_on(
     frame: &Frame,
     truth: &Truth,
     backend: Backend,
-    opened: &mut Result<Box<dyn crate::renderer::Renderer>, String>,
+    opened: &mut Result<Box<dyn fractal_render::renderer::Renderer>, String>,
     budget: &Budget,
 ) -> Result<String, CliError> {
     let renderer = match opened {

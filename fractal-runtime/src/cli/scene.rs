@@ -11,13 +11,13 @@ use fractal_dsl::compiled::{CompiledScene, Kernels, NativeFns};
 use fractal_dsl::eval::interp::Interpreter;
 use fractal_dsl::eval::Evaluator;
 use fractal_dsl::Scene;
+use fractal_render::error::{FrameError, RenderError};
+use fractal_render::frame::ParamValues;
+use fractal_render::renderer::KernelSources;
 
 use crate::cli::error::CliError;
 use crate::cli::SceneLibrary;
-use crate::error::{FrameError, RenderError};
 use crate::export::{export, export_compiled, ExportError, Exported, Target};
-use crate::frame::ParamValues;
-use crate::renderer::KernelSources;
 
 /// Where a scene came from.
 #[derive(Clone, Debug, PartialEq, Eq)]

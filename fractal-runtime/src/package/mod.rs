@@ -27,10 +27,9 @@ use fractal_dsl::ir::ParamDecl;
 use fractal_dsl::lower::Program;
 use fractal_dsl::validate::InvalidScene;
 use fractal_dsl::Scene;
-
-use crate::error::{CameraError, FrameError};
-use crate::frame::{Frame, LightSlot, ParamValues};
-use crate::Pose;
+use fractal_render::error::{CameraError, FrameError};
+use fractal_render::frame::{Frame, LightSlot, ParamValues};
+use fractal_render::Pose;
 
 /// An engine (or language) a scene can be packaged for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

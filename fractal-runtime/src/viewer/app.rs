@@ -7,6 +7,11 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
 
+use fractal_render::camera::Pose;
+use fractal_render::error::RenderError;
+use fractal_render::frame::Frame;
+use fractal_render::image::Image;
+use fractal_render::renderer::RenderJob;
 use winit::application::ApplicationHandler;
 use winit::dpi::{PhysicalPosition, PhysicalSize};
 use winit::event::{DeviceEvent, DeviceId, ElementState, MouseButton, MouseScrollDelta, WindowEvent};
@@ -28,11 +33,6 @@ use super::screenshot::{next_screenshot_path, write_png};
 use super::script::ScriptPlayer;
 use super::title::{title, FrameClock, TitleFacts};
 use super::{PresentMode, ScreenshotInfo, ViewerError, ViewerOptions, ViewerScene, ViewerSummary};
-use crate::camera::Pose;
-use crate::error::RenderError;
-use crate::frame::Frame;
-use crate::image::Image;
-use crate::renderer::RenderJob;
 
 /// Longest time step of one frame: after a stall (a slow recompile, a dragged window) the camera does not jump.
 const MAX_DT: f64 = 0.25;

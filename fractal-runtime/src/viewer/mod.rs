@@ -56,11 +56,10 @@ use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 use fractal_dsl::{CompiledScene, Scene};
-
-use crate::camera::Pose;
-use crate::device::DeviceInfo;
-use crate::frame::ParamValues;
-use crate::select::{BackendChoice, RendererOptions};
+use fractal_render::camera::Pose;
+use fractal_render::device::DeviceInfo;
+use fractal_render::frame::ParamValues;
+use fractal_render::select::{BackendChoice, RendererOptions};
 
 pub use controls::{Action, Move};
 pub use headless::{display_available, render_png};
@@ -217,9 +216,9 @@ pub enum ViewerError {
     CameraPath(String),
     /// No backend could render the scene.
     #[error(transparent)]
-    Render(#[from] crate::error::RenderError),
+    Render(#[from] fractal_render::error::RenderError),
     #[error(transparent)]
-    Frame(#[from] crate::error::FrameError),
+    Frame(#[from] fractal_render::error::FrameError),
     /// The window system failed after the window opened.
     #[error("window error: {0}")]
     Window(String),

@@ -8,7 +8,7 @@ use std::path::Path;
 
 use fractal_dsl::builder::{mandelbulb, param, scene, sphere};
 use fractal_dsl::Scene;
-use fractal_runtime::{Frame, ParamValues, Pose, RenderError};
+use fractal_render::{Frame, ParamValues, Pose, RenderError};
 
 /// Whether the environment demands the wgpu and OpenCL backends (CI sets FRACTAL_REQUIRE_GPU_BACKENDS=1).
 pub fn backends_required() -> bool {
@@ -91,7 +91,7 @@ pub fn check_sphere_probe(samples: &[[f32; 8]], points: &[[f32; 4]], radius: f64
 }
 
 /// Fraction of pixels whose channels differ by more than `tolerance` levels.
-pub fn fraction_different(a: &fractal_runtime::Image, b: &fractal_runtime::Image, tolerance: u8) -> f64 {
+pub fn fraction_different(a: &fractal_render::Image, b: &fractal_render::Image, tolerance: u8) -> f64 {
     assert_eq!((a.width, a.height), (b.width, b.height));
     let differing = a
         .pixels

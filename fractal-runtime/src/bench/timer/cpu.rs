@@ -3,12 +3,13 @@
 
 use std::time::Instant;
 
+use fractal_render::backend::cpu::CpuRenderer;
+use fractal_render::device::DeviceInfo;
+use fractal_render::error::RenderError;
+use fractal_render::renderer::Renderer;
+
 use super::{millis, KernelClock, Timed, Timer, Work};
-use crate::backend::cpu::CpuRenderer;
 use crate::bench::baseline_cpu;
-use crate::device::DeviceInfo;
-use crate::error::RenderError;
-use crate::renderer::Renderer;
 
 pub(crate) struct CpuTimer {
     renderer: CpuRenderer,

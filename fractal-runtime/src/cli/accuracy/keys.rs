@@ -10,16 +10,16 @@
 use std::time::Instant;
 
 use fractal_dsl::{CameraPlacement, Scene};
+use fractal_render::device::Backend;
+use fractal_render::frame::Frame;
+use fractal_render::renderer::Renderer;
+use fractal_render::{ParamValues, Pose};
 
 use super::judged;
 use crate::accuracy::sweep::{self, Budget, SweepPoint};
 use crate::cli::error::CliError;
-use crate::device::Backend;
-use crate::frame::Frame;
 use crate::quality::Quality;
-use crate::renderer::Renderer;
 use crate::truth::{Truth, TruthSettings};
-use crate::{ParamValues, Pose};
 
 /// A backend of `--also-on`, opened once for all the frames it renders: the renderer, or why it did not open.
 pub(super) type Opened = (Backend, Result<Box<dyn Renderer>, String>);

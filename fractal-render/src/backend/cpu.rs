@@ -214,7 +214,7 @@ impl<F: Real, E: Evaluator<F> + ?Sized> Evaluator<F> for Counted<'_, E> {
 }
 
 /// The ray program's view of a scene through a scalar evaluator, at one frame's time and parameters.
-pub(crate) struct Scalar<'a, F, E: ?Sized> {
+pub struct Scalar<'a, F, E: ?Sized> {
     eval: &'a E,
     env: Env<'a, F>,
     /// The frame's perturbation reference orbit (empty without one).
@@ -260,8 +260,9 @@ struct Pixel<F> {
     normal: Option<V3<F>>,
 }
 
-/// The ray program set up for one frame: its rules, the frame's camera and lights, time and parameters.
-pub(crate) struct View<F> {
+/// The ray program set up for one frame: its rules, the frame's camera and lights, time and parameters. Public for
+/// tools that march rays of their own through a frame and shade them as this renderer does (the ground truth).
+pub struct View<F> {
     rules: Rules,
     view: ray::View<F>,
     time: F,
@@ -275,7 +276,7 @@ fn f3<F: Real>(v: [f32; 3]) -> V3<F> {
 }
 
 impl<F: Real> View<F> {
-    pub(crate) fn new(scene: &Scene, frame: &Frame, scene_bound: Option<Aabb>) -> Result<View<F>, RenderError> {
+    pub fn new(scene: &Scene, frame: &Frame, scene_bound: Option<Aabb>) -> Result<View<F>, RenderError> {
         let expected = Frame::layout_of(scene);
         if frame.layout() != expected {
             return Err(FrameError::SlotCount { expected: expected.slots(), got: frame.layout().slots() }.into());
@@ -312,30 +313,30 @@ impl<F: Real> View<F> {
     }
 
     /// The scene through `eval` at this frame's time and parameters.
-    pub(crate) fn on<'a, E: Evaluator<F> + ?Sized>(&'a self, eval: &'a E) -> Scalar<'a, F, E> {
+    pub fn on<'a, E: Evaluator<F> + ?Sized>(&'a self, eval: &'a E) -> Scalar<'a, F, E> {
         Scalar { eval, env: Env::new(self.time, &self.params), orbit: &self.orbit }
     }
 
     /// Pixel footprint per unit distance along a ray.
-    pub(crate) fn footprint(&self) -> F {
+    pub fn footprint(&self) -> F {
         self.view.footprint
     }
 
-    pub(crate) fn max_distance(&self) -> F {
+    pub fn max_distance(&self) -> F {
         F::c(self.rules.max_distance)
     }
 
-    pub(crate) fn background(&self) -> V3<F> {
+    pub fn background(&self) -> V3<F> {
         let b = self.rules.background;
         v3(F::c(b[0]), F::c(b[1]), F::c(b[2]))
     }
 
     /// Step 1: the ray through the point (px, py) of the image, in pixels from the top left corner.
-    pub(crate) fn ray(&self, px: F, py: F) -> (V3<F>, V3<F>) {
+    pub fn ray(&self, px: F, py: F) -> (V3<F>, V3<F>) {
         self.view.ray(px, py)
     }
 
-    pub(crate) fn hit_epsilon(&self, t: F) -> F {
+    pub fn hit_epsilon(&self, t: F) -> F {
         march::hit_epsilon(&self.rules, &self.view, t)
     }
 
@@ -362,7 +363,7 @@ impl<F: Real> View<F> {
 
     /// The colour of the surface at `p` with normal `n`, hit at distance `t` along `rd` with epsilon `eps`.
     #[allow(clippy::too_many_arguments)]
-    pub(crate) fn shade_hit<E: Evaluator<F> + ?Sized>(
+    pub fn shade_hit<E: Evaluator<F> + ?Sized>(
         &self,
         on: &Scalar<'_, F, E>,
         p: V3<F>,
@@ -474,7 +475,7 @@ fn set_lane3(v: &mut V3<F32x8>, i: usize, x: V3<f32>) {
 }
 
 /// Step 7 as this renderer writes its image: clamp, gamma, pack RGBA8 with R in the low byte.
-pub(crate) fn pack<F: Real>(colour: V3<F>, gamma: f64) -> u32 {
+pub fn pack<F: Real>(colour: V3<F>, gamma: f64) -> u32 {
     let channel = |v: F| {
         // Rust's max/min drop NaN, so a NaN channel becomes 0 rather than poisoning the pixel.
         let v = v.max(F::zero()).min(F::one());

@@ -1,4 +1,4 @@
-//! The runtime's errors: what can go wrong packing a frame, placing a camera, or running a kernel on a device.
+//! The renderer's errors: what can go wrong packing a frame, placing a camera, or running a kernel on a device.
 //! Nothing here panics on a missing GPU or driver; every failure is one of these values with a message a user can act
 //! on.
 
