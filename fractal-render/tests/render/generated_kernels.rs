@@ -3,9 +3,6 @@
 //! uniforms, and their probe kernels evaluated at points. This is the plumbing's end-to-end check; the full
 //! agreement suite over the built-in scenes lives with the facade.
 
-mod common;
-
-use common::available;
 use fractal_dsl::back::{opencl, wgsl, Entry};
 use fractal_dsl::builder::*;
 use fractal_dsl::eval::interp::Interpreter;
@@ -13,6 +10,8 @@ use fractal_dsl::eval::{Env, Evaluator};
 use fractal_dsl::math::v3;
 use fractal_dsl::Scene;
 use fractal_render::{CpuRenderer, Frame, Image, KernelSources, ParamValues, RenderJob, Renderer, WgpuRenderer};
+
+use crate::common::available;
 
 /// Scenes that between them use time, a parameter, both light kinds, specular, shadows, occlusion, glow and fog.
 fn scenes() -> Vec<(&'static str, Scene)> {
@@ -56,7 +55,7 @@ fn frame(s: &Scene) -> Frame {
 }
 
 fn check_alike(name: &str, backend: &str, cpu: &Image, other: &Image) {
-    let differing = common::fraction_different(cpu, other, 3);
+    let differing = crate::common::fraction_different(cpu, other, 3);
     assert!(
         differing < 0.01,
         "{name}: {:.2} % of {backend} pixels differ from the CPU's by more than 3 levels",

@@ -10,16 +10,15 @@
 //!
 //! External validators are skipped with a note when missing, unless FRACTAL_REQUIRE_GPU_BACKENDS=1.
 
-mod common;
-
 use std::collections::HashMap;
 use std::path::PathBuf;
 
-use common::{available, builtin_scenes, frame_for, run_validator, tool_available};
 use fractal_dsl::back::{wgsl, Entry};
 use fractal_render::{KernelSources, ParamValues, RenderJob, Renderer, WgpuRenderer};
 use fractal_runtime::package::{package, Engine, Package};
 use naga_oil::compose::{ComposableModuleDescriptor, Composer, NagaModuleDescriptor, ShaderDefValue};
+
+use crate::common::{available, builtin_scenes, frame_for, run_validator, tool_available};
 
 fn packaged(name: &str, scene: &fractal_dsl::Scene, engine: Engine) -> Package {
     package(scene, name, engine).unwrap_or_else(|e| panic!("{name} for {engine}: {e}"))

@@ -1,13 +1,11 @@
 //! The OpenCL renderer and probe runner on the first OpenCL platform (pocl without a GPU), with the hand-written
 //! fixture kernels in `tests/kernels`.
-#![cfg(feature = "opencl")]
 
-mod common;
-
-use common::*;
 use fractal_render::{
     probe_opencl, Backend, KernelSources, OpenClRenderer, RenderError, RenderJob, Renderer, WgpuRenderer,
 };
+
+use crate::common::*;
 
 fn renderer(precise: bool) -> Option<OpenClRenderer> {
     available("OpenCL", OpenClRenderer::new(precise))

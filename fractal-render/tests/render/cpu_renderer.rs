@@ -1,9 +1,6 @@
 //! The CPU renderer against analytic answers: a unit sphere's hit mask and shading, and hard shadows of a sphere on a
 //! plane, with small evaluators written here (the scene compiler generates such evaluators for real scenes).
 
-mod common;
-
-use common::frame_for;
 use fractal_dsl::builder::{plane, scene, sphere, union, ShapeExt};
 use fractal_dsl::eval::{Env, Evaluator, Sample};
 use fractal_dsl::math::{length, v3, Real, V3};
@@ -12,6 +9,8 @@ use fractal_render::{
     render_scene, Backend, CpuRenderer, Frame, KernelSources, ParamValues, RenderError, RenderJob, Renderer,
 };
 use glam::DVec3;
+
+use crate::common::frame_for;
 
 /// The default surface material of every evaluator here.
 fn default_sample<F: Real>(distance: F) -> Sample<F> {
@@ -131,7 +130,7 @@ fn f64_rendering_draws_the_same_sphere() {
     let frame = frame_for(&s, 48, 48, &ParamValues::defaults(&s));
     let single = render_cpu(&UnitSphere, &s, &frame);
     let double = render_scene::<f64, _>(&UnitSphere, &s, &frame).expect("f64 render");
-    let differing = common::fraction_different(&single, &double, 1);
+    let differing = crate::common::fraction_different(&single, &double, 1);
     assert!(differing < 0.02, "{:.1} % of pixels differ between f32 and f64", differing * 100.0);
 }
 
@@ -233,7 +232,7 @@ fn jobs_without_an_evaluator_or_with_another_scenes_frame_are_errors() {
 #[test]
 fn packet_marching_draws_the_scalar_renderers_image() {
     use fractal_dsl::eval::interp::Interpreter;
-    for (name, scene) in common::builtin_scenes() {
+    for (name, scene) in crate::common::builtin_scenes() {
         let interp = Interpreter::new(&scene).expect("a valid scene");
         // 61 columns: the last packet of each row is partly padding.
         let frame = frame_for(&scene, 61, 20, &ParamValues::defaults(&scene));
