@@ -5,7 +5,7 @@
 use fractal_dsl::back;
 use fractal_render::Pose;
 
-use super::{float, PackageError, PackageFile, Source};
+use super::source::{float, PackageError, PackageFile, Source};
 
 /// Shadertoy's time uniform.
 const SHADERTOY_TIME: &str = "iTime";
