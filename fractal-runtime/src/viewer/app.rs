@@ -31,8 +31,8 @@ use super::present::{GpuFrameError, GpuPresenter, SoftPresenter};
 use super::scale::ScaleController;
 use super::screenshot::{next_screenshot_path, write_png};
 use super::script::ScriptPlayer;
+use super::session::{PresentMode, ScreenshotInfo, ViewerError, ViewerOptions, ViewerScene, ViewerSummary};
 use super::title::{title, FrameClock, TitleFacts};
-use super::{PresentMode, ScreenshotInfo, ViewerError, ViewerOptions, ViewerScene, ViewerSummary};
 
 /// Longest time step of one frame: after a stall (a slow recompile, a dragged window) the camera does not jump.
 const MAX_DT: f64 = 0.25;

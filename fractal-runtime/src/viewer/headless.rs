@@ -12,7 +12,7 @@ use super::engine::EngineChain;
 use super::live_scene::LiveScene;
 use super::path_file::load_camera_path;
 use super::screenshot::write_png;
-use super::{ViewerError, ViewerOptions, ViewerScene};
+use super::session::{ViewerError, ViewerOptions, ViewerScene};
 
 /// `Ok` when an X11 or Wayland display is named in the environment (on other systems the window system is always
 /// there); otherwise why not.

@@ -13,7 +13,7 @@ use fractal_render::renderer::KernelSources;
 use notify::{RecursiveMode, Watcher};
 
 use super::effects::EffectOverrides;
-use super::ViewerScene;
+use super::session::ViewerScene;
 
 /// The CPU form of a scene.
 #[derive(Clone, Debug)]
