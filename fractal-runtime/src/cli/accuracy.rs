@@ -15,13 +15,15 @@ use crate::accuracy::sweep::{self, Budget};
 use crate::accuracy::{plot, table};
 use crate::cli::args::AccuracyArgs;
 use crate::cli::error::CliError;
-use crate::cli::scene::LoadedScene;
-use crate::cli::SceneLibrary;
+use crate::cli::scene::{LoadedScene, SceneLibrary};
 use crate::output::png::prepare_output;
 use crate::quality::Quality;
 use crate::truth::{self, Truth, TruthSettings};
 
 mod keys;
+mod verdict;
+
+use verdict::{capped, judged};
 
 /// Factor on the iteration count of the escape-time sets the estimator study measures against.
 pub const CONVERGED_FACTOR: u32 = 2;
@@ -256,13 +258,6 @@ fn default_on(
     Ok(format!("scene default on {backend}: {}", judged(point, budget).0))
 }
 
-/// A measured point as one line (its time, the figures its image holds and the budget's verdict on them), and the
-/// budget's violations (none: within budget).
-fn judged(point: &sweep::SweepPoint, budget: &Budget) -> (String, Vec<String>) {
-    let verdict = budget.verdict(&point.error);
-    (format!("{:.1} ms, {}; {}", point.time_ms, point.error.describe(), verdict.sentence()), verdict.violations)
-}
-
 /// Which of `truths` (in rising iterations) the sweep is judged against: the one of most iterations that has settled
 /// in its `step`, checked against a truth at twice the step from the most iterations down (the first when none has).
 /// A truth has settled when that moves less of its hit mask than the budget's hit mismatch (a truth less certain
@@ -299,17 +294,6 @@ fn settled_in_step(
         }
     }
     Ok(0)
-}
-
-/// ", capped at N, the family's most" where the family's iteration limit holds `factor` × the scene's iterations of
-/// its first escape-time fractal below that product.
-fn capped(scene: &fractal_dsl::Scene, factor: u32) -> String {
-    let own = sweep::escape_time_iterations(scene);
-    let scaled = sweep::escape_time_iterations(&crate::quality::with_iterations_scaled(scene, factor));
-    match (own, scaled) {
-        (Some(own), Some(n)) if n < own.saturating_mul(factor) => format!(", capped at {n}, the family's most"),
-        _ => String::new(),
-    }
 }
 
 /// Share of the pixels whose hit or miss differs between hit mask `a` and truth `b` of one frame.

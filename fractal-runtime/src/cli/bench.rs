@@ -10,8 +10,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use crate::bench::{append_csv, append_json, run, BenchLength, BenchSpec};
 use crate::cli::args::BenchArgs;
 use crate::cli::error::CliError;
-use crate::cli::scene::{LoadedScene, SceneOrigin};
-use crate::cli::SceneLibrary;
+use crate::cli::scene::{LoadedScene, SceneLibrary, SceneOrigin};
 use crate::output::png::prepare_output;
 
 /// The built-in scene set up like the hand-written baseline (camera, light, iterations, steps, epsilon), and the

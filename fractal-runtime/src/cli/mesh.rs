@@ -12,8 +12,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use crate::cli::args::MeshArgs;
 use crate::cli::error::CliError;
-use crate::cli::scene::LoadedScene;
-use crate::cli::SceneLibrary;
+use crate::cli::scene::{LoadedScene, SceneLibrary};
 use crate::mesh::{default_bounds, default_level, extract, write_mesh, MeshFormat, MeshSettings};
 use crate::output::png::{prepare_output, write_atomic_with};
 use crate::output::FramePattern;

@@ -6,8 +6,7 @@ use fractal_render::select::RendererOptions;
 
 use crate::cli::args::ViewArgs;
 use crate::cli::error::CliError;
-use crate::cli::scene::{LoadedScene, SceneOrigin};
-use crate::cli::SceneLibrary;
+use crate::cli::scene::{LoadedScene, SceneLibrary, SceneOrigin};
 use crate::viewer::{run, ViewerError, ViewerOptions, ViewerScene};
 
 pub fn view(args: &ViewArgs, library: &SceneLibrary) -> Result<(), CliError> {

@@ -15,7 +15,7 @@ use fractal_render::frame::Frame;
 use fractal_render::renderer::Renderer;
 use fractal_render::{ParamValues, Pose};
 
-use super::judged;
+use super::verdict::{capped, judged};
 use crate::accuracy::sweep::{self, Budget, SweepPoint};
 use crate::cli::error::CliError;
 use crate::quality::Quality;
@@ -88,7 +88,7 @@ pub(super) fn check(
             view.name(),
             100.0 * hits as f64 / view.truth.pixels.len().max(1) as f64,
             settings.iteration_factor,
-            super::capped(scene, settings.iteration_factor),
+            capped(scene, settings.iteration_factor),
             start.elapsed().as_secs_f64()
         ));
         views.push(view);
