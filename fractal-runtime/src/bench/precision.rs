@@ -121,7 +121,7 @@ pub fn compare_baseline(scene: &Scene, image: &Image, reference: &Image) -> Accu
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bench::baseline_cpu;
+    use crate::bench::baseline;
     use fractal_dsl::builder::{camera, mandelbulb, rgb, scene, sphere, ShapeExt};
     use fractal_render::frame::ParamValues;
     use fractal_render::Pose;
@@ -166,9 +166,9 @@ mod tests {
             .epsilon(0.0005);
         let f = frame(&s, 48, 27);
         let r = reference(&s, &f).unwrap();
-        let baseline = compare_baseline(&s, &baseline_cpu::render(48, 27), &r);
+        let baseline = compare_baseline(&s, &baseline::render(48, 27), &r);
         assert!(baseline.hit_mismatch.unwrap() < 0.03, "{}", baseline.describe());
-        let hits = baseline_hits(&baseline_cpu::render(48, 27)).iter().filter(|&&h| h).count();
+        let hits = baseline_hits(&baseline::render(48, 27)).iter().filter(|&&h| h).count();
         assert!(hits > 48 * 27 / 10, "only {hits} baseline hits");
     }
 }

@@ -13,8 +13,8 @@ use fractal_render::renderer::Renderer;
 use ocl::enums::ProfilingInfo;
 use ocl::{Buffer, Event, Kernel};
 
-use super::{millis, KernelClock, Timed, Timer, Work};
-use crate::bench::BASELINE_OPENCL;
+use super::dispatch::{millis, KernelClock, Timed, Timer, Work};
+use crate::bench::baseline::BASELINE_OPENCL;
 
 pub(crate) struct OpenClTimer {
     /// Owns the device, context, profiling queue and program cache.

@@ -13,8 +13,8 @@ use fractal_render::image::Image;
 use fractal_render::renderer::Renderer;
 use wgpu::util::DeviceExt;
 
-use super::{millis, KernelClock, Timed, Timer, Work};
-use crate::bench::BASELINE_WGSL;
+use super::dispatch::{millis, KernelClock, Timed, Timer, Work};
+use crate::bench::baseline::BASELINE_WGSL;
 
 const WORKGROUP: u32 = 8;
 
