@@ -30,10 +30,9 @@
 //! From an image alone (the GPU backends) only the hit mask (a pixel of the background colour is a miss) and PSNR can
 //! be read; where glow tints the misses, the mask comes from a second image ([`TrueError::with_hit_mask`]).
 
-use fractal_dsl::math::v3;
 use fractal_dsl::Scene;
-use fractal_render::backend::cpu::{pack, PixelTrace};
-use fractal_render::image::{unpack_rgba8, Image};
+use fractal_render::backend::cpu::PixelTrace;
+use fractal_render::image::{linear_rgba8, unpack_rgba8, Image};
 
 use crate::bench::precision::scene_hits;
 use crate::truth::{angle_degrees, Truth};
@@ -191,11 +190,6 @@ impl TrueError {
     }
 }
 
-/// The 8-bit colour of a linear colour, as the renderers pack it.
-fn packed(colour: [f64; 3], gamma: f64) -> [u8; 4] {
-    unpack_rgba8(pack::<f64>(v3(colour[0], colour[1], colour[2]), gamma))
-}
-
 fn psnr(pairs: impl Iterator<Item = ([u8; 4], [u8; 4])>) -> f64 {
     let (mut sum, mut n) = (0.0, 0usize);
     for (a, b) in pairs {
@@ -212,14 +206,14 @@ fn psnr(pairs: impl Iterator<Item = ([u8; 4], [u8; 4])>) -> f64 {
 /// Measures a render of `scene` against its truth (same frame).
 pub fn measure(scene: &Scene, truth: &Truth, observed: Observed) -> TrueError {
     let gamma = scene.settings.gamma;
-    let truth_colours = truth.pixels.iter().map(|p| packed(p.colour, gamma));
+    let truth_colours = truth.pixels.iter().map(|p| linear_rgba8(p.colour, gamma));
     // Glow tints misses, so an image of a scene with glow has no hit mask (`None`).
     let hits: Option<Vec<bool>> = match &observed {
         Observed::Traced(traces) => Some(traces.iter().map(|p| p.hit).collect()),
         Observed::Image(image) => scene_hits(scene, image),
     };
     let psnr = match &observed {
-        Observed::Traced(traces) => psnr(traces.iter().map(|p| packed(p.colour, gamma)).zip(truth_colours)),
+        Observed::Traced(traces) => psnr(traces.iter().map(|p| linear_rgba8(p.colour, gamma)).zip(truth_colours)),
         Observed::Image(image) => psnr(image.pixels.iter().map(|&p| unpack_rgba8(p)).zip(truth_colours)),
     };
     let (false_hits, false_hits_cone, false_misses) = match &hits {

@@ -10,7 +10,7 @@ use fractal_dsl::Scene;
 use fractal_render::backend::cpu::render_scene;
 use fractal_render::error::RenderError;
 use fractal_render::frame::Frame;
-use fractal_render::image::{unpack_rgba8, Image};
+use fractal_render::image::{linear_rgba8, unpack_rgba8, Image};
 
 /// Levels per channel within which a pixel still has the miss colour (driver rounding of sqrt and the like).
 pub const MISS_TOLERANCE: u8 = 2;
@@ -47,17 +47,8 @@ pub fn reference(scene: &Scene, frame: &Frame) -> Result<Image, RenderError> {
     render_scene::<f64, _>(&Interpreter::new(scene)?, scene, frame)
 }
 
-/// A colour packed as the renderers pack it: clamp, gamma, round.
-fn pack(colour: [f64; 3], gamma: f64) -> [u8; 3] {
-    colour.map(|c| {
-        let c = c.clamp(0.0, 1.0);
-        let c = if gamma == 2.0 { c.sqrt() } else { c.powf(1.0 / gamma) };
-        (c * 255.0 + 0.5).min(255.0) as u8
-    })
-}
-
-fn near(pixel: u32, colour: [u8; 3]) -> bool {
-    unpack_rgba8(pixel).iter().zip(colour).all(|(p, c)| p.abs_diff(c) <= MISS_TOLERANCE)
+fn near(pixel: u32, colour: [u8; 4]) -> bool {
+    unpack_rgba8(pixel).iter().zip(colour).take(3).all(|(p, c)| p.abs_diff(c) <= MISS_TOLERANCE)
 }
 
 /// Hit mask of a scene image; `None` when the scene has glow.
@@ -65,7 +56,7 @@ pub fn scene_hits(scene: &Scene, image: &Image) -> Option<Vec<bool>> {
     if scene.settings.glow.is_some() {
         return None;
     }
-    let background = pack(scene.settings.background, scene.settings.gamma);
+    let background = linear_rgba8(scene.settings.background, scene.settings.gamma);
     Some(image.pixels.iter().map(|&p| !near(p, background)).collect())
 }
 
@@ -75,7 +66,7 @@ pub fn baseline_hits(image: &Image) -> Vec<bool> {
     (0..image.height)
         .flat_map(|y| {
             let v = -(2.0 * (y as f64 + 0.5) - h) / h;
-            let background = pack([0.08, 0.09, 0.12].map(|c| c + 0.08 * v), 2.0);
+            let background = linear_rgba8([0.08, 0.09, 0.12].map(|c| c + 0.08 * v), 2.0);
             let row = y as usize * image.width as usize;
             image.pixels[row..row + image.width as usize].iter().map(move |&p| !near(p, background))
         })
@@ -124,6 +115,7 @@ mod tests {
     use crate::bench::baseline;
     use fractal_dsl::builder::{camera, mandelbulb, rgb, scene, sphere, ShapeExt};
     use fractal_render::frame::ParamValues;
+    use fractal_render::image::pack_rgba8;
     use fractal_render::Pose;
 
     fn frame(s: &Scene, w: u32, h: u32) -> Frame {
@@ -141,9 +133,8 @@ mod tests {
         let hits = scene_hits(&s, &r).unwrap();
         let covered = hits.iter().filter(|&&h| h).count() as f64 / hits.len() as f64;
         assert!(covered > 0.1 && covered < 0.9, "sphere covers {covered}");
-        let bg = pack(s.settings.background, s.settings.gamma);
-        let blank =
-            Image { width: 32, height: 24, pixels: vec![u32::from_le_bytes([bg[0], bg[1], bg[2], 255]); 32 * 24] };
+        let bg = pack_rgba8(linear_rgba8(s.settings.background, s.settings.gamma));
+        let blank = Image { width: 32, height: 24, pixels: vec![bg; 32 * 24] };
         let off = compare_scene(&s, &blank, &r);
         assert!((off.hit_mismatch.unwrap() - covered).abs() < 1e-12);
         assert!(off.mean_colour_difference.unwrap() > 1.0);
