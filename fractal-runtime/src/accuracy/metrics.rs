@@ -34,7 +34,6 @@ use fractal_dsl::Scene;
 use fractal_render::backend::cpu::PixelTrace;
 use fractal_render::image::{linear_rgba8, unpack_rgba8, Image};
 
-use crate::bench::precision::scene_hits;
 use crate::truth::{angle_degrees, Truth};
 
 /// Largest thin-ray depth difference, in footprints, at which the render and the truth stand on the same surface and
@@ -61,6 +60,24 @@ pub const CONE_STEP: f64 = 1.0 / 64.0;
 pub const NORMAL_CONE_CHECK: f64 = 2.0;
 /// How far past the true hit, in footprints, a ray must end to have passed through the surface.
 pub const OVERSHOOT_FOOTPRINTS: f64 = 1.0;
+
+/// Levels per channel within which a pixel still has the miss colour (driver rounding of sqrt and the like).
+pub const MISS_TOLERANCE: u8 = 2;
+
+/// Whether `pixel` has the miss colour `miss`: RGB within [`MISS_TOLERANCE`] levels.
+pub fn is_miss(pixel: u32, miss: [u8; 4]) -> bool {
+    unpack_rgba8(pixel).iter().zip(miss).take(3).all(|(p, c)| p.abs_diff(c) <= MISS_TOLERANCE)
+}
+
+/// The hit mask of an image of `scene` read from its pixels: a pixel of the background colour (packed as the
+/// renderers pack it) is a miss. `None` when the scene has glow, which tints misses.
+pub fn scene_hits(scene: &Scene, image: &Image) -> Option<Vec<bool>> {
+    if scene.settings.glow.is_some() {
+        return None;
+    }
+    let background = linear_rgba8(scene.settings.background, scene.settings.gamma);
+    Some(image.pixels.iter().map(|&p| !is_miss(p, background)).collect())
+}
 
 /// median, 99th percentile and maximum of a set of errors.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]

@@ -1,9 +1,8 @@
 //! The error a bench's speed was bought with: a backend's image against the CPU renderer running the f64 interpreter
 //! on the same frame uniforms and settings.
 //!
-//! Hit masks are read from the pixels: a pixel within [`MISS_TOLERANCE`] levels of the miss colour is a miss. For a
-//! scene that is its background colour (packed as the renderers pack it); glow tints misses, so a scene with glow has
-//! no hit mask. For the baseline it is its vertical gradient.
+//! Hit masks are read from the pixels, as the accuracy metrics read them ([`scene_hits`]); for the baseline the miss
+//! colour is its vertical gradient.
 
 use fractal_dsl::eval::interp::Interpreter;
 use fractal_dsl::Scene;
@@ -12,8 +11,7 @@ use fractal_render::error::RenderError;
 use fractal_render::frame::Frame;
 use fractal_render::image::{linear_rgba8, unpack_rgba8, Image};
 
-/// Levels per channel within which a pixel still has the miss colour (driver rounding of sqrt and the like).
-pub const MISS_TOLERANCE: u8 = 2;
+use crate::accuracy::metrics::{is_miss, scene_hits};
 
 /// One comparison with the reference.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
@@ -47,19 +45,6 @@ pub fn reference(scene: &Scene, frame: &Frame) -> Result<Image, RenderError> {
     render_scene::<f64, _>(&Interpreter::new(scene)?, scene, frame)
 }
 
-fn near(pixel: u32, colour: [u8; 4]) -> bool {
-    unpack_rgba8(pixel).iter().zip(colour).take(3).all(|(p, c)| p.abs_diff(c) <= MISS_TOLERANCE)
-}
-
-/// Hit mask of a scene image; `None` when the scene has glow.
-pub fn scene_hits(scene: &Scene, image: &Image) -> Option<Vec<bool>> {
-    if scene.settings.glow.is_some() {
-        return None;
-    }
-    let background = linear_rgba8(scene.settings.background, scene.settings.gamma);
-    Some(image.pixels.iter().map(|&p| !near(p, background)).collect())
-}
-
 /// Hit mask of a baseline image: pixels unlike the baseline's background gradient.
 pub fn baseline_hits(image: &Image) -> Vec<bool> {
     let h = image.height as f64;
@@ -68,7 +53,7 @@ pub fn baseline_hits(image: &Image) -> Vec<bool> {
             let v = -(2.0 * (y as f64 + 0.5) - h) / h;
             let background = linear_rgba8([0.08, 0.09, 0.12].map(|c| c + 0.08 * v), 2.0);
             let row = y as usize * image.width as usize;
-            image.pixels[row..row + image.width as usize].iter().map(move |&p| !near(p, background))
+            image.pixels[row..row + image.width as usize].iter().map(move |&p| !is_miss(p, background))
         })
         .collect()
 }
