@@ -11,7 +11,7 @@
 //! in f32, but GPU built-ins (sqrt, pow, normalize, sin) may differ by a few ulps; near a silhouette or a shadow edge
 //! that can flip a hit or a shadow sample, which changes the pixel completely — such flips are what the 1 % allows.
 
-use fractal::render::{CpuRenderer, Frame, Image, KernelSources, ParamValues, Pose, RenderJob, Renderer};
+use fractal::render::{CpuRenderer, Frame, Image, KernelSources, RenderJob, Renderer};
 use fractal::scenes;
 
 const SIZE: u32 = 96;
@@ -35,8 +35,7 @@ fn frame_of(scene: &fractal::dsl::Scene) -> Frame {
 }
 
 fn frame_at(scene: &fractal::dsl::Scene, time: f64) -> Frame {
-    let pose = Pose::from_camera(&scene.camera, time, &|p| p.default).expect("built-in cameras are valid");
-    Frame::new(scene, &pose, time, SIZE, SIZE, &ParamValues::defaults(scene)).expect("96x96 is a valid size")
+    Frame::default_view(scene, time, SIZE, SIZE).expect("built-in cameras are valid and 96x96 is a valid size")
 }
 
 /// The times a backend's picture is compared at: 0, and the last key of a camera path.

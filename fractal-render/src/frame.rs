@@ -245,6 +245,12 @@ impl Frame {
         Ok(Frame { layout, width, height, slots })
     }
 
+    /// The scene's own view at `time`: its camera, every parameter at its default, for a `width`×`height` image.
+    pub fn default_view(scene: &Scene, time: f64, width: u32, height: u32) -> Result<Frame, FrameError> {
+        let pose = Pose::from_camera(&scene.camera, time, &|p| p.default)?;
+        Frame::new(scene, &pose, time, width, height, &ParamValues::defaults(scene))
+    }
+
     /// The frame layout of `scene`: the slots [`Frame::new`] packs for it.
     pub fn layout_of(scene: &Scene) -> FrameLayout {
         layout(scene.effective_lights().len(), scene.params().len(), fractal_dsl::analyse::scene_reference(scene))
@@ -332,6 +338,14 @@ mod tests {
 
     fn pose() -> Pose {
         Pose::look_at(DVec3::new(0.0, 0.0, -3.0), DVec3::ZERO, 90.0).unwrap()
+    }
+
+    #[test]
+    fn the_default_view_is_the_scenes_camera_with_default_parameters() {
+        let s = scene(sphere(param("r", 1.0, 0.5..2.0))).camera(camera([0.0, 1.0, -3.0], [0.0; 3]));
+        let pose = Pose::from_camera(&s.camera, 0.5, &|p| p.default).unwrap();
+        let want = Frame::new(&s, &pose, 0.5, 16, 9, &ParamValues::defaults(&s)).unwrap();
+        assert_eq!(Frame::default_view(&s, 0.5, 16, 9), Ok(want));
     }
 
     #[test]

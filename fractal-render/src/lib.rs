@@ -17,7 +17,7 @@
 //! use fractal_dsl::builder::{scene, sphere};
 //! use fractal_dsl::eval::{Env, Evaluator, Sample};
 //! use fractal_dsl::math::{length, v3, V3};
-//! use fractal_render::{CpuRenderer, Frame, KernelSources, ParamValues, Pose, RenderJob, Renderer};
+//! use fractal_render::{CpuRenderer, Frame, KernelSources, RenderJob, Renderer};
 //!
 //! /// A unit sphere, evaluated by hand (the `scene!` macro generates evaluators like this one).
 //! struct UnitSphere;
@@ -32,8 +32,7 @@
 //! }
 //!
 //! let s = scene(sphere(1.0));
-//! let pose = Pose::from_camera(&s.camera, 0.0, &|p| p.default)?;
-//! let frame = Frame::new(&s, &pose, 0.0, 32, 32, &ParamValues::defaults(&s))?;
+//! let frame = Frame::default_view(&s, 0.0, 32, 32)?;
 //! let job = RenderJob::new(KernelSources::default().with_cpu(&UnitSphere, &s), &frame);
 //! let image = CpuRenderer::new().render(&job)?;
 //! assert_eq!((image.width, image.height), (32, 32));

@@ -400,17 +400,11 @@ mod tests {
     use fractal_dsl::analyse::{sign_refinement, SignRefinement};
     use fractal_dsl::builder::*;
     use fractal_render::backend::cpu::trace_scene;
-    use fractal_render::{ParamValues, Pose};
-
-    fn frame(s: &Scene, w: u32, h: u32) -> Frame {
-        let pose = Pose::from_camera(&s.camera, 0.0, &|p| p.default).unwrap();
-        Frame::new(s, &pose, 0.0, w, h, &ParamValues::defaults(s)).unwrap()
-    }
 
     #[test]
     fn a_sphere_is_hit_where_the_ray_meets_it_analytically() {
         let s = scene(sphere(1.0).translate(vec3(0.2, -0.1, 0.3))).camera(camera([0.0, 0.5, -3.0], [0.0; 3]).fov(50.0));
-        let f = frame(&s, 40, 30);
+        let f = Frame::default_view(&s, 0.0, 40, 30).unwrap();
         let truth = Truth::compute(&s, &f, TruthSettings::default()).unwrap();
         let centre = v3(0.2, -0.1, 0.3);
         let (mut hits, mut rough) = (0, 0);
@@ -453,7 +447,8 @@ mod tests {
     fn a_normal_the_surface_takes_within_the_pixel_is_cone_consistent() {
         let centre = v3(0.2, -0.1, 0.3);
         let s = scene(sphere(1.0).translate(vec3(0.2, -0.1, 0.3))).camera(camera([0.0, 0.5, -3.0], [0.0; 3]).fov(50.0));
-        let truth = Truth::compute(&s, &frame(&s, 20, 15), TruthSettings::default()).unwrap();
+        let truth =
+            Truth::compute(&s, &Frame::default_view(&s, 0.0, 20, 15).unwrap(), TruthSettings::default()).unwrap();
         let mut checked = 0;
         for y in 0..15 {
             for x in 0..20 {
@@ -483,7 +478,7 @@ mod tests {
     fn exact_edges_are_rough_at_the_pixels_scale() {
         let s = scene(box3(vec3(0.6, 0.6, 0.6)).rotate_y(0.5)).camera(camera([1.2, 1.4, -2.6], [0.0; 3]).fov(50.0));
         let (w, h) = (48, 36);
-        let truth = Truth::compute(&s, &frame(&s, w, h), TruthSettings::default()).unwrap();
+        let truth = Truth::compute(&s, &Frame::default_view(&s, 0.0, w, h).unwrap(), TruthSettings::default()).unwrap();
         let face = |x: i64, y: i64| {
             let p = truth.at(x.clamp(0, w as i64 - 1) as u32, y.clamp(0, h as i64 - 1) as u32);
             p.normal.map(|n| n.map(|c| (c * 1e3).round() as i64))
@@ -534,7 +529,8 @@ mod tests {
     #[test]
     fn fractal_normals_come_from_neighbouring_rays_and_fine_detail_is_rough() {
         let bulb = scene(mandelbulb(8).iterations(4)).camera(camera([1.2, 1.0, -2.2], [0.0; 3]));
-        let truth = Truth::compute(&bulb, &frame(&bulb, 48, 27), TruthSettings::default()).unwrap();
+        let truth =
+            Truth::compute(&bulb, &Frame::default_view(&bulb, 0.0, 48, 27).unwrap(), TruthSettings::default()).unwrap();
         let hits: Vec<&TruthPixel> = truth.pixels.iter().filter(|p| p.hit()).collect();
         let rough = hits.iter().filter(|p| p.rough).count();
         assert!(hits
@@ -546,7 +542,7 @@ mod tests {
     #[test]
     fn too_few_steps_a_blunt_epsilon_and_a_reckless_step_factor_are_reported_and_the_defaults_are_not() {
         let bulb = scene(mandelbulb(8).iterations(6)).camera(camera([1.2, 1.0, -2.2], [0.0; 3]));
-        let f = frame(&bulb, 48, 27);
+        let f = Frame::default_view(&bulb, 0.0, 48, 27).unwrap();
         let settings = TruthSettings { step_footprints: 1.0 / 32.0, iteration_factor: 1 };
         let truth = Truth::compute(&bulb, &f, settings).unwrap();
         let error = |s: &Scene| {
@@ -584,7 +580,7 @@ mod tests {
                       .max_steps(384).max_distance(30.0).pixel_epsilon(0.25)";
         let s = fractal_dsl::parse::parse_str(source).unwrap();
         assert_eq!(sign_refinement(&s.root, &s.settings), Some(SignRefinement::Displacement));
-        let f = frame(&s, 64, 36);
+        let f = Frame::default_view(&s, 0.0, 64, 36).unwrap();
         let truth = Truth::compute(&s, &f, TruthSettings::default()).unwrap();
         let traces = trace_scene::<f32, _>(&Interpreter::new(&s).unwrap(), &s, &f).unwrap();
         let e = measure(&s, &truth, Observed::Traced(&traces));
@@ -611,7 +607,7 @@ mod tests {
                       .camera(camera(vec3(0.0, 1.6, -3.2), vec3(0.0, 0.0, 0.0)).fov(40.0))\
                       .max_steps(256).max_distance(8.0).pixel_epsilon(0.5)";
         let plain_scene = fractal_dsl::parse::parse_str(source).unwrap();
-        let f = frame(&plain_scene, 64, 36);
+        let f = Frame::default_view(&plain_scene, 0.0, 64, 36).unwrap();
         // The setting changes the march, not the scene: one truth for both.
         let truth = Truth::compute(&plain_scene, &f, TruthSettings::default()).unwrap();
         let measured = |source: &str| {
@@ -640,7 +636,7 @@ mod tests {
     #[test]
     fn a_hair_between_the_sub_rays_is_within_the_pixels_cone() {
         let place = scene(sphere(1.0)).camera(camera([0.0, 0.0, -3.0], [0.0; 3]));
-        let f = frame(&place, 20, 15);
+        let f = Frame::default_view(&place, 0.0, 20, 15).unwrap();
         let (x, y, start) = (10, 7, 2.5);
         let view = Truth::compute(&place, &f, TruthSettings::default()).unwrap();
         // Midway between the lattice's sub-rays (at 0, 1/4, … of the pixel), along one of the pixel's own rays.
@@ -663,7 +659,7 @@ mod tests {
     #[test]
     fn false_hits_within_the_pixel_cone_are_told_apart() {
         let ball = scene(sphere(1.0)).camera(camera([0.0, 0.3, -3.0], [0.0; 3]));
-        let f = frame(&ball, 40, 30);
+        let f = Frame::default_view(&ball, 0.0, 40, 30).unwrap();
         let truth = Truth::compute(&ball, &f, TruthSettings::default()).unwrap();
         let error = |s: &Scene| {
             let traces = trace_scene::<f32, _>(&Interpreter::new(s).unwrap(), s, &f).unwrap();
@@ -680,7 +676,7 @@ mod tests {
     #[test]
     fn an_image_with_glow_reports_no_hit_figures() {
         let glowing = scene(sphere(1.0)).camera(camera([0.0, 0.0, -3.0], [0.0; 3])).glow(rgb(0.2, 0.4, 1.0));
-        let f = frame(&glowing, 32, 18);
+        let f = Frame::default_view(&glowing, 0.0, 32, 18).unwrap();
         let truth = Truth::compute(&glowing, &f, TruthSettings::default()).unwrap();
         let image = fractal_render::render_scene::<f32, _>(&Interpreter::new(&glowing).unwrap(), &glowing, &f).unwrap();
         let error = measure(&glowing, &truth, Observed::Image(&image));

@@ -499,8 +499,7 @@ mod tests {
     #[test]
     fn the_bound_clips_rays_without_changing_what_is_inside() {
         let s = scene(sphere(1.0));
-        let pose = crate::Pose::from_camera(&s.camera, 0.0, &|p| p.default).unwrap();
-        let frame = Frame::new(&s, &pose, 0.0, 48, 48, &crate::ParamValues::defaults(&s)).unwrap();
+        let frame = Frame::default_view(&s, 0.0, 48, 48).unwrap();
         let render = |b: Option<Aabb>| render_with_bound::<f32, _>(&UnitSphere, &s, &frame, b).unwrap();
         // Marches that start at the bound's entry end within the hit epsilon of the same surface point.
         let unlike = |a: &Image, b: &Image| {
@@ -531,8 +530,7 @@ mod tests {
         use fractal_dsl::eval::interp::Interpreter;
         let fine = scene(mandelbulb(8).iterations(6)).camera(camera([1.2, 1.0, -2.2], [0.0; 3])).pixel_epsilon(0.05);
         let wide = fine.clone().normal_pixel_epsilon(1.0);
-        let pose = crate::Pose::from_camera(&fine.camera, 0.0, &|p| p.default).unwrap();
-        let frame = Frame::new(&fine, &pose, 0.0, 40, 30, &crate::ParamValues::defaults(&fine)).unwrap();
+        let frame = Frame::default_view(&fine, 0.0, 40, 30).unwrap();
         let trace = |s: &Scene| trace_scene::<f64, _>(&Interpreter::new(s).unwrap(), s, &frame).unwrap();
         let (before, after) = (trace(&fine), trace(&wide));
         let view = View::<f64>::new(&wide, &frame, None).unwrap();

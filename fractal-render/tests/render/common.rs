@@ -37,14 +37,15 @@ pub fn mandelbulb_scene() -> Scene {
     scene(mandelbulb(8))
 }
 
-pub fn frame_for(s: &Scene, width: u32, height: u32, params: &ParamValues) -> Frame {
+/// A frame of the scene's camera at t = 0 with these parameter values.
+fn frame_for(s: &Scene, width: u32, height: u32, params: &ParamValues) -> Frame {
     let pose = Pose::from_camera(&s.camera, 0.0, &|p| params.lookup(p)).expect("camera");
     Frame::new(s, &pose, 0.0, width, height, params).expect("frame")
 }
 
 pub fn mandelbulb_frame(width: u32, height: u32) -> Frame {
     let s = mandelbulb_scene();
-    frame_for(&s, width, height, &ParamValues::defaults(&s))
+    Frame::default_view(&s, 0.0, width, height).expect("frame")
 }
 
 /// The scene the sphere probe fixtures evaluate: a sphere whose radius is param 0.

@@ -5,12 +5,8 @@ use fractal_dsl::builder::{plane, scene, sphere, union, ShapeExt};
 use fractal_dsl::eval::{Env, Evaluator, Sample};
 use fractal_dsl::math::{length, v3, Real, V3};
 use fractal_dsl::Scene;
-use fractal_render::{
-    render_scene, Backend, CpuRenderer, Frame, KernelSources, ParamValues, RenderError, RenderJob, Renderer,
-};
+use fractal_render::{render_scene, Backend, CpuRenderer, Frame, KernelSources, RenderError, RenderJob, Renderer};
 use glam::DVec3;
-
-use crate::common::frame_for;
 
 /// The default surface material of every evaluator here.
 fn default_sample<F: Real>(distance: F) -> Sample<F> {
@@ -90,7 +86,7 @@ fn pack(c: DVec3) -> [u8; 4] {
 #[test]
 fn unit_sphere_hit_mask_and_shading_match_the_analytic_sphere() {
     let s = scene(sphere(1.0));
-    let frame = frame_for(&s, 96, 96, &ParamValues::defaults(&s));
+    let frame = Frame::default_view(&s, 0.0, 96, 96).expect("frame");
     let image = render_cpu(&UnitSphere, &s, &frame);
     let background = pack(DVec3::from_array(s.settings.background));
     let light = DVec3::new(0.6, 0.8, -0.4).normalize();
@@ -127,7 +123,7 @@ fn unit_sphere_hit_mask_and_shading_match_the_analytic_sphere() {
 #[test]
 fn f64_rendering_draws_the_same_sphere() {
     let s = scene(sphere(1.0));
-    let frame = frame_for(&s, 48, 48, &ParamValues::defaults(&s));
+    let frame = Frame::default_view(&s, 0.0, 48, 48).expect("frame");
     let single = render_cpu(&UnitSphere, &s, &frame);
     let double = render_scene::<f64, _>(&UnitSphere, &s, &frame).expect("f64 render");
     let differing = crate::common::fraction_different(&single, &double, 1);
@@ -138,7 +134,7 @@ fn f64_rendering_draws_the_same_sphere() {
 fn hard_shadows_darken_exactly_the_shadowed_ground() {
     let lit_scene = sphere_over_plane_scene();
     let shadowed_scene = sphere_over_plane_scene().hard_shadows();
-    let frame = frame_for(&lit_scene, 80, 60, &ParamValues::defaults(&lit_scene));
+    let frame = Frame::default_view(&lit_scene, 0.0, 80, 60).expect("frame");
     let lit = render_cpu(&SphereOverPlane, &lit_scene, &frame);
     let shadowed = render_cpu(&SphereOverPlane, &shadowed_scene, &frame);
 
@@ -188,7 +184,7 @@ fn darker_and_brighter(a: &fractal_render::Image, b: &fractal_render::Image) -> 
 fn effects_change_the_picture_the_way_they_should() {
     use fractal_dsl::builder::rgb;
     let base = sphere_over_plane_scene();
-    let frame = frame_for(&base, 80, 60, &ParamValues::defaults(&base));
+    let frame = Frame::default_view(&base, 0.0, 80, 60).expect("frame");
     let plain = render_cpu(&SphereOverPlane, &base, &frame);
     let pixels = plain.pixels.len();
     let effect = |s: Scene| darker_and_brighter(&plain, &render_cpu(&SphereOverPlane, &s, &frame));
@@ -214,7 +210,7 @@ fn effects_change_the_picture_the_way_they_should() {
 #[test]
 fn jobs_without_an_evaluator_or_with_another_scenes_frame_are_errors() {
     let s = scene(sphere(1.0));
-    let frame = frame_for(&s, 8, 8, &ParamValues::defaults(&s));
+    let frame = Frame::default_view(&s, 0.0, 8, 8).expect("frame");
     let mut r = CpuRenderer::new();
     assert_eq!(r.device().backend, Backend::Cpu);
     let err = r.render(&RenderJob::new(KernelSources::default().with_wgsl("x"), &frame)).unwrap_err();
@@ -235,7 +231,7 @@ fn packet_marching_draws_the_scalar_renderers_image() {
     for (name, scene) in crate::common::builtin_scenes() {
         let interp = Interpreter::new(&scene).expect("a valid scene");
         // 61 columns: the last packet of each row is partly padding.
-        let frame = frame_for(&scene, 61, 20, &ParamValues::defaults(&scene));
+        let frame = Frame::default_view(&scene, 0.0, 61, 20).expect("frame");
         let packets = Evaluator::<f32>::packets(&interp).expect("the interpreter has a packet instance");
         let packed = fractal_render::backend::cpu::render_packets(packets, &scene, &frame).expect("render");
         let scalar = render_scene::<f32, _>(&interp, &scene, &frame).expect("render");

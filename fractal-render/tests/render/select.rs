@@ -4,7 +4,7 @@
 use fractal_dsl::builder::{scene, sphere};
 use fractal_dsl::eval::{Env, Evaluator, Sample};
 use fractal_dsl::math::{length, v3, V3};
-use fractal_render::{select, Backend, BackendChoice, KernelSources, ParamValues, RenderJob, RendererOptions};
+use fractal_render::{select, Backend, BackendChoice, Frame, KernelSources, RenderJob, RendererOptions};
 
 struct UnitSphere;
 
@@ -27,7 +27,7 @@ fn cpu_can_be_chosen() {
 #[test]
 fn auto_falls_back_to_the_backend_the_job_can_run_on() {
     let s = scene(sphere(1.0));
-    let frame = crate::common::frame_for(&s, 24, 24, &ParamValues::defaults(&s));
+    let frame = Frame::default_view(&s, 0.0, 24, 24).expect("frame");
     let mut r = select(BackendChoice::Auto, &RendererOptions::default()).expect("auto opens something");
     let opened = r.take_notes();
     assert!(opened.iter().any(|n| n.starts_with("using ")), "{opened:?}");
@@ -47,7 +47,7 @@ fn auto_falls_back_to_the_backend_the_job_can_run_on() {
 #[test]
 fn auto_reports_every_failure_when_nothing_can_draw() {
     let s = scene(sphere(1.0));
-    let frame = crate::common::frame_for(&s, 8, 8, &ParamValues::defaults(&s));
+    let frame = Frame::default_view(&s, 0.0, 8, 8).expect("frame");
     let mut r = select(BackendChoice::Auto, &RendererOptions::default()).expect("auto opens something");
     let err = r.render(&RenderJob::new(KernelSources::default(), &frame)).unwrap_err();
     let message = err.to_string();

@@ -387,7 +387,6 @@ mod tests {
     use super::*;
     use crate::truth::TruthSettings;
     use fractal_dsl::builder::*;
-    use fractal_render::{ParamValues, Pose};
 
     /// A verdict names what it did not judge: a normal p99 over too few normals passes, and says so.
     #[test]
@@ -441,8 +440,7 @@ mod tests {
         assert_eq!(math(Backend::OpenCl, true), [false]);
         assert!(math(Backend::Cpu, false).is_empty() && math(Backend::Wgpu, false).is_empty());
 
-        let pose = Pose::from_camera(&bounded.camera, 0.0, &|p| p.default).unwrap();
-        let frame = Frame::new(&bounded, &pose, 0.0, 24, 16, &ParamValues::defaults(&bounded)).unwrap();
+        let frame = Frame::default_view(&bounded, 0.0, 24, 16).unwrap();
         let truth = Truth::compute(&bounded, &frame, TruthSettings::default()).unwrap();
         let clipped = run_cpu(&bounded, &Quality::default(), &frame, &truth).unwrap();
         let unclipped =
@@ -464,8 +462,7 @@ mod tests {
     #[test]
     fn a_kernel_render_is_judged_on_its_traced_march() {
         let glowing = scene(sphere(1.0)).camera(camera([0.0, 0.0, -3.0], [0.0; 3])).glow(rgb(0.2, 0.4, 1.0));
-        let pose = Pose::from_camera(&glowing.camera, 0.0, &|p| p.default).unwrap();
-        let frame = Frame::new(&glowing, &pose, 0.0, 24, 16, &ParamValues::defaults(&glowing)).unwrap();
+        let frame = Frame::default_view(&glowing, 0.0, 24, 16).unwrap();
         let truth = Truth::compute(&glowing, &frame, TruthSettings::default()).unwrap();
         let mut renderer = match fractal_render::select::open(Backend::Wgpu, &RendererOptions::default()) {
             Ok(r) => r,
@@ -496,8 +493,7 @@ mod tests {
         ]))
         .camera(camera([0.4, -0.7, -4.0], [0.0, -0.9, 0.0]))
         .max_steps(400);
-        let pose = Pose::from_camera(&thin.camera, 0.0, &|p| p.default).unwrap();
-        let frame = Frame::new(&thin, &pose, 0.0, 32, 24, &ParamValues::defaults(&thin)).unwrap();
+        let frame = Frame::default_view(&thin, 0.0, 32, 24).unwrap();
         let truth = Truth::compute(&thin, &frame, TruthSettings::default()).unwrap();
         let plain = run_cpu(&thin, &Quality::default(), &frame, &truth).unwrap();
         let evaluations = |p: &SweepPoint| p.error.traced.as_ref().unwrap().evaluations_per_pixel.unwrap();

@@ -99,19 +99,13 @@ mod tests {
     use super::*;
     use crate::bench::baseline;
     use fractal_dsl::builder::{camera, mandelbulb, rgb, scene, sphere, ShapeExt};
-    use fractal_render::frame::ParamValues;
-    use fractal_render::image::pack_rgba8;
-    use fractal_render::Pose;
 
-    fn frame(s: &Scene, w: u32, h: u32) -> Frame {
-        let pose = Pose::from_camera(&s.camera, 0.0, &|p| p.default).unwrap();
-        Frame::new(s, &pose, 0.0, w, h, &ParamValues::defaults(s)).unwrap()
-    }
+    use fractal_render::image::pack_rgba8;
 
     #[test]
     fn an_image_agrees_with_itself_and_not_with_a_blank() {
         let s = scene(sphere(1.0)).camera(camera([0.0, 0.0, -3.0], [0.0, 0.0, 0.0]));
-        let f = frame(&s, 32, 24);
+        let f = Frame::default_view(&s, 0.0, 32, 24).unwrap();
         let r = reference(&s, &f).unwrap();
         let same = compare_scene(&s, &r, &r);
         assert_eq!((same.hit_mismatch, same.mean_colour_difference), (Some(0.0), Some(0.0)));
@@ -128,7 +122,7 @@ mod tests {
     #[test]
     fn glow_has_no_hit_mask() {
         let s = scene(sphere(1.0)).glow(rgb(0.2, 0.1, 0.0));
-        let f = frame(&s, 8, 8);
+        let f = Frame::default_view(&s, 0.0, 8, 8).unwrap();
         let r = reference(&s, &f).unwrap();
         assert_eq!(compare_scene(&s, &r, &r).hit_mismatch, None);
     }
@@ -140,7 +134,7 @@ mod tests {
             .max_steps(128)
             .max_distance(6.0)
             .epsilon(0.0005);
-        let f = frame(&s, 48, 27);
+        let f = Frame::default_view(&s, 0.0, 48, 27).unwrap();
         let r = reference(&s, &f).unwrap();
         let baseline = compare_baseline(&s, &baseline::render(48, 27), &r);
         assert!(baseline.hit_mismatch.unwrap() < 0.03, "{}", baseline.describe());

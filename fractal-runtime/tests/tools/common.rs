@@ -1,10 +1,10 @@
-//! What the tools' tests share: the built-in scenes, frames of them, the external validators, and the rule for
-//! backends and tools that are missing (skip with a note, or fail when FRACTAL_REQUIRE_GPU_BACKENDS=1).
+//! What the tools' tests share: the built-in scenes, the external validators, and the rule for backends and tools
+//! that are missing (skip with a note, or fail when FRACTAL_REQUIRE_GPU_BACKENDS=1).
 
 use std::path::Path;
 
 use fractal_dsl::Scene;
-use fractal_render::{Frame, ParamValues, Pose, RenderError};
+use fractal_render::RenderError;
 
 /// Whether the environment demands the wgpu and OpenCL backends (CI sets FRACTAL_REQUIRE_GPU_BACKENDS=1).
 pub fn backends_required() -> bool {
@@ -23,11 +23,6 @@ pub fn available<T>(backend: &str, opened: Result<T, RenderError>) -> Option<T> 
             None
         }
     }
-}
-
-pub fn frame_for(s: &Scene, width: u32, height: u32, params: &ParamValues) -> Frame {
-    let pose = Pose::from_camera(&s.camera, 0.0, &|p| params.lookup(p)).expect("camera");
-    Frame::new(s, &pose, 0.0, width, height, params).expect("frame")
 }
 
 /// Every built-in scene's file name (without extension) and scene, read from `scenes/fractal/*.fractal`.

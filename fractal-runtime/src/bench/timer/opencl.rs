@@ -97,9 +97,9 @@ impl Timer for OpenClTimer {
 mod tests {
     use super::*;
     use fractal_dsl::builder::{mandelbulb, scene};
-    use fractal_render::frame::{Frame, ParamValues};
+    use fractal_render::frame::Frame;
     use fractal_render::renderer::{KernelSources, RenderJob, Renderer};
-    use fractal_render::{OpenClRenderer, Pose};
+    use fractal_render::OpenClRenderer;
 
     /// The bench must time what the renderer draws: the same kernel and frame give the same pixels.
     #[test]
@@ -115,8 +115,7 @@ mod tests {
         };
         let s = scene(mandelbulb(8));
         let kernels = fractal_dsl::compile(&s).unwrap();
-        let pose = Pose::from_camera(&s.camera, 0.0, &|p| p.default).unwrap();
-        let frame = Frame::new(&s, &pose, 0.0, 24, 16, &ParamValues::defaults(&s)).unwrap();
+        let frame = Frame::default_view(&s, 0.0, 24, 16).unwrap();
         let job = RenderJob::new(KernelSources::compiled(&kernels), &frame);
         let timed = timer.run(&Work::Generated(job)).unwrap();
         assert_eq!(timed.image, renderer.render(&job).unwrap());

@@ -242,9 +242,9 @@ impl Timer for WgpuTimer {
 mod tests {
     use super::*;
     use fractal_dsl::builder::{mandelbulb, scene, sphere, union, vec3, ShapeExt};
-    use fractal_render::frame::{Frame, ParamValues};
+    use fractal_render::frame::Frame;
     use fractal_render::renderer::{KernelSources, RenderJob, Renderer};
-    use fractal_render::{Pose, WgpuRenderer};
+    use fractal_render::WgpuRenderer;
 
     fn required() -> bool {
         std::env::var("FRACTAL_REQUIRE_GPU_BACKENDS").is_ok_and(|v| v == "1")
@@ -264,8 +264,7 @@ mod tests {
         let (mut timer, mut renderer) = (timer, renderer);
         let s = scene(union(mandelbulb(8), sphere(0.5).translate(vec3(1.2, 0.0, 0.0))));
         let kernels = fractal_dsl::compile(&s).unwrap();
-        let pose = Pose::from_camera(&s.camera, 0.0, &|p| p.default).unwrap();
-        let frame = Frame::new(&s, &pose, 0.0, 40, 24, &ParamValues::defaults(&s)).unwrap();
+        let frame = Frame::default_view(&s, 0.0, 40, 24).unwrap();
         let job = RenderJob::new(KernelSources::compiled(&kernels), &frame);
         let timed = timer.run(&Work::Generated(job)).unwrap();
         assert_eq!(timed.image, renderer.render(&job).unwrap());

@@ -186,8 +186,7 @@ mod tests {
         let params = ParamValues::defaults(&s);
         let size = (24, 16);
         let settings = TruthSettings { step_footprints: 0.05, iteration_factor: 1 };
-        let pose = Pose::from_camera(&s.camera, 0.0, &|p| p.default).unwrap();
-        let frame = Frame::new(&s, &pose, 0.0, size.0, size.1, &params).unwrap();
+        let frame = Frame::default_view(&s, 0.0, size.0, size.1).unwrap();
         let truth = Truth::compute(&s, &frame, settings).unwrap();
         let few_steps = Quality { max_steps: Some(12), ..Quality::default() };
         let mut points =
