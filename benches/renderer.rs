@@ -5,19 +5,18 @@
 //! `cargo bench --bench renderer`; `fractal bench mandelbulb_bench --backend cpu|wgpu` times 1080p against lavapipe.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use fractal::runtime::backend::cpu::render_packets;
-use fractal::runtime::{render_scene, Frame, ParamValues, Pose};
+use fractal::render::backend::cpu::render_packets;
+use fractal::render::{render_scene, Frame};
 use std::hint::black_box;
 
 fn renderer(c: &mut Criterion) {
     let compiled = fractal::scenes::ALL.iter().find(|(n, _)| *n == "mandelbulb_bench").expect("a built-in scene").1;
     let scene = compiled.scene();
     let native = compiled.native();
-    let pose = Pose::from_camera(&scene.camera, 0.0, &|p| p.default).expect("the scene's camera");
     let mut group = c.benchmark_group("cpu frame");
     group.sample_size(10);
     for (width, height) in [(480, 270), (960, 540)] {
-        let frame = Frame::new(scene, &pose, 0.0, width, height, &ParamValues::defaults(scene)).expect("a frame");
+        let frame = Frame::default_view(scene, 0.0, width, height).expect("a frame");
         let size = format!("{width}x{height}");
         group.bench_function(BenchmarkId::new("packets", &size), |b| {
             b.iter(|| black_box(render_packets(&native, scene, &frame).expect("a render")))

@@ -22,6 +22,7 @@
 
 pub use fractal_dsl as dsl;
 pub use fractal_macros::{scene, scene_file};
+pub use fractal_render as render;
 pub use fractal_runtime as runtime;
 pub use scenes;
 

@@ -26,9 +26,10 @@
 //! estimate): the *true error* of the setting timed, from the same backend's trace kernel (the render kernel that
 //! also keeps each pixel's depth, normal and steps), or from the image alone where no trace kernel runs.
 
-mod baseline_cpu;
+mod baseline;
 pub mod precision;
 mod record;
+mod report;
 mod timer;
 
 use std::f64::consts::TAU;
@@ -37,25 +38,22 @@ use std::path::Path;
 use std::time::Instant;
 
 use fractal_dsl::{CameraPlacement, Scene};
+use fractal_render::camera::{CameraPath, Pose};
+use fractal_render::device::Backend;
+use fractal_render::error::RenderError;
+use fractal_render::frame::{Frame, ParamValues};
+use fractal_render::renderer::{KernelSources, RenderJob};
+use fractal_render::select::{BackendChoice, RendererOptions};
 use glam::{DQuat, DVec3};
 
 use crate::accuracy::{measure, Observed, TrueError};
-use crate::camera::{CameraPath, Pose};
-use crate::device::{Backend, DeviceInfo};
-use crate::error::RenderError;
-use crate::frame::{Frame, ParamValues};
-use crate::renderer::{KernelSources, RenderJob};
-use crate::select::{BackendChoice, RendererOptions};
 use crate::truth::{Truth, TruthSettings};
 
+pub use baseline::{BASELINE_OPENCL, BASELINE_WGSL};
 pub use precision::Accuracy;
 pub use record::BenchRecord;
+pub use report::{BaselineFigures, BenchReport, CameraMotion, Stats, Timings};
 pub use timer::KernelClock;
-
-/// The hand-written baseline in OpenCL C: kernel `render(__global uint* out, int w, int h)`.
-pub const BASELINE_OPENCL: &str = include_str!("../baseline/mandelbulb.cl");
-/// The hand-written baseline in WGSL: entry `main`, 8×8 workgroups, binding 0 pixels, binding 1 `{w, h}`.
-pub const BASELINE_WGSL: &str = include_str!("../baseline/mandelbulb.wgsl");
 
 /// Frames per traversal of the bench camera path (one orbit turn, or one pass over a scene's path keys).
 pub const PATH_FRAMES: u64 = 120;
@@ -74,34 +72,6 @@ pub enum BenchLength {
     Frames(u32),
     /// Timed frames until their frame times add up to this many seconds (at least one).
     Seconds(f64),
-}
-
-/// Where the camera goes during the bench.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum CameraMotion {
-    /// The scene's own camera path.
-    ScenePath,
-    /// An orbit around the look-at target of the scene's camera.
-    Orbit,
-    /// The scene's camera at time 0, every frame (`--baseline`).
-    Static,
-}
-
-impl CameraMotion {
-    pub fn describe(self) -> &'static str {
-        match self {
-            CameraMotion::ScenePath => "the scene's camera path, 120 frames per pass",
-            CameraMotion::Orbit => "orbit around the camera's target, 3 degrees and 1/30 s per frame",
-            CameraMotion::Static => "the scene's static camera at t = 0 (as the baseline)",
-        }
-    }
-    pub fn name(self) -> &'static str {
-        match self {
-            CameraMotion::ScenePath => "scene-path",
-            CameraMotion::Orbit => "orbit",
-            CameraMotion::Static => "static",
-        }
-    }
 }
 
 /// What to benchmark.
@@ -125,98 +95,13 @@ pub struct BenchSpec<'a> {
     pub baseline_comparable: bool,
 }
 
-/// min / median / mean / max of a set of times in milliseconds.
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
-pub struct Stats {
-    pub min: f64,
-    pub median: f64,
-    pub mean: f64,
-    pub max: f64,
-}
-
-impl Stats {
-    /// Statistics of `samples` (which must not be empty; an empty set gives NaN).
-    pub fn of(samples: &[f64]) -> Stats {
-        let mut sorted = samples.to_vec();
-        sorted.sort_by(f64::total_cmp);
-        let n = sorted.len();
-        if n == 0 {
-            return Stats { min: f64::NAN, median: f64::NAN, mean: f64::NAN, max: f64::NAN };
-        }
-        let median = if n % 2 == 1 { sorted[n / 2] } else { 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]) };
-        Stats { min: sorted[0], median, mean: sorted.iter().sum::<f64>() / n as f64, max: sorted[n - 1] }
-    }
-}
-
-/// The timings of one kernel.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Timings {
-    pub kernel_ms: Vec<f64>,
-    pub frame_ms: Vec<f64>,
-    /// The untimed first frame, including the kernel build.
-    pub first_frame_ms: f64,
-}
-
-impl Timings {
-    pub fn kernel(&self) -> Stats {
-        Stats::of(&self.kernel_ms)
-    }
-    pub fn frame(&self) -> Stats {
-        Stats::of(&self.frame_ms)
-    }
-    /// Frames per second from the mean frame time.
-    pub fn fps(&self) -> f64 {
-        1000.0 / self.frame().mean
-    }
-}
-
-/// The baseline's figures and how the scene compares.
-#[derive(Clone, Debug, PartialEq)]
-pub struct BaselineFigures {
-    pub timings: Timings,
-    /// Hit/miss disagreement of the baseline with the scene's f64 reference (only for the baseline's own scene).
-    pub accuracy: Option<Accuracy>,
-}
-
-/// Everything one bench run measured.
-#[derive(Clone, Debug, PartialEq)]
-pub struct BenchReport {
-    pub scene_name: String,
-    pub width: u32,
-    pub height: u32,
-    pub device: DeviceInfo,
-    pub camera: CameraMotion,
-    pub clock: KernelClock,
-    pub options: RendererOptions,
-    pub generated: Timings,
-    /// Against the f64 interpreter with the same settings: f32 rounding alone.
-    pub accuracy: Accuracy,
-    /// Against the ground truth ([`crate::truth`]) at the scene's iteration count.
-    pub true_error: TrueError,
-    pub baseline: Option<BaselineFigures>,
-    /// Backends skipped by `auto`, and other remarks.
-    pub notes: Vec<String>,
-}
-
-impl BenchReport {
-    /// generated / baseline of the median kernel and median frame times (< 1: the generated kernel is faster).
-    pub fn ratios(&self) -> Option<(f64, f64)> {
-        self.baseline.as_ref().map(|b| {
-            (
-                self.generated.kernel().median / b.timings.kernel().median,
-                self.generated.frame().median / b.timings.frame().median,
-            )
-        })
-    }
-}
-
 /// The camera pose and scene time of bench frame `index`.
 pub fn bench_pose(
     scene: &Scene,
     params: &ParamValues,
     motion: CameraMotion,
     index: u64,
-) -> Result<(Pose, f64), crate::error::CameraError> {
+) -> Result<(Pose, f64), fractal_render::error::CameraError> {
     let lookup = |p: &fractal_dsl::ParamDecl| params.lookup(p);
     let fraction = (index % PATH_FRAMES) as f64 / PATH_FRAMES as f64;
     match (motion, &scene.camera.placement) {
@@ -255,7 +140,8 @@ pub fn error_size(width: u32, height: u32) -> (u32, u32) {
 }
 
 fn frame_at(spec: &BenchSpec, motion: CameraMotion, index: u64, size: (u32, u32)) -> Result<Frame, RenderError> {
-    let (pose, time) = bench_pose(spec.scene, spec.params, motion, index).map_err(crate::error::FrameError::from)?;
+    let (pose, time) =
+        bench_pose(spec.scene, spec.params, motion, index).map_err(fractal_render::error::FrameError::from)?;
     Ok(Frame::new(spec.scene, &pose, time, size.0, size.1, spec.params)?)
 }
 
@@ -292,7 +178,7 @@ fn open_timer(
 /// The true error of the timed march at `frame`: the same backend runs the scene's trace kernel, which keeps each
 /// pixel's depth, normal and steps beside the image.
 fn traced_error(spec: &BenchSpec, backend: Backend, frame: &Frame, truth: &Truth) -> Result<TrueError, RenderError> {
-    let mut renderer = crate::select::open(backend, &spec.options)?;
+    let mut renderer = fractal_render::select::open(backend, &spec.options)?;
     let tracing = fractal_dsl::compile(spec.scene)?.tracing();
     let sources = KernelSources { cpu: spec.kernels.cpu, ..KernelSources::compiled(&tracing) };
     let traced = renderer.trace(&RenderJob::new(sources, frame))?;

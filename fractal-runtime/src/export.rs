@@ -3,9 +3,9 @@
 //!
 //! Every export holds one compute entry point, `render` ([`ENTRY_POINT`]; GLSL names it `main`), with two resources:
 //! the output pixels (a read-write buffer of one `u32` per pixel, row-major, red in the low byte and alpha 255 in the
-//! high byte) and the frame uniforms ([`fractal_dsl::back::FrameLayout`] gives their layout, [`crate::Frame`] packs
-//! them). In the translated targets and WGSL they are group/set 0, bindings 0 and 1 (the OpenCL kernel takes them as
-//! arguments 0 and 1). Workgroups are 8×8×1: dispatch `ceil(width / 8) × ceil(height / 8) × 1`; invocations outside
+//! high byte) and the frame uniforms ([`fractal_dsl::back::FrameLayout`] gives their layout, [`fractal_render::Frame`]
+//! packs them). In the translated targets and WGSL they are group/set 0, bindings 0 and 1 (the OpenCL kernel takes them
+//! as arguments 0 and 1). Workgroups are 8×8×1: dispatch `ceil(width / 8) × ceil(height / 8) × 1`; invocations outside
 //! the image return at once.
 //!
 //! What each translated target is written for, and where the resources go:

@@ -2,8 +2,7 @@
 //! panel.
 
 use font8x8::legacy::BASIC_LEGACY;
-
-use crate::image::{pack_rgba8, Image};
+use fractal_render::image::{pack_rgba8, Image};
 
 /// Side of a glyph cell in font pixels.
 pub const GLYPH: u32 = 8;

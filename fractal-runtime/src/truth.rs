@@ -27,9 +27,9 @@
 //! detail below a pixel), or a ray half a pixel away on a diagonal finds no surface within [`ROUGH_DEGREES`] of the
 //! centre's plane (a hole or a rim between the axis neighbours).
 //!
-//! **Colour.** The true hit shaded by the render algorithm ([`crate::backend::cpu`]) in f64 with the true normal;
-//! materials, shadows and occlusion are what the algorithm defines them to be (from the f64 scene distance). Glow is
-//! left out: it is a sum along the march.
+//! **Colour.** The true hit shaded by the render algorithm ([`fractal_render::backend::cpu`]) in f64 with the true
+//! normal; materials, shadows and occlusion are what the algorithm defines them to be (from the f64 scene distance).
+//! Glow is left out: it is a sum along the march.
 //!
 //! **Iterations.** A finite-iteration membership test draws a fatter set than the limit an escape-time estimator
 //! approximates; [`TruthSettings::iteration_factor`] multiplies the iteration count of every fractal whose family
@@ -48,10 +48,10 @@ use fractal_dsl::Scene;
 use rayon::prelude::*;
 use std::sync::OnceLock;
 
-use crate::backend::cpu::View;
-use crate::error::RenderError;
-use crate::frame::Frame;
 use crate::quality::with_iterations_scaled;
+use fractal_render::backend::cpu::View;
+use fractal_render::error::RenderError;
+use fractal_render::frame::Frame;
 use member::{Member, SceneMembership};
 use ray::TruthRay;
 
@@ -398,20 +398,14 @@ fn axis_step(axis: usize, h: f64) -> V3<f64> {
 mod tests {
     use super::*;
     use crate::accuracy::{measure, Observed};
-    use crate::backend::cpu::trace_scene;
-    use crate::{ParamValues, Pose};
     use fractal_dsl::analyse::{sign_refinement, SignRefinement};
     use fractal_dsl::builder::*;
-
-    fn frame(s: &Scene, w: u32, h: u32) -> Frame {
-        let pose = Pose::from_camera(&s.camera, 0.0, &|p| p.default).unwrap();
-        Frame::new(s, &pose, 0.0, w, h, &ParamValues::defaults(s)).unwrap()
-    }
+    use fractal_render::backend::cpu::trace_scene;
 
     #[test]
     fn a_sphere_is_hit_where_the_ray_meets_it_analytically() {
         let s = scene(sphere(1.0).translate(vec3(0.2, -0.1, 0.3))).camera(camera([0.0, 0.5, -3.0], [0.0; 3]).fov(50.0));
-        let f = frame(&s, 40, 30);
+        let f = Frame::default_view(&s, 0.0, 40, 30).unwrap();
         let truth = Truth::compute(&s, &f, TruthSettings::default()).unwrap();
         let centre = v3(0.2, -0.1, 0.3);
         let (mut hits, mut rough) = (0, 0);
@@ -454,7 +448,8 @@ mod tests {
     fn a_normal_the_surface_takes_within_the_pixel_is_cone_consistent() {
         let centre = v3(0.2, -0.1, 0.3);
         let s = scene(sphere(1.0).translate(vec3(0.2, -0.1, 0.3))).camera(camera([0.0, 0.5, -3.0], [0.0; 3]).fov(50.0));
-        let truth = Truth::compute(&s, &frame(&s, 20, 15), TruthSettings::default()).unwrap();
+        let truth =
+            Truth::compute(&s, &Frame::default_view(&s, 0.0, 20, 15).unwrap(), TruthSettings::default()).unwrap();
         let mut checked = 0;
         for y in 0..15 {
             for x in 0..20 {
@@ -484,7 +479,7 @@ mod tests {
     fn exact_edges_are_rough_at_the_pixels_scale() {
         let s = scene(box3(vec3(0.6, 0.6, 0.6)).rotate_y(0.5)).camera(camera([1.2, 1.4, -2.6], [0.0; 3]).fov(50.0));
         let (w, h) = (48, 36);
-        let truth = Truth::compute(&s, &frame(&s, w, h), TruthSettings::default()).unwrap();
+        let truth = Truth::compute(&s, &Frame::default_view(&s, 0.0, w, h).unwrap(), TruthSettings::default()).unwrap();
         let face = |x: i64, y: i64| {
             let p = truth.at(x.clamp(0, w as i64 - 1) as u32, y.clamp(0, h as i64 - 1) as u32);
             p.normal.map(|n| n.map(|c| (c * 1e3).round() as i64))
@@ -535,7 +530,8 @@ mod tests {
     #[test]
     fn fractal_normals_come_from_neighbouring_rays_and_fine_detail_is_rough() {
         let bulb = scene(mandelbulb(8).iterations(4)).camera(camera([1.2, 1.0, -2.2], [0.0; 3]));
-        let truth = Truth::compute(&bulb, &frame(&bulb, 48, 27), TruthSettings::default()).unwrap();
+        let truth =
+            Truth::compute(&bulb, &Frame::default_view(&bulb, 0.0, 48, 27).unwrap(), TruthSettings::default()).unwrap();
         let hits: Vec<&TruthPixel> = truth.pixels.iter().filter(|p| p.hit()).collect();
         let rough = hits.iter().filter(|p| p.rough).count();
         assert!(hits
@@ -547,7 +543,7 @@ mod tests {
     #[test]
     fn too_few_steps_a_blunt_epsilon_and_a_reckless_step_factor_are_reported_and_the_defaults_are_not() {
         let bulb = scene(mandelbulb(8).iterations(6)).camera(camera([1.2, 1.0, -2.2], [0.0; 3]));
-        let f = frame(&bulb, 48, 27);
+        let f = Frame::default_view(&bulb, 0.0, 48, 27).unwrap();
         let settings = TruthSettings { step_footprints: 1.0 / 32.0, iteration_factor: 1 };
         let truth = Truth::compute(&bulb, &f, settings).unwrap();
         let error = |s: &Scene| {
@@ -585,7 +581,7 @@ mod tests {
                       .max_steps(384).max_distance(30.0).pixel_epsilon(0.25)";
         let s = fractal_dsl::parse::parse_str(source).unwrap();
         assert_eq!(sign_refinement(&s.root, &s.settings), Some(SignRefinement::Displacement));
-        let f = frame(&s, 64, 36);
+        let f = Frame::default_view(&s, 0.0, 64, 36).unwrap();
         let truth = Truth::compute(&s, &f, TruthSettings::default()).unwrap();
         let traces = trace_scene::<f32, _>(&Interpreter::new(&s).unwrap(), &s, &f).unwrap();
         let e = measure(&s, &truth, Observed::Traced(&traces));
@@ -612,7 +608,7 @@ mod tests {
                       .camera(camera(vec3(0.0, 1.6, -3.2), vec3(0.0, 0.0, 0.0)).fov(40.0))\
                       .max_steps(256).max_distance(8.0).pixel_epsilon(0.5)";
         let plain_scene = fractal_dsl::parse::parse_str(source).unwrap();
-        let f = frame(&plain_scene, 64, 36);
+        let f = Frame::default_view(&plain_scene, 0.0, 64, 36).unwrap();
         // The setting changes the march, not the scene: one truth for both.
         let truth = Truth::compute(&plain_scene, &f, TruthSettings::default()).unwrap();
         let measured = |source: &str| {
@@ -641,7 +637,7 @@ mod tests {
     #[test]
     fn a_hair_between_the_sub_rays_is_within_the_pixels_cone() {
         let place = scene(sphere(1.0)).camera(camera([0.0, 0.0, -3.0], [0.0; 3]));
-        let f = frame(&place, 20, 15);
+        let f = Frame::default_view(&place, 0.0, 20, 15).unwrap();
         let (x, y, start) = (10, 7, 2.5);
         let view = Truth::compute(&place, &f, TruthSettings::default()).unwrap();
         // Midway between the lattice's sub-rays (at 0, 1/4, … of the pixel), along one of the pixel's own rays.
@@ -664,7 +660,7 @@ mod tests {
     #[test]
     fn false_hits_within_the_pixel_cone_are_told_apart() {
         let ball = scene(sphere(1.0)).camera(camera([0.0, 0.3, -3.0], [0.0; 3]));
-        let f = frame(&ball, 40, 30);
+        let f = Frame::default_view(&ball, 0.0, 40, 30).unwrap();
         let truth = Truth::compute(&ball, &f, TruthSettings::default()).unwrap();
         let error = |s: &Scene| {
             let traces = trace_scene::<f32, _>(&Interpreter::new(s).unwrap(), s, &f).unwrap();
@@ -681,9 +677,9 @@ mod tests {
     #[test]
     fn an_image_with_glow_reports_no_hit_figures() {
         let glowing = scene(sphere(1.0)).camera(camera([0.0, 0.0, -3.0], [0.0; 3])).glow(rgb(0.2, 0.4, 1.0));
-        let f = frame(&glowing, 32, 18);
+        let f = Frame::default_view(&glowing, 0.0, 32, 18).unwrap();
         let truth = Truth::compute(&glowing, &f, TruthSettings::default()).unwrap();
-        let image = crate::render_scene::<f32, _>(&Interpreter::new(&glowing).unwrap(), &glowing, &f).unwrap();
+        let image = fractal_render::render_scene::<f32, _>(&Interpreter::new(&glowing).unwrap(), &glowing, &f).unwrap();
         let error = measure(&glowing, &truth, Observed::Image(&image));
         assert!(error.false_hits.is_nan() && error.false_misses.is_nan(), "{}", error.describe());
         assert!(error.describe().starts_with("hit mask not readable"), "{}", error.describe());

@@ -19,7 +19,7 @@ use fractal::dsl::back::{self, Entry};
 use fractal::dsl::eval::interp::Interpreter;
 use fractal::dsl::lower::lower;
 use fractal::dsl::number::math::V3;
-use fractal::runtime::{Frame, ParamValues, Pose, ProbeSample, WgpuRenderer};
+use fractal::render::{Frame, ParamValues, Pose, ProbeSample, WgpuRenderer};
 use harness::{cpu_answers, Answer, Column, Row, Subject};
 use tolerance::Class;
 
@@ -187,7 +187,7 @@ impl Subject for WgslProbe {
 }
 
 #[cfg(feature = "opencl")]
-struct OpenClProbe(fractal::runtime::OpenClRenderer);
+struct OpenClProbe(fractal::render::OpenClRenderer);
 #[cfg(feature = "opencl")]
 impl Subject for OpenClProbe {
     fn name(&self) -> &'static str {
@@ -263,11 +263,11 @@ agreement_tests! {
         .map(|r| Box::new(WgslProbe(r)) as Box<dyn Subject>)
         .map_err(|e| ("wgsl", e.to_string()));
     #[cfg(feature = "opencl")]
-    opencl_probe_agrees_with_the_f64_interpreter => fractal::runtime::OpenClRenderer::new(true)
+    opencl_probe_agrees_with_the_f64_interpreter => fractal::render::OpenClRenderer::new(true)
         .map(|r| Box::new(OpenClProbe(r)) as Box<dyn Subject>)
         .map_err(|e| ("opencl", e.to_string()));
     #[cfg(feature = "opencl")]
-    opencl_fast_math_probe_agrees_within_its_looser_tolerance => fractal::runtime::OpenClRenderer::new(false)
+    opencl_fast_math_probe_agrees_within_its_looser_tolerance => fractal::render::OpenClRenderer::new(false)
         .map(|r| Box::new(OpenClProbe(r)) as Box<dyn Subject>)
         .map_err(|e| ("opencl fast", e.to_string()));
 }

@@ -11,7 +11,7 @@
 //! in f32, but GPU built-ins (sqrt, pow, normalize, sin) may differ by a few ulps; near a silhouette or a shadow edge
 //! that can flip a hit or a shadow sample, which changes the pixel completely — such flips are what the 1 % allows.
 
-use fractal::runtime::{CpuRenderer, Frame, Image, KernelSources, ParamValues, Pose, RenderJob, Renderer};
+use fractal::render::{CpuRenderer, Frame, Image, KernelSources, RenderJob, Renderer};
 use fractal::scenes;
 
 const SIZE: u32 = 96;
@@ -35,8 +35,7 @@ fn frame_of(scene: &fractal::dsl::Scene) -> Frame {
 }
 
 fn frame_at(scene: &fractal::dsl::Scene, time: f64) -> Frame {
-    let pose = Pose::from_camera(&scene.camera, time, &|p| p.default).expect("built-in cameras are valid");
-    Frame::new(scene, &pose, time, SIZE, SIZE, &ParamValues::defaults(scene)).expect("96x96 is a valid size")
+    Frame::default_view(scene, time, SIZE, SIZE).expect("built-in cameras are valid and 96x96 is a valid size")
 }
 
 /// The times a backend's picture is compared at: 0, and the last key of a camera path.
@@ -133,7 +132,7 @@ fn every_scene_draws_something_and_no_pixel_is_nan() {
     for (name, compiled) in scenes::ALL {
         let scene = compiled.scene();
         let frame = frame_of(scene);
-        let traces = fractal::runtime::backend::cpu::trace_scene::<f32, _>(&compiled.native(), scene, &frame)
+        let traces = fractal::render::backend::cpu::trace_scene::<f32, _>(&compiled.native(), scene, &frame)
             .unwrap_or_else(|e| panic!("{name}: {e}"));
         let hits = traces.iter().filter(|p| p.hit).count() as f64 / traces.len() as f64;
         assert!(hits >= MIN_HIT_SHARE, "{name}: only {:.1} % of the pixels hit geometry", 100.0 * hits);
@@ -151,7 +150,7 @@ fn compiled(name: &str) -> &'static fractal::dsl::CompiledScene {
 
 #[test]
 fn wgpu_draws_what_the_cpu_draws() {
-    match fractal::runtime::WgpuRenderer::new() {
+    match fractal::render::WgpuRenderer::new() {
         Ok(r) => check_backend("wgpu", r, |name| KernelSources::default().with_wgsl(compiled(name).wgsl())),
         Err(e) if !require_gpu() => eprintln!("skipped: no wgpu adapter ({e})"),
         Err(e) => panic!("wgpu is required (FRACTAL_REQUIRE_GPU_BACKENDS=1) but unavailable: {e}"),
@@ -163,7 +162,7 @@ fn wgpu_draws_what_the_cpu_draws() {
 fn opencl_draws_what_the_cpu_draws() {
     for precise in [true, false] {
         let label = if precise { "opencl precise" } else { "opencl fast" };
-        match fractal::runtime::OpenClRenderer::new(precise) {
+        match fractal::render::OpenClRenderer::new(precise) {
             Ok(r) => check_backend(label, r, |name| KernelSources::default().with_opencl(compiled(name).opencl())),
             Err(e) if !require_gpu() => eprintln!("skipped: no OpenCL device ({e})"),
             Err(e) => panic!("OpenCL is required (FRACTAL_REQUIRE_GPU_BACKENDS=1) but unavailable: {e}"),
@@ -214,7 +213,7 @@ fn check_traces(label: &str, renderer: &mut impl Renderer, sources: impl Fn(&fra
         let mask = pairs.iter().filter(|(a, b)| a.hit == b.hit).count() as f64 / n;
         let out_of_steps = pairs.iter().filter(|(a, b)| a.out_of_steps == b.out_of_steps).count() as f64 / n;
         let both: Vec<_> = pairs.iter().filter(|(a, b)| a.hit && b.hit).collect();
-        let share = |ok: &dyn Fn(&fractal::runtime::PixelTrace, &fractal::runtime::PixelTrace) -> bool| {
+        let share = |ok: &dyn Fn(&fractal::render::PixelTrace, &fractal::render::PixelTrace) -> bool| {
             both.iter().filter(|(a, b)| ok(a, b)).count() as f64 / both.len().max(1) as f64
         };
         let depth = share(&|a, b| (a.t - b.t).abs() <= TRACE_DEPTH_TOLERANCE * a.t);
@@ -249,13 +248,13 @@ fn check_traces(label: &str, renderer: &mut impl Renderer, sources: impl Fn(&fra
 
 #[test]
 fn gpu_traces_match_the_cpu_traces() {
-    match fractal::runtime::WgpuRenderer::new() {
+    match fractal::render::WgpuRenderer::new() {
         Ok(mut r) => check_traces("wgpu", &mut r, |k| KernelSources::default().with_wgsl(&k.wgsl)),
         Err(e) if !require_gpu() => eprintln!("wgpu skipped: no adapter ({e})"),
         Err(e) => panic!("wgpu is required (FRACTAL_REQUIRE_GPU_BACKENDS=1) but unavailable: {e}"),
     }
     #[cfg(feature = "opencl")]
-    match fractal::runtime::OpenClRenderer::new(false) {
+    match fractal::render::OpenClRenderer::new(false) {
         Ok(mut r) => check_traces("opencl", &mut r, |k| KernelSources::default().with_opencl(&k.opencl)),
         Err(e) if !require_gpu() => eprintln!("OpenCL skipped: no device ({e})"),
         Err(e) => panic!("OpenCL is required (FRACTAL_REQUIRE_GPU_BACKENDS=1) but unavailable: {e}"),
@@ -271,16 +270,16 @@ fn tracing_a_render_kernel_is_an_error() {
         let job = RenderJob::new(sources, &frame);
         let e = r.trace(&job).expect_err("the render kernel has no trace entry");
         eprintln!("{label}: {e}");
-        assert!(matches!(e, fractal::runtime::RenderError::KernelRejected { .. }), "{e}");
+        assert!(matches!(e, fractal::render::RenderError::KernelRejected { .. }), "{e}");
         assert!(r.render(&job).is_ok(), "{label} still renders after the refusal");
     };
-    match fractal::runtime::WgpuRenderer::new() {
+    match fractal::render::WgpuRenderer::new() {
         Ok(mut r) => refuses("wgpu", &mut r, KernelSources::default().with_wgsl(compiled.wgsl())),
         Err(e) if !require_gpu() => eprintln!("wgpu skipped: no adapter ({e})"),
         Err(e) => panic!("wgpu is required (FRACTAL_REQUIRE_GPU_BACKENDS=1) but unavailable: {e}"),
     }
     #[cfg(feature = "opencl")]
-    match fractal::runtime::OpenClRenderer::new(false) {
+    match fractal::render::OpenClRenderer::new(false) {
         Ok(mut r) => refuses("opencl", &mut r, KernelSources::default().with_opencl(compiled.opencl())),
         Err(e) if !require_gpu() => eprintln!("OpenCL skipped: no device ({e})"),
         Err(e) => panic!("OpenCL is required (FRACTAL_REQUIRE_GPU_BACKENDS=1) but unavailable: {e}"),

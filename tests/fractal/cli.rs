@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::time::SystemTime;
 
-use fractal_runtime::image::Image;
+use fractal_render::image::Image;
 use fractal_runtime::output::read_png;
 
 const FRACTAL: &str = env!("CARGO_BIN_EXE_fractal");

@@ -17,9 +17,7 @@ use fractal::dsl::number::math::v3;
 use fractal::dsl::parse::{parse_str, SourceError};
 use fractal::dsl::print::to_source;
 use fractal::dsl::{compile, Scene};
-use fractal::runtime::{
-    CpuRenderer, Frame, Image, KernelSources, ParamValues, Pose, RenderJob, Renderer, WgpuRenderer,
-};
+use fractal::render::{CpuRenderer, Frame, Image, KernelSources, RenderJob, Renderer, WgpuRenderer};
 use fractal::scenes;
 
 const DEFAULT_CASES: u64 = 20_000;
@@ -275,9 +273,7 @@ fn agreement(cpu: &Image, gpu: &Image) -> (f64, f64) {
 
 /// Draws an accepted scene on the CPU and wgpu; `false` when the frame itself is refused (the same on both).
 fn render_agrees(text: &str, scene: &Scene, gpu: &mut WgpuRenderer) -> bool {
-    let params = ParamValues::defaults(scene);
-    let Ok(pose) = Pose::from_camera(&scene.camera, 0.0, &|p| p.default) else { return false };
-    let Ok(frame) = Frame::new(scene, &pose, 0.0, SIZE, SIZE, &params) else { return false };
+    let Ok(frame) = Frame::default_view(scene, 0.0, SIZE, SIZE) else { return false };
     let interp = Interpreter::new(scene).unwrap();
     let kernels = compile(scene).unwrap();
     let cpu = CpuRenderer::new().render(&RenderJob::new(KernelSources::default().with_cpu(&interp, scene), &frame));

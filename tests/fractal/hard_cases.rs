@@ -5,9 +5,7 @@
 use fractal::dsl::builder::*;
 use fractal::dsl::eval::interp::Interpreter;
 use fractal::dsl::{compile, Scene};
-use fractal::runtime::{
-    CpuRenderer, Frame, Image, KernelSources, ParamValues, Pose, RenderJob, Renderer, WgpuRenderer,
-};
+use fractal::render::{CpuRenderer, Frame, Image, KernelSources, ParamValues, Pose, RenderJob, Renderer, WgpuRenderer};
 use glam::DVec3;
 
 fn require_gpu() -> bool {
@@ -38,7 +36,7 @@ fn render_with(scene: &Scene, pose: &Pose, size: u32, with_opencl: bool) -> Vec<
     }
     #[cfg(feature = "opencl")]
     if with_opencl {
-        match fractal::runtime::OpenClRenderer::new(false) {
+        match fractal::render::OpenClRenderer::new(false) {
             Ok(mut cl) => {
                 out.push(("opencl", cl.render(&RenderJob::new(KernelSources::compiled(&kernels), &frame)).unwrap()))
             }

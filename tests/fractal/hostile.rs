@@ -119,7 +119,7 @@ fn every_broken_rule_reaches_the_caller() {
 /// something on another). The same scene draws where the number is finite.
 #[test]
 fn numbers_that_go_bad_at_run_time_refuse_the_frame_on_every_backend() {
-    use fractal::runtime::{Frame, FrameError, ParamValues, Pose};
+    use fractal::render::{Frame, FrameError, ParamValues, Pose};
     let s = scene(sphere(1.0).translate(vec3(sqrt(time() - 5.0), 0.0, 0.0)));
     let pose = Pose::look_at(glam::DVec3::new(0.0, 0.0, -4.0), glam::DVec3::ZERO, 50.0).unwrap();
     let params = ParamValues::defaults(&s);

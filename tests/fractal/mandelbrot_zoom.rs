@@ -20,8 +20,8 @@
 
 use fractal::dsl::formula::mandelbrot::{inverse_count, mandelbrot, mandelbrot_perturbed};
 use fractal::dsl::number::math::{normalize, v3, V3};
-use fractal::runtime::backend::cpu::trace_scene;
-use fractal::runtime::{Frame, ParamValues, Pose};
+use fractal::render::backend::cpu::trace_scene;
+use fractal::render::{Frame, ParamValues, Pose};
 use fractal::scenes;
 
 const ITERATIONS: u32 = 5000;

@@ -19,11 +19,11 @@ use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
+use fractal_render::{
+    select, Backend, BackendChoice, Frame, Image, KernelSources, RenderJob, Renderer, RendererOptions, WgpuRenderer,
+};
 use fractal_runtime::viewer::{
     read_png, Action, Move, PresentMode, RenderScale, ScreenshotInfo, ScriptedStep, ViewerOptions, ViewerScene,
-};
-use fractal_runtime::{
-    select, Backend, BackendChoice, Frame, Image, KernelSources, RenderJob, Renderer, RendererOptions, WgpuRenderer,
 };
 
 /// Set in the child process: the folder for its screenshots. Unset, the child test does nothing.
@@ -297,7 +297,7 @@ fn viewer_child_process() {
 
     // The scripted move: 10 frames forward at 1.5 units/s with 1/30 s steps, then a turn to the right.
     let scene = scenes::SPHERE_BOX.scene();
-    let initial = fractal_runtime::Pose::from_camera(&scene.camera, start.time, &|p| p.default).unwrap();
+    let initial = fractal_render::Pose::from_camera(&scene.camera, start.time, &|p| p.default).unwrap();
     assert!(start.pose.position.distance(initial.position) < 1e-12, "the first screenshot is the scene's camera");
     let travelled = SPEED * STEP * MOVE_FRAMES as f64;
     let expected = start.pose.position + start.pose.forward * travelled;

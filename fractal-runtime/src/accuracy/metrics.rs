@@ -30,12 +30,10 @@
 //! From an image alone (the GPU backends) only the hit mask (a pixel of the background colour is a miss) and PSNR can
 //! be read; where glow tints the misses, the mask comes from a second image ([`TrueError::with_hit_mask`]).
 
-use fractal_dsl::number::math::v3;
 use fractal_dsl::Scene;
+use fractal_render::backend::cpu::PixelTrace;
+use fractal_render::image::{linear_rgba8, unpack_rgba8, Image};
 
-use crate::backend::cpu::{pack, PixelTrace};
-use crate::bench::precision::scene_hits;
-use crate::image::{unpack_rgba8, Image};
 use crate::truth::{angle_degrees, Truth};
 
 /// Largest thin-ray depth difference, in footprints, at which the render and the truth stand on the same surface and
@@ -62,6 +60,24 @@ pub const CONE_STEP: f64 = 1.0 / 64.0;
 pub const NORMAL_CONE_CHECK: f64 = 2.0;
 /// How far past the true hit, in footprints, a ray must end to have passed through the surface.
 pub const OVERSHOOT_FOOTPRINTS: f64 = 1.0;
+
+/// Levels per channel within which a pixel still has the miss colour (driver rounding of sqrt and the like).
+pub const MISS_TOLERANCE: u8 = 2;
+
+/// Whether `pixel` has the miss colour `miss`: RGB within [`MISS_TOLERANCE`] levels.
+pub fn is_miss(pixel: u32, miss: [u8; 4]) -> bool {
+    unpack_rgba8(pixel).iter().zip(miss).take(3).all(|(p, c)| p.abs_diff(c) <= MISS_TOLERANCE)
+}
+
+/// The hit mask of an image of `scene` read from its pixels: a pixel of the background colour (packed as the
+/// renderers pack it) is a miss. `None` when the scene has glow, which tints misses.
+pub fn scene_hits(scene: &Scene, image: &Image) -> Option<Vec<bool>> {
+    if scene.settings.glow.is_some() {
+        return None;
+    }
+    let background = linear_rgba8(scene.settings.background, scene.settings.gamma);
+    Some(image.pixels.iter().map(|&p| !is_miss(p, background)).collect())
+}
 
 /// median, 99th percentile and maximum of a set of errors.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
@@ -191,11 +207,6 @@ impl TrueError {
     }
 }
 
-/// The 8-bit colour of a linear colour, as the renderers pack it.
-fn packed(colour: [f64; 3], gamma: f64) -> [u8; 4] {
-    unpack_rgba8(pack::<f64>(v3(colour[0], colour[1], colour[2]), gamma))
-}
-
 fn psnr(pairs: impl Iterator<Item = ([u8; 4], [u8; 4])>) -> f64 {
     let (mut sum, mut n) = (0.0, 0usize);
     for (a, b) in pairs {
@@ -212,14 +223,14 @@ fn psnr(pairs: impl Iterator<Item = ([u8; 4], [u8; 4])>) -> f64 {
 /// Measures a render of `scene` against its truth (same frame).
 pub fn measure(scene: &Scene, truth: &Truth, observed: Observed) -> TrueError {
     let gamma = scene.settings.gamma;
-    let truth_colours = truth.pixels.iter().map(|p| packed(p.colour, gamma));
+    let truth_colours = truth.pixels.iter().map(|p| linear_rgba8(p.colour, gamma));
     // Glow tints misses, so an image of a scene with glow has no hit mask (`None`).
     let hits: Option<Vec<bool>> = match &observed {
         Observed::Traced(traces) => Some(traces.iter().map(|p| p.hit).collect()),
         Observed::Image(image) => scene_hits(scene, image),
     };
     let psnr = match &observed {
-        Observed::Traced(traces) => psnr(traces.iter().map(|p| packed(p.colour, gamma)).zip(truth_colours)),
+        Observed::Traced(traces) => psnr(traces.iter().map(|p| linear_rgba8(p.colour, gamma)).zip(truth_colours)),
         Observed::Image(image) => psnr(image.pixels.iter().map(|&p| unpack_rgba8(p)).zip(truth_colours)),
     };
     let (false_hits, false_hits_cone, false_misses) = match &hits {

@@ -13,16 +13,16 @@ use fractal_dsl::eval::interp::Interpreter;
 use fractal_dsl::{HitEpsilon, Node, Scene};
 
 use crate::accuracy::metrics::{measure, Observed, TrueError};
-use crate::backend::cpu::{trace_scene_with, MarchLevers};
-use crate::device::Backend;
-use crate::error::RenderError;
-use crate::frame::Frame;
 use crate::quality::{Quality, StepScaled};
-use crate::renderer::{KernelSources, RenderJob, Renderer};
-use crate::select::RendererOptions;
 use crate::truth::Truth;
 use fractal_dsl::analyse::{bound, fold::fold_node};
 use fractal_dsl::validate::check_membership_hits;
+use fractal_render::backend::cpu::{trace_scene_with, MarchLevers};
+use fractal_render::device::Backend;
+use fractal_render::error::RenderError;
+use fractal_render::frame::Frame;
+use fractal_render::renderer::{KernelSources, RenderJob, Renderer};
+use fractal_render::select::RendererOptions;
 
 /// Renders per timing; the median is reported.
 pub const TIMING_RUNS: usize = 3;
@@ -351,7 +351,7 @@ pub fn run(
             (Backend::Cpu, _, _) | (_, None, _) => run_cpu(scene, q, frame, truth)?,
             // The other math is another build of the program: a renderer of its own.
             (_, Some(_), Some(precise)) => {
-                let mut other = crate::select::open(backend, &RendererOptions { precise })?;
+                let mut other = fractal_render::select::open(backend, &RendererOptions { precise })?;
                 run_kernels(other.as_mut(), scene, q, frame, truth)?
             }
             (_, Some(r), None) => run_kernels(r.as_mut(), scene, q, frame, truth)?,
@@ -386,7 +386,6 @@ pub fn recommended<'a>(points: &'a [SweepPoint], budget: &Budget) -> Option<&'a 
 mod tests {
     use super::*;
     use crate::truth::TruthSettings;
-    use crate::{ParamValues, Pose};
     use fractal_dsl::builder::*;
 
     /// A verdict names what it did not judge: a normal p99 over too few normals passes, and says so.
@@ -441,8 +440,7 @@ mod tests {
         assert_eq!(math(Backend::OpenCl, true), [false]);
         assert!(math(Backend::Cpu, false).is_empty() && math(Backend::Wgpu, false).is_empty());
 
-        let pose = Pose::from_camera(&bounded.camera, 0.0, &|p| p.default).unwrap();
-        let frame = Frame::new(&bounded, &pose, 0.0, 24, 16, &ParamValues::defaults(&bounded)).unwrap();
+        let frame = Frame::default_view(&bounded, 0.0, 24, 16).unwrap();
         let truth = Truth::compute(&bounded, &frame, TruthSettings::default()).unwrap();
         let clipped = run_cpu(&bounded, &Quality::default(), &frame, &truth).unwrap();
         let unclipped =
@@ -464,10 +462,9 @@ mod tests {
     #[test]
     fn a_kernel_render_is_judged_on_its_traced_march() {
         let glowing = scene(sphere(1.0)).camera(camera([0.0, 0.0, -3.0], [0.0; 3])).glow(rgb(0.2, 0.4, 1.0));
-        let pose = Pose::from_camera(&glowing.camera, 0.0, &|p| p.default).unwrap();
-        let frame = Frame::new(&glowing, &pose, 0.0, 24, 16, &ParamValues::defaults(&glowing)).unwrap();
+        let frame = Frame::default_view(&glowing, 0.0, 24, 16).unwrap();
         let truth = Truth::compute(&glowing, &frame, TruthSettings::default()).unwrap();
-        let mut renderer = match crate::select::open(Backend::Wgpu, &RendererOptions::default()) {
+        let mut renderer = match fractal_render::select::open(Backend::Wgpu, &RendererOptions::default()) {
             Ok(r) => r,
             Err(e) if std::env::var("FRACTAL_REQUIRE_GPU_BACKENDS").is_ok_and(|v| v == "1") => {
                 panic!("wgpu required but unavailable: {e}")
@@ -496,8 +493,7 @@ mod tests {
         ]))
         .camera(camera([0.4, -0.7, -4.0], [0.0, -0.9, 0.0]))
         .max_steps(400);
-        let pose = Pose::from_camera(&thin.camera, 0.0, &|p| p.default).unwrap();
-        let frame = Frame::new(&thin, &pose, 0.0, 32, 24, &ParamValues::defaults(&thin)).unwrap();
+        let frame = Frame::default_view(&thin, 0.0, 32, 24).unwrap();
         let truth = Truth::compute(&thin, &frame, TruthSettings::default()).unwrap();
         let plain = run_cpu(&thin, &Quality::default(), &frame, &truth).unwrap();
         let evaluations = |p: &SweepPoint| p.error.traced.as_ref().unwrap().evaluations_per_pixel.unwrap();

@@ -1,20 +1,17 @@
 //! The error a bench's speed was bought with: a backend's image against the CPU renderer running the f64 interpreter
 //! on the same frame uniforms and settings.
 //!
-//! Hit masks are read from the pixels: a pixel within [`MISS_TOLERANCE`] levels of the miss colour is a miss. For a
-//! scene that is its background colour (packed as the renderers pack it); glow tints misses, so a scene with glow has
-//! no hit mask. For the baseline it is its vertical gradient.
+//! Hit masks are read from the pixels, as the accuracy metrics read them ([`scene_hits`]); for the baseline the miss
+//! colour is its vertical gradient.
 
 use fractal_dsl::eval::interp::Interpreter;
 use fractal_dsl::Scene;
+use fractal_render::backend::cpu::render_scene;
+use fractal_render::error::RenderError;
+use fractal_render::frame::Frame;
+use fractal_render::image::{linear_rgba8, unpack_rgba8, Image};
 
-use crate::backend::cpu::render_scene;
-use crate::error::RenderError;
-use crate::frame::Frame;
-use crate::image::{unpack_rgba8, Image};
-
-/// Levels per channel within which a pixel still has the miss colour (driver rounding of sqrt and the like).
-pub const MISS_TOLERANCE: u8 = 2;
+use crate::accuracy::metrics::{is_miss, scene_hits};
 
 /// One comparison with the reference.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
@@ -48,37 +45,15 @@ pub fn reference(scene: &Scene, frame: &Frame) -> Result<Image, RenderError> {
     render_scene::<f64, _>(&Interpreter::new(scene)?, scene, frame)
 }
 
-/// A colour packed as the renderers pack it: clamp, gamma, round.
-fn pack(colour: [f64; 3], gamma: f64) -> [u8; 3] {
-    colour.map(|c| {
-        let c = c.clamp(0.0, 1.0);
-        let c = if gamma == 2.0 { c.sqrt() } else { c.powf(1.0 / gamma) };
-        (c * 255.0 + 0.5).min(255.0) as u8
-    })
-}
-
-fn near(pixel: u32, colour: [u8; 3]) -> bool {
-    unpack_rgba8(pixel).iter().zip(colour).all(|(p, c)| p.abs_diff(c) <= MISS_TOLERANCE)
-}
-
-/// Hit mask of a scene image; `None` when the scene has glow.
-pub fn scene_hits(scene: &Scene, image: &Image) -> Option<Vec<bool>> {
-    if scene.settings.glow.is_some() {
-        return None;
-    }
-    let background = pack(scene.settings.background, scene.settings.gamma);
-    Some(image.pixels.iter().map(|&p| !near(p, background)).collect())
-}
-
 /// Hit mask of a baseline image: pixels unlike the baseline's background gradient.
 pub fn baseline_hits(image: &Image) -> Vec<bool> {
     let h = image.height as f64;
     (0..image.height)
         .flat_map(|y| {
             let v = -(2.0 * (y as f64 + 0.5) - h) / h;
-            let background = pack([0.08, 0.09, 0.12].map(|c| c + 0.08 * v), 2.0);
+            let background = linear_rgba8([0.08, 0.09, 0.12].map(|c| c + 0.08 * v), 2.0);
             let row = y as usize * image.width as usize;
-            image.pixels[row..row + image.width as usize].iter().map(move |&p| !near(p, background))
+            image.pixels[row..row + image.width as usize].iter().map(move |&p| !is_miss(p, background))
         })
         .collect()
 }
@@ -122,29 +97,23 @@ pub fn compare_baseline(scene: &Scene, image: &Image, reference: &Image) -> Accu
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bench::baseline_cpu;
-    use crate::frame::ParamValues;
-    use crate::Pose;
+    use crate::bench::baseline;
     use fractal_dsl::builder::{camera, mandelbulb, rgb, scene, sphere, ShapeExt};
 
-    fn frame(s: &Scene, w: u32, h: u32) -> Frame {
-        let pose = Pose::from_camera(&s.camera, 0.0, &|p| p.default).unwrap();
-        Frame::new(s, &pose, 0.0, w, h, &ParamValues::defaults(s)).unwrap()
-    }
+    use fractal_render::image::pack_rgba8;
 
     #[test]
     fn an_image_agrees_with_itself_and_not_with_a_blank() {
         let s = scene(sphere(1.0)).camera(camera([0.0, 0.0, -3.0], [0.0, 0.0, 0.0]));
-        let f = frame(&s, 32, 24);
+        let f = Frame::default_view(&s, 0.0, 32, 24).unwrap();
         let r = reference(&s, &f).unwrap();
         let same = compare_scene(&s, &r, &r);
         assert_eq!((same.hit_mismatch, same.mean_colour_difference), (Some(0.0), Some(0.0)));
         let hits = scene_hits(&s, &r).unwrap();
         let covered = hits.iter().filter(|&&h| h).count() as f64 / hits.len() as f64;
         assert!(covered > 0.1 && covered < 0.9, "sphere covers {covered}");
-        let bg = pack(s.settings.background, s.settings.gamma);
-        let blank =
-            Image { width: 32, height: 24, pixels: vec![u32::from_le_bytes([bg[0], bg[1], bg[2], 255]); 32 * 24] };
+        let bg = pack_rgba8(linear_rgba8(s.settings.background, s.settings.gamma));
+        let blank = Image { width: 32, height: 24, pixels: vec![bg; 32 * 24] };
         let off = compare_scene(&s, &blank, &r);
         assert!((off.hit_mismatch.unwrap() - covered).abs() < 1e-12);
         assert!(off.mean_colour_difference.unwrap() > 1.0);
@@ -153,7 +122,7 @@ mod tests {
     #[test]
     fn glow_has_no_hit_mask() {
         let s = scene(sphere(1.0)).glow(rgb(0.2, 0.1, 0.0));
-        let f = frame(&s, 8, 8);
+        let f = Frame::default_view(&s, 0.0, 8, 8).unwrap();
         let r = reference(&s, &f).unwrap();
         assert_eq!(compare_scene(&s, &r, &r).hit_mismatch, None);
     }
@@ -165,11 +134,11 @@ mod tests {
             .max_steps(128)
             .max_distance(6.0)
             .epsilon(0.0005);
-        let f = frame(&s, 48, 27);
+        let f = Frame::default_view(&s, 0.0, 48, 27).unwrap();
         let r = reference(&s, &f).unwrap();
-        let baseline = compare_baseline(&s, &baseline_cpu::render(48, 27), &r);
+        let baseline = compare_baseline(&s, &baseline::render(48, 27), &r);
         assert!(baseline.hit_mismatch.unwrap() < 0.03, "{}", baseline.describe());
-        let hits = baseline_hits(&baseline_cpu::render(48, 27)).iter().filter(|&&h| h).count();
+        let hits = baseline_hits(&baseline::render(48, 27)).iter().filter(|&&h| h).count();
         assert!(hits > 48 * 27 / 10, "only {hits} baseline hits");
     }
 }

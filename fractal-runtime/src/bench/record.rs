@@ -9,11 +9,12 @@ use std::path::Path;
 use std::time::{SystemTime, UNIX_EPOCH};
 
 use fractal_dsl::{HitEpsilon, Scene, Shadows};
+use fractal_render::frame::ParamValues;
+use fractal_render::select::RendererOptions;
 use serde::Serialize;
 
-use super::{Accuracy, BenchReport, Stats};
-use crate::frame::ParamValues;
-use crate::select::RendererOptions;
+use super::precision::Accuracy;
+use super::report::{BenchReport, Stats, Timings};
 
 /// How the program and its kernels were built.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -108,7 +109,7 @@ pub struct TimingRecord {
 }
 
 impl TimingRecord {
-    fn new(t: &super::Timings) -> TimingRecord {
+    fn new(t: &Timings) -> TimingRecord {
         TimingRecord { kernel_ms: t.kernel(), frame_ms: t.frame(), fps: t.fps(), first_frame_ms: t.first_frame_ms }
     }
 }

@@ -6,21 +6,24 @@ use std::fmt::Write as _;
 use std::io::Write as _;
 use std::time::Instant;
 
+use fractal_render::device::Backend;
+use fractal_render::frame::Frame;
+use fractal_render::select::{BackendChoice, RendererOptions};
+use fractal_render::Pose;
+
 use crate::accuracy::sweep::{self, Budget};
 use crate::accuracy::{plot, table};
 use crate::cli::args::AccuracyArgs;
 use crate::cli::error::CliError;
-use crate::cli::scene::LoadedScene;
-use crate::cli::SceneLibrary;
-use crate::device::Backend;
-use crate::frame::Frame;
+use crate::cli::scene::{LoadedScene, SceneLibrary};
 use crate::output::png::prepare_output;
 use crate::quality::Quality;
-use crate::select::{BackendChoice, RendererOptions};
 use crate::truth::{self, Truth, TruthSettings};
-use crate::Pose;
 
 mod keys;
+mod verdict;
+
+use verdict::{capped, judged};
 
 /// Factor on the iteration count of the escape-time sets the estimator study measures against.
 pub const CONVERGED_FACTOR: u32 = 2;
@@ -94,7 +97,7 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
 
     let mut renderer = match backend {
         Backend::Cpu => None,
-        other => Some(crate::select::open(other, &RendererOptions { precise: args.precise })?),
+        other => Some(fractal_render::select::open(other, &RendererOptions { precise: args.precise })?),
     };
     // The truth at the scene's iteration count, and for escape-time fractals at doubled counts until neither the hit
     // mask nor the scene default's judged figures move: the converged truth, judged against (`--truth-factor` names
@@ -199,7 +202,9 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
         .also_on
         .iter()
         .filter(|&&b| b != backend)
-        .map(|&b| (b, crate::select::open(b, &RendererOptions { precise: args.precise }).map_err(|e| e.to_string())))
+        .map(|&b| {
+            (b, fractal_render::select::open(b, &RendererOptions { precise: args.precise }).map_err(|e| e.to_string()))
+        })
         .collect();
     for (other, opened) in &mut others {
         let line = default_on(scene, &frame, judged, *other, opened, budget)?;
@@ -242,7 +247,7 @@ fn default_on(
     frame: &Frame,
     truth: &Truth,
     backend: Backend,
-    opened: &mut Result<Box<dyn crate::renderer::Renderer>, String>,
+    opened: &mut Result<Box<dyn fractal_render::renderer::Renderer>, String>,
     budget: &Budget,
 ) -> Result<String, CliError> {
     let renderer = match opened {
@@ -251,13 +256,6 @@ fn default_on(
     };
     let point = &sweep::run(scene, frame, truth, backend, Some(renderer), &[Quality::default()], &mut |_| {})?[0];
     Ok(format!("scene default on {backend}: {}", judged(point, budget).0))
-}
-
-/// A measured point as one line (its time, the figures its image holds and the budget's verdict on them), and the
-/// budget's violations (none: within budget).
-fn judged(point: &sweep::SweepPoint, budget: &Budget) -> (String, Vec<String>) {
-    let verdict = budget.verdict(&point.error);
-    (format!("{:.1} ms, {}; {}", point.time_ms, point.error.describe(), verdict.sentence()), verdict.violations)
 }
 
 /// Which of `truths` (in rising iterations) the sweep is judged against: the one of most iterations that has settled
@@ -296,17 +294,6 @@ fn settled_in_step(
         }
     }
     Ok(0)
-}
-
-/// ", capped at N, the family's most" where the family's iteration limit holds `factor` × the scene's iterations of
-/// its first escape-time fractal below that product.
-fn capped(scene: &fractal_dsl::Scene, factor: u32) -> String {
-    let own = sweep::escape_time_iterations(scene);
-    let scaled = sweep::escape_time_iterations(&crate::quality::with_iterations_scaled(scene, factor));
-    match (own, scaled) {
-        (Some(own), Some(n)) if n < own.saturating_mul(factor) => format!(", capped at {n}, the family's most"),
-        _ => String::new(),
-    }
 }
 
 /// Share of the pixels whose hit or miss differs between hit mask `a` and truth `b` of one frame.

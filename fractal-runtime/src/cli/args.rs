@@ -1,16 +1,16 @@
 //! The command-line grammar (clap derive) and the parsers of its values: sizes, frame ranges, shards, parameter
 //! assignments, backends and export targets. Every value is checked here, so a bad one is a usage error before any
-//! work starts (an image size is checked against [`crate::MAX_IMAGE_SIDE`] before anything is allocated).
+//! work starts (an image size is checked against [`fractal_render::MAX_IMAGE_SIDE`] before anything is allocated).
 
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
+use fractal_render::frame::check_image_size;
+use fractal_render::select::BackendChoice;
 
 use crate::export::Target;
-use crate::frame::check_image_size;
 use crate::output::{Aov, FrameRange, Shard};
 use crate::package::Engine;
-use crate::select::BackendChoice;
 
 /// Most frames `bench --frames` times.
 pub const MAX_BENCH_FRAMES: u32 = 100_000;
@@ -243,7 +243,7 @@ pub struct AccuracyArgs {
     /// After the sweep, measure the scene's default on these backends too, against the same truth (wgpu,opencl);
     /// one that does not open is reported, not an error
     #[arg(long, value_name = "BACKENDS", value_delimiter = ',', value_parser = parse_one_backend)]
-    pub also_on: Vec<crate::device::Backend>,
+    pub also_on: Vec<fractal_render::device::Backend>,
     /// Measure the scene's own setting only, no sweep (the truths, the default's figures and its verdict)
     #[arg(long)]
     pub default_only: bool,
@@ -420,7 +420,7 @@ pub fn parse_backend(text: &str) -> Result<BackendChoice, String> {
     text.parse::<BackendChoice>().map_err(|e| e.to_string())
 }
 
-fn parse_one_backend(text: &str) -> Result<crate::device::Backend, String> {
+fn parse_one_backend(text: &str) -> Result<fractal_render::device::Backend, String> {
     match parse_backend(text)? {
         BackendChoice::Only(b) => Ok(b),
         BackendChoice::Auto => Err("name a backend: cpu, wgpu or opencl".to_string()),
@@ -487,7 +487,7 @@ fn finite(text: &str, what: &str) -> Result<f64, String> {
 
 pub fn parse_time(text: &str) -> Result<f64, String> {
     let t = finite(text, "time")?;
-    crate::frame::check_time(t).map_err(|e| e.to_string())?;
+    fractal_render::frame::check_time(t).map_err(|e| e.to_string())?;
     Ok(t)
 }
 

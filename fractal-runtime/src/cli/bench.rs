@@ -4,15 +4,14 @@
 
 use std::io::IsTerminal;
 
+use fractal_render::select::RendererOptions;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use crate::bench::{append_csv, append_json, run, BenchLength, BenchSpec};
 use crate::cli::args::BenchArgs;
 use crate::cli::error::CliError;
-use crate::cli::scene::{LoadedScene, SceneOrigin};
-use crate::cli::SceneLibrary;
+use crate::cli::scene::{LoadedScene, SceneLibrary, SceneOrigin};
 use crate::output::png::prepare_output;
-use crate::select::RendererOptions;
 
 /// The built-in scene set up like the hand-written baseline (camera, light, iterations, steps, epsilon), and the
 /// scene `fractal bench` times when none is named.

@@ -5,7 +5,8 @@
 use std::fmt;
 use std::process::ExitCode;
 
-use crate::error::{FrameError, RenderError};
+use fractal_render::error::{FrameError, RenderError};
+
 use crate::output::OutputError;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

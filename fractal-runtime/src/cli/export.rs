@@ -7,8 +7,7 @@ use std::io::{IsTerminal, Write};
 
 use crate::cli::args::{ExportArgs, ExportTarget};
 use crate::cli::error::CliError;
-use crate::cli::scene::LoadedScene;
-use crate::cli::SceneLibrary;
+use crate::cli::scene::{LoadedScene, SceneLibrary};
 use crate::output::png::{prepare_output, write_atomic};
 use crate::package::Engine;
 

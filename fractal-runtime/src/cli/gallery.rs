@@ -3,13 +3,13 @@
 
 use std::time::Instant;
 
+use fractal_render::frame::ParamValues;
+use fractal_render::image::Image;
+
 use crate::cli::args::{GalleryArgs, RenderOptions};
 use crate::cli::error::CliError;
 use crate::cli::render::{open_renderer, render_frame};
-use crate::cli::scene::LoadedScene;
-use crate::cli::SceneLibrary;
-use crate::frame::ParamValues;
-use crate::image::Image;
+use crate::cli::scene::{LoadedScene, SceneLibrary};
 use crate::output::contact_sheet;
 use crate::output::png::{prepare_output, write_png};
 

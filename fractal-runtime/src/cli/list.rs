@@ -3,7 +3,7 @@
 use std::io::Write;
 
 use crate::cli::error::CliError;
-use crate::cli::SceneLibrary;
+use crate::cli::scene::SceneLibrary;
 
 /// The first sentence of the `//` comment block at the top of `source` (the whole block when it has no full stop).
 pub fn description(source: &str) -> String {

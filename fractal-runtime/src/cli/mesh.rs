@@ -7,13 +7,12 @@ use std::path::Path;
 use std::time::Instant;
 
 use fractal_dsl::analyse::Aabb;
+use fractal_render::frame::check_time;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use crate::cli::args::MeshArgs;
 use crate::cli::error::CliError;
-use crate::cli::scene::LoadedScene;
-use crate::cli::SceneLibrary;
-use crate::frame::check_time;
+use crate::cli::scene::{LoadedScene, SceneLibrary};
 use crate::mesh::{default_bounds, default_level, extract, write_mesh, MeshFormat, MeshSettings};
 use crate::output::png::{prepare_output, write_atomic_with};
 use crate::output::FramePattern;

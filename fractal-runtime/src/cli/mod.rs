@@ -22,19 +22,10 @@ use std::process::ExitCode;
 
 use clap::error::ErrorKind as ClapErrorKind;
 use clap::Parser;
-use fractal_dsl::CompiledScene;
 
 use args::{Cli, Command};
 pub use error::CliError;
-
-/// The built-in scenes the program offers.
-#[derive(Clone, Copy)]
-pub struct SceneLibrary {
-    /// Every built-in scene with its name.
-    pub scenes: &'static [(&'static str, &'static CompiledScene)],
-    /// The `.fractal` source of a built-in scene by name (its leading comment describes it in `fractal list`).
-    pub source_file: fn(&str) -> Option<&'static str>,
-}
+pub use scene::SceneLibrary;
 
 /// Runs the program on the process's arguments.
 pub fn main(library: &SceneLibrary) -> ExitCode {

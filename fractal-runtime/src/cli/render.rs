@@ -6,22 +6,21 @@ use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use fractal_render::camera::Pose;
+use fractal_render::error::RenderError;
+use fractal_render::frame::{Frame, ParamValues};
+use fractal_render::image::Image;
+use fractal_render::renderer::{KernelSources, RenderJob, Renderer, Traced};
+use fractal_render::select::{select, BackendChoice, RendererOptions};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
-use crate::camera::Pose;
 use crate::cli::args::{RenderArgs, RenderOptions};
 use crate::cli::error::CliError;
-use crate::cli::scene::LoadedScene;
-use crate::cli::SceneLibrary;
-use crate::error::RenderError;
-use crate::frame::{Frame, ParamValues};
-use crate::image::Image;
+use crate::cli::scene::{LoadedScene, SceneLibrary};
 use crate::output::aov::write_aov;
 use crate::output::png::{prepare_output, write_png};
 use crate::output::sequence::{plan, FramePattern, Shard};
 use crate::output::video::{Container, VideoWriter};
-use crate::renderer::{KernelSources, RenderJob, Renderer, Traced};
-use crate::select::{select, BackendChoice, RendererOptions};
 
 /// What `-o` and `--frames` ask for.
 enum Output {

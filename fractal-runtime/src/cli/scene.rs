@@ -1,5 +1,6 @@
-//! The `<scene>` argument: a built-in scene by name (kernels and native evaluator compiled into the program) or a
-//! `.fractal` file, parsed and compiled at run time (kernels from the scene compiler, the interpreter on the CPU).
+//! The `<scene>` argument: a built-in scene by name (kernels and native evaluator compiled into the program, found in
+//! the [`SceneLibrary`] the binary passes in) or a `.fractal` file, parsed and compiled at run time (kernels from the
+//! scene compiler, the interpreter on the CPU).
 //!
 //! A name is looked up among the built-ins first; anything else is a path. An argument that looks like neither (no
 //! such built-in, no such file, no path separator or `.fractal` extension) is reported as an unknown scene with the
@@ -11,13 +12,21 @@ use fractal_dsl::compiled::{CompiledScene, Kernels, NativeFns};
 use fractal_dsl::eval::interp::Interpreter;
 use fractal_dsl::eval::Evaluator;
 use fractal_dsl::Scene;
+use fractal_render::error::{FrameError, RenderError};
+use fractal_render::frame::ParamValues;
+use fractal_render::renderer::KernelSources;
 
 use crate::cli::error::CliError;
-use crate::cli::SceneLibrary;
-use crate::error::{FrameError, RenderError};
 use crate::export::{export, export_compiled, ExportError, Exported, Target};
-use crate::frame::ParamValues;
-use crate::renderer::KernelSources;
+
+/// The built-in scenes the program offers.
+#[derive(Clone, Copy)]
+pub struct SceneLibrary {
+    /// Every built-in scene with its name.
+    pub scenes: &'static [(&'static str, &'static CompiledScene)],
+    /// The `.fractal` source of a built-in scene by name (its leading comment describes it in `fractal list`).
+    pub source_file: fn(&str) -> Option<&'static str>,
+}
 
 /// Where a scene came from.
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -2,11 +2,11 @@
 //! and native evaluator) or a `.fractal` file (reloaded whenever it is saved). With no display it fails with a hint to
 //! render an image instead.
 
+use fractal_render::select::RendererOptions;
+
 use crate::cli::args::ViewArgs;
 use crate::cli::error::CliError;
-use crate::cli::scene::{LoadedScene, SceneOrigin};
-use crate::cli::SceneLibrary;
-use crate::select::RendererOptions;
+use crate::cli::scene::{LoadedScene, SceneLibrary, SceneOrigin};
 use crate::viewer::{run, ViewerError, ViewerOptions, ViewerScene};
 
 pub fn view(args: &ViewArgs, library: &SceneLibrary) -> Result<(), CliError> {

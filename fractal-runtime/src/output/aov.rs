@@ -6,8 +6,8 @@ use std::io::Cursor;
 use std::path::{Path, PathBuf};
 
 use exr::prelude::{Image as ExrImage, SpecificChannels, Vec2, WritableImage};
+use fractal_render::backend::cpu::PixelTrace;
 
-use crate::backend::cpu::PixelTrace;
 use crate::output::{write_atomic, OutputError};
 
 /// One per-pixel quantity an image can be accompanied by.

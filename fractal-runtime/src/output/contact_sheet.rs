@@ -1,7 +1,8 @@
 //! The gallery's contact sheet: rendered scenes laid out in a grid, each tile labelled with its scene's name in an
 //! 8×8 bitmap font (so no font file is needed).
 
-use crate::image::{pack_rgba8, Image};
+use fractal_render::image::{pack_rgba8, Image};
+
 use crate::text::draw_text;
 
 /// Pixels between tiles and around the sheet.

@@ -15,11 +15,10 @@
 
 use base64::Engine as _;
 use fractal_dsl::{CameraPlacement, Scene};
+use fractal_render::camera::Pose;
+use fractal_render::error::CameraError;
 use glam::{DMat3, DQuat, DVec3};
 use serde_json::json;
-
-use crate::camera::Pose;
-use crate::error::CameraError;
 
 /// Near and far clip distances written into the camera (glTF requires znear; a zfar makes it a finite frustum).
 const ZNEAR: f64 = 0.001;

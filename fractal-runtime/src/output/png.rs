@@ -7,10 +7,10 @@ use std::fs::{self, File};
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 
+use fractal_render::image::{pack_rgba8, Image};
 use image::codecs::png::PngEncoder;
 use image::{ExtendedColorType, ImageEncoder, ImageFormat};
 
-use crate::image::{pack_rgba8, Image};
 use crate::output::OutputError;
 
 /// Suffix of the temporary file an atomic write goes through.

@@ -8,7 +8,8 @@ use std::path::{Path, PathBuf};
 use std::process::{Child, ChildStdin, Command, Stdio};
 use std::thread::JoinHandle;
 
-use crate::image::Image;
+use fractal_render::image::Image;
+
 use crate::output::png::partial_path;
 use crate::output::OutputError;
 

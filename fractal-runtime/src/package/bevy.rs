@@ -4,7 +4,7 @@
 //! `bevy_pbr::mesh_view_bindings::view`, and binds its uniform at `#{MATERIAL_BIND_GROUP}`, binding 0.
 
 use super::plain::{wgsl_library, WGSL_PARAMS, WGSL_PARAMS_GLOBAL};
-use super::{PackageFile, Source};
+use super::source::{PackageFile, Source};
 
 /// The naga_oil import path of a scene's module.
 pub fn import_path(scene: &str) -> String {

@@ -4,7 +4,7 @@
 
 use fractal_dsl::back;
 
-use super::{float, HostParam, PackageFile, Source};
+use super::source::{float, HostParam, PackageFile, Source};
 
 /// Godot's global time built-in, which custom functions may read.
 const GODOT_TIME: &str = "TIME";

@@ -3,7 +3,7 @@
 
 use fractal_dsl::back;
 
-use super::{float, HostParam, PackageFile, Source, TIME_GLOBAL};
+use super::source::{float, HostParam, PackageFile, Source, TIME_GLOBAL};
 
 /// The comment naming a parameter's default and range, after its declaration.
 fn range_comment(p: &HostParam) -> String {

@@ -3,9 +3,9 @@
 //! mouse (`iMouse`) about the point of the view axis nearest the bound's centre.
 
 use fractal_dsl::back;
+use fractal_render::Pose;
 
-use super::{float, PackageError, PackageFile, Source};
-use crate::Pose;
+use super::source::{float, PackageError, PackageFile, Source};
 
 /// Shadertoy's time uniform.
 const SHADERTOY_TIME: &str = "iTime";

@@ -4,7 +4,7 @@
 //! y up, like the scene: no change of axes.
 
 use super::plain::hlsl_library;
-use super::{float, PackageFile, Source, TIME_GLOBAL};
+use super::source::{float, PackageFile, Source, TIME_GLOBAL};
 
 /// A Custom Function entry point: `name_float(inputs…, Time, params…, out outputs…)` assigning the globals, then
 /// `body`.

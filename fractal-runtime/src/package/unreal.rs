@@ -5,7 +5,7 @@
 //! Y, Z, X, a rotation, so handedness is kept) and divides by `Scale`, Unreal units per scene unit.
 
 use super::plain::hlsl_library;
-use super::{PackageFile, Source, TIME_GLOBAL};
+use super::source::{PackageFile, Source, TIME_GLOBAL};
 
 /// The Custom node's inputs, in order, before the parameters.
 pub const CUSTOM_NODE_INPUTS: [&str; 5] = ["WorldPosition", "CameraPosition", "ObjectPosition", "Scale", "Time"];

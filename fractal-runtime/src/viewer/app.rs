@@ -1,21 +1,29 @@
 //! The game loop: a winit [`ApplicationHandler`] that, once per frame, polls input (keys, mouse, the script, the
 //! watched file), updates time, camera and parameters, renders, and presents — and recovers from what can go wrong on
 //! the way (a kernel the driver rejects, a backend that fails, a surface that cannot present) without panicking.
+//! What each key, click or scripted step changes is module `input`'s; this file owns the state and the frame.
 
 use std::collections::HashSet;
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
 
+use fractal_render::camera::Pose;
+use fractal_render::error::RenderError;
+use fractal_render::frame::Frame;
+use fractal_render::image::Image;
+use fractal_render::renderer::RenderJob;
 use winit::application::ApplicationHandler;
 use winit::dpi::{PhysicalPosition, PhysicalSize};
 use winit::event::{DeviceEvent, DeviceId, ElementState, MouseButton, MouseScrollDelta, WindowEvent};
 use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
-use winit::keyboard::{KeyCode, PhysicalKey};
-use winit::window::{CursorGrabMode, Window, WindowId};
+use winit::keyboard::PhysicalKey;
+use winit::window::{Window, WindowId};
 
-use super::camera_control::{describe_pose, FlyCamera, SPRINT_FACTOR};
-use super::controls::{binding, Action, Move, HELP};
+mod input;
+
+use super::camera_control::{FlyCamera, SPRINT_FACTOR};
+use super::controls::{Move, HELP};
 use super::effects::{describe, describe_quality, EffectOverrides};
 use super::engine::{Engine, EngineChain};
 use super::live_scene::{FileWatch, LiveScene};
@@ -24,22 +32,13 @@ use super::params::ParamControl;
 use super::path_file::{load_camera_path, CameraPathFile};
 use super::present::{GpuFrameError, GpuPresenter, SoftPresenter};
 use super::scale::ScaleController;
-use super::screenshot::{next_screenshot_path, write_png};
+use super::screenshot::write_png;
 use super::script::ScriptPlayer;
+use super::session::{PresentMode, ScreenshotInfo, ViewerError, ViewerOptions, ViewerScene, ViewerSummary};
 use super::title::{title, FrameClock, TitleFacts};
-use super::{PresentMode, ScreenshotInfo, ViewerError, ViewerOptions, ViewerScene, ViewerSummary};
-use crate::camera::Pose;
-use crate::error::RenderError;
-use crate::frame::Frame;
-use crate::image::Image;
-use crate::renderer::RenderJob;
 
 /// Longest time step of one frame: after a stall (a slow recompile, a dragged window) the camera does not jump.
 const MAX_DT: f64 = 0.25;
-/// Factor of one press of +/− or [/].
-const SPEED_STEP: f64 = 1.25;
-/// Seconds per press of ←/→.
-const TIME_STEP: f64 = 1.0;
 /// Pixels of scroll per mouse-wheel line.
 const PIXELS_PER_LINE: f64 = 40.0;
 /// The time slider's range when the scene has no camera path to take it from.
@@ -275,186 +274,6 @@ impl App {
         }
     }
 
-    // ---- input ----
-
-    fn key(&mut self, code: KeyCode, state: ElementState, repeat: bool, event_loop: &ActiveEventLoop) {
-        if matches!(code, KeyCode::ShiftLeft | KeyCode::ShiftRight) {
-            self.shift = state.is_pressed();
-        }
-        let Some(action) = binding(code, self.shift) else {
-            return;
-        };
-        if action.is_held() {
-            if state.is_pressed() {
-                self.press(action);
-            } else {
-                self.release(action);
-            }
-            return;
-        }
-        let repeats =
-            matches!(action, Action::IncreaseParam | Action::DecreaseParam | Action::TimeForward | Action::TimeBack);
-        if state.is_pressed() && (!repeat || repeats) {
-            self.trigger(action, event_loop);
-        }
-    }
-
-    fn press(&mut self, action: Action) {
-        match action {
-            Action::Move(m) => {
-                self.take_control();
-                self.held.insert(m);
-            }
-            Action::Sprint => self.sprint = true,
-            _ => {}
-        }
-    }
-
-    fn release(&mut self, action: Action) {
-        match action {
-            Action::Move(m) => {
-                self.held.remove(&m);
-            }
-            Action::Sprint => self.sprint = false,
-            _ => {}
-        }
-    }
-
-    fn look(&mut self, dx: f64, dy: f64) {
-        self.take_control();
-        if let Some(fly) = &mut self.fly {
-            fly.look(dx, dy, self.sensitivity);
-        }
-    }
-
-    /// Leaves the scene's camera path for the user's camera, starting where the path was.
-    fn take_control(&mut self) {
-        if self.fly.is_none() {
-            let pose = self.last_pose.or_else(|| self.scene_pose().ok());
-            if let Some(pose) = pose {
-                self.fly = Some(FlyCamera::from_pose(&pose));
-                if self.script.is_none() {
-                    println!("free camera (C returns to the scene's camera)");
-                }
-            }
-        }
-    }
-
-    fn capture_mouse(&mut self) {
-        let Some(window) = self.window.clone() else {
-            return;
-        };
-        let grabbed = window
-            .set_cursor_grab(CursorGrabMode::Locked)
-            .or_else(|_| window.set_cursor_grab(CursorGrabMode::Confined));
-        if let Err(e) = grabbed {
-            // Relative motion still arrives without a grab; the cursor may just leave the window.
-            self.report(format!("cannot grab the mouse: {e}"));
-        }
-        window.set_cursor_visible(false);
-        // Without a window manager a click does not focus the window, and an unfocused window gets no keys.
-        window.focus_window();
-        self.captured = true;
-    }
-
-    fn release_mouse(&mut self) {
-        if let Some(window) = &self.window {
-            let _ = window.set_cursor_grab(CursorGrabMode::None);
-            window.set_cursor_visible(true);
-        }
-        self.captured = false;
-    }
-
-    fn trigger(&mut self, action: Action, event_loop: &ActiveEventLoop) {
-        let authored = self.live.authored().settings.clone();
-        match action {
-            Action::Move(_) | Action::Sprint => {}
-            Action::CycleShadows => {
-                self.overrides.cycle_shadows(&authored);
-                self.apply_overrides();
-            }
-            Action::ToggleAmbientOcclusion => {
-                self.overrides.toggle_ambient_occlusion(&authored);
-                self.apply_overrides();
-            }
-            Action::ToggleGlow => {
-                self.overrides.toggle_glow(&authored);
-                self.apply_overrides();
-            }
-            Action::ToggleFog => {
-                self.overrides.toggle_fog(&authored);
-                self.apply_overrides();
-            }
-            Action::TogglePause => {
-                self.paused = !self.paused;
-                println!("time {} at t = {:.3}", if self.paused { "paused" } else { "running" }, self.time);
-            }
-            Action::TimeForward => self.time += TIME_STEP,
-            Action::TimeBack => self.time -= TIME_STEP,
-            Action::Screenshot => {
-                self.screenshot_request = Some(next_screenshot_path(&self.options.screenshot_dir, &self.live.name));
-            }
-            Action::PrintPose => {
-                let pose = self.fly.map(|f| f.pose()).or(self.last_pose).or_else(|| self.scene_pose().ok());
-                if let Some(pose) = &pose {
-                    println!("{}", super::camera_control::camera_line(pose));
-                }
-                match pose {
-                    Some(pose) => println!("{}", describe_pose(&pose, self.time)),
-                    None => println!("no camera pose yet"),
-                }
-            }
-            Action::NextParam => self.say_param(|p| p.select(1)),
-            Action::PreviousParam => self.say_param(|p| p.select(-1)),
-            Action::IncreaseParam => {
-                let coarse = self.shift;
-                self.say_param(|p| p.nudge(1.0, coarse));
-            }
-            Action::DecreaseParam => {
-                let coarse = self.shift;
-                self.say_param(|p| p.nudge(-1.0, coarse));
-            }
-            Action::ResetParam => self.say_param(ParamControl::reset),
-            Action::FasterMovement => {
-                self.move_speed *= SPEED_STEP;
-                println!("move speed {:.3} units/s", self.move_speed);
-            }
-            Action::SlowerMovement => {
-                self.move_speed /= SPEED_STEP;
-                println!("move speed {:.3} units/s", self.move_speed);
-            }
-            Action::MoreSensitive => {
-                self.sensitivity *= SPEED_STEP;
-                println!("mouse sensitivity {:.5} rad/pixel", self.sensitivity);
-            }
-            Action::LessSensitive => {
-                self.sensitivity /= SPEED_STEP;
-                println!("mouse sensitivity {:.5} rad/pixel", self.sensitivity);
-            }
-            Action::FollowScenePath => {
-                self.fly = None;
-                println!("following the scene's camera");
-            }
-            Action::ReleaseOrQuit => {
-                if self.captured {
-                    self.release_mouse();
-                } else {
-                    event_loop.exit();
-                }
-            }
-            Action::Help => println!("{HELP}"),
-            Action::TogglePanel => self.panel_shown = !self.panel_shown,
-            Action::MoreSteps | Action::FewerSteps => {
-                self.overrides.scale_steps(&authored, if action == Action::MoreSteps { 2.0 } else { 0.5 });
-                self.apply_overrides();
-            }
-            Action::FinerEpsilon | Action::CoarserEpsilon => {
-                self.overrides.scale_epsilon(&authored, if action == Action::FinerEpsilon { 0.5 } else { 2.0 });
-                self.apply_overrides();
-            }
-        }
-    }
-
     /// The panel for the current state, or `None` while it is hidden.
     fn panel(&self, window_width: u32) -> Option<Overlay> {
         if !self.panel_shown {
@@ -491,42 +310,6 @@ impl App {
                 keys.last().map_or(DEFAULT_TIME_SPAN, |k| k.time).max(self.time).max(1.0)
             }
             _ => DEFAULT_TIME_SPAN.max(self.time),
-        }
-    }
-
-    /// A slider set from window column `x`: the time, or a parameter (a uniform: nothing recompiles).
-    fn slide(&mut self, target: SliderTarget, x: f64) {
-        let Some(slider) = self.overlay.as_ref().and_then(|o| o.sliders.iter().find(|s| s.target == target).copied())
-        else {
-            return;
-        };
-        let value = slider.value_at(x);
-        match target {
-            SliderTarget::Time => self.time = value,
-            SliderTarget::Param(i) => {
-                self.params.set_index(i, value);
-            }
-        }
-    }
-
-    fn say_param(&mut self, change: impl FnOnce(&mut ParamControl) -> Option<String>) {
-        match change(&mut self.params) {
-            Some(text) => println!("param {text}"),
-            None => println!("this scene has no param(..) values"),
-        }
-    }
-
-    /// Recompiles the kernels with the current effect overrides.
-    fn apply_overrides(&mut self) {
-        let next = match self.live.with_overrides(&self.overrides) {
-            Ok(next) => next,
-            Err(e) => return eprintln!("{e}"),
-        };
-        println!("{} (kernels recompiled)", describe(&next.scene.settings));
-        let previous = std::mem::replace(&mut self.live, next);
-        if self.last_good.is_none() {
-            self.last_good =
-                Some(LastGood { live: previous, params: self.params.clone(), overrides: self.overrides.clone() });
         }
     }
 

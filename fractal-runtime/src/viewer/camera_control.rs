@@ -1,10 +1,10 @@
 //! The user's camera: a fly camera (position, yaw, pitch) that WASD/QE move and the mouse turns, and the formatting of
 //! a pose as a camera-path key.
 
+use fractal_render::camera::{Pose, WORLD_UP};
 use glam::DVec3;
 
 use super::controls::Move;
-use crate::camera::{Pose, WORLD_UP};
 
 /// Pitch stays this far from straight up or down, so the view never lines up with the world's up direction.
 const MAX_PITCH: f64 = 89.0 * std::f64::consts::PI / 180.0;

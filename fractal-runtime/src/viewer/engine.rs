@@ -1,12 +1,12 @@
 //! Which renderer the viewer draws with. The wgpu renderer is kept as itself (not boxed as a [`Renderer`]) so its
 //! device can also draw to the window's surface; `auto` moves down wgpu → OpenCL → CPU when a backend has no device
-//! or fails, as [`crate::select::AutoRenderer`] does.
+//! or fails, as [`fractal_render::select::AutoRenderer`] does.
 
-use crate::backend::wgpu::WgpuRenderer;
-use crate::device::{Backend, DeviceInfo};
-use crate::error::RenderError;
-use crate::renderer::Renderer;
-use crate::select::{self, BackendChoice, RendererOptions};
+use fractal_render::backend::wgpu::WgpuRenderer;
+use fractal_render::device::{Backend, DeviceInfo};
+use fractal_render::error::RenderError;
+use fractal_render::renderer::Renderer;
+use fractal_render::select::{self, BackendChoice, RendererOptions};
 
 /// The renderer in use.
 pub enum Engine {

@@ -3,15 +3,16 @@
 
 use std::path::Path;
 
+use fractal_render::camera::Pose;
+use fractal_render::device::DeviceInfo;
+use fractal_render::frame::{Frame, ParamValues};
+use fractal_render::renderer::RenderJob;
+
 use super::engine::EngineChain;
 use super::live_scene::LiveScene;
 use super::path_file::load_camera_path;
 use super::screenshot::write_png;
-use super::{ViewerError, ViewerOptions, ViewerScene};
-use crate::camera::Pose;
-use crate::device::DeviceInfo;
-use crate::frame::{Frame, ParamValues};
-use crate::renderer::RenderJob;
+use super::session::{ViewerError, ViewerOptions, ViewerScene};
 
 /// `Ok` when an X11 or Wayland display is named in the environment (on other systems the window system is always
 /// there); otherwise why not.

@@ -9,11 +9,11 @@ use std::time::{Duration, Instant};
 use fractal_dsl::eval::interp::Interpreter;
 use fractal_dsl::eval::Evaluator;
 use fractal_dsl::{NativeFns, Scene};
+use fractal_render::renderer::KernelSources;
 use notify::{RecursiveMode, Watcher};
 
 use super::effects::EffectOverrides;
-use super::ViewerScene;
-use crate::renderer::KernelSources;
+use super::session::ViewerScene;
 
 /// The CPU form of a scene.
 #[derive(Clone, Debug)]

@@ -50,182 +50,20 @@ mod present;
 mod scale;
 pub mod screenshot;
 mod script;
+mod session;
 mod title;
 
 use std::path::{Path, PathBuf};
-use std::time::Duration;
 
-use fractal_dsl::{CompiledScene, Scene};
-
-use crate::camera::Pose;
-use crate::device::DeviceInfo;
-use crate::frame::ParamValues;
-use crate::select::{BackendChoice, RendererOptions};
+use fractal_render::device::DeviceInfo;
 
 pub use controls::{Action, Move};
 pub use headless::{display_available, render_png};
 pub use path_file::{load_camera_path, parse_camera_path, CameraPathFile};
 pub use scale::RenderScale;
 pub use screenshot::{read_png, write_png};
-pub use script::ScriptedStep;
-
-/// The scene a viewer shows.
-#[derive(Clone, Debug)]
-pub enum ViewerScene {
-    /// A scene compiled at build time (`scene!`, `scene_file!`): its kernels, and its native evaluator for the CPU.
-    Compiled { name: String, scene: &'static CompiledScene },
-    /// A `.fractal` file, loaded and compiled at run time (the interpreter draws it on the CPU) and reloaded whenever
-    /// it is saved.
-    File(PathBuf),
-    /// A scene value built at run time (builder API), compiled when the viewer starts.
-    Built { name: String, scene: Box<Scene> },
-}
-
-impl ViewerScene {
-    pub fn compiled(name: impl Into<String>, scene: &'static CompiledScene) -> ViewerScene {
-        ViewerScene::Compiled { name: name.into(), scene }
-    }
-    pub fn file(path: impl Into<PathBuf>) -> ViewerScene {
-        ViewerScene::File(path.into())
-    }
-    /// A scene made with the builder, validated here so a broken one is refused before any window opens.
-    pub fn built(name: impl Into<String>, scene: Scene) -> Result<ViewerScene, fractal_dsl::validate::InvalidScene> {
-        fractal_dsl::validate::checked(&scene)?;
-        Ok(ViewerScene::Built { name: name.into(), scene: Box::new(scene) })
-    }
-    /// The name shown in the title and used for screenshot files.
-    pub fn name(&self) -> String {
-        match self {
-            ViewerScene::Compiled { name, .. } | ViewerScene::Built { name, .. } => name.clone(),
-            ViewerScene::File(path) => {
-                path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "scene".to_string())
-            }
-        }
-    }
-}
-
-/// How frames reach the window.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum PresentMode {
-    /// A wgpu surface when the backend is wgpu and a surface can be made; softbuffer otherwise.
-    #[default]
-    Auto,
-    /// Always read frames back and present them through softbuffer.
-    Softbuffer,
-}
-
-/// Everything about a viewer session that is not the scene.
-#[derive(Clone, Debug)]
-pub struct ViewerOptions {
-    pub backend: BackendChoice,
-    pub renderer: RendererOptions,
-    /// Window inner size in physical pixels; also the size of the PNG written when there is no display.
-    pub window_size: (u32, u32),
-    /// Where to place the window (physical pixels from the top-left of the screen); the window system decides when
-    /// `None`.
-    pub window_position: Option<(i32, i32)>,
-    pub render_scale: RenderScale,
-    pub present: PresentMode,
-    /// Camera speed in scene units per second (Shift: 4×).
-    pub move_speed: f64,
-    /// Radians of turn per pixel of mouse motion.
-    pub mouse_sensitivity: f64,
-    /// A TOML camera path to play instead of the scene's camera (see [`path_file`]).
-    pub camera_path: Option<PathBuf>,
-    /// Start values of `param(..)`s by name (the others start at their defaults); each must lie in its range.
-    pub params: Vec<(String, f64)>,
-    /// Scene time at start, in seconds.
-    pub start_time: f64,
-    /// Start with time paused.
-    pub paused: bool,
-    /// Advance time and movement by this many seconds per frame instead of the measured frame time (deterministic
-    /// runs: scripts, recordings).
-    pub fixed_time_step: Option<f64>,
-    /// Folder for screenshots taken with F12 / K.
-    pub screenshot_dir: PathBuf,
-    /// Reload a `.fractal` scene file when it changes.
-    pub watch: bool,
-    /// Scripted input: when set, the viewer plays these steps instead of waiting for the user and exits at the end.
-    pub script: Option<Vec<ScriptedStep>>,
-    /// Print the controls at start-up.
-    pub print_help: bool,
-}
-
-impl Default for ViewerOptions {
-    fn default() -> Self {
-        ViewerOptions {
-            backend: BackendChoice::Auto,
-            renderer: RendererOptions::default(),
-            window_size: (1280, 720),
-            window_position: None,
-            render_scale: RenderScale::default(),
-            present: PresentMode::Auto,
-            move_speed: 1.0,
-            mouse_sensitivity: 0.003,
-            camera_path: None,
-            params: Vec::new(),
-            start_time: 0.0,
-            paused: false,
-            fixed_time_step: None,
-            screenshot_dir: PathBuf::from("."),
-            watch: true,
-            script: None,
-            print_help: true,
-        }
-    }
-}
-
-/// What was on screen when a screenshot was taken: enough to render the same image offline.
-#[derive(Clone, Debug)]
-pub struct ScreenshotInfo {
-    pub path: PathBuf,
-    /// The scene as rendered, with the viewer's effect toggles applied to its settings.
-    pub scene: Scene,
-    pub pose: Pose,
-    pub time: f64,
-    pub params: ParamValues,
-    /// Size of the rendered image (before upscaling).
-    pub render_size: (u32, u32),
-    /// Size of the window (and of the screenshot).
-    pub window_size: (u32, u32),
-    pub device: DeviceInfo,
-    /// `"wgpu surface"` or `"softbuffer"`.
-    pub presenter: &'static str,
-}
-
-/// What a viewer session did.
-#[derive(Clone, Debug, Default)]
-pub struct ViewerSummary {
-    pub frames: u64,
-    pub screenshots: Vec<ScreenshotInfo>,
-    /// The device of the last frame drawn.
-    pub device: Option<DeviceInfo>,
-    pub presenter: Option<&'static str>,
-}
-
-/// Why a viewer could not run.
-#[derive(Debug, thiserror::Error)]
-pub enum ViewerError {
-    /// No window system to open a window on.
-    #[error("no display: {0}")]
-    NoDisplay(String),
-    /// The scene could not be loaded (missing file, `file:line:column: message` for broken text).
-    #[error("{0}")]
-    Scene(String),
-    /// The camera path file could not be used.
-    #[error("{0}")]
-    CameraPath(String),
-    /// No backend could render the scene.
-    #[error(transparent)]
-    Render(#[from] crate::error::RenderError),
-    #[error(transparent)]
-    Frame(#[from] crate::error::FrameError),
-    /// The window system failed after the window opened.
-    #[error("window error: {0}")]
-    Window(String),
-    #[error("cannot write {path}: {message}")]
-    Output { path: PathBuf, message: String },
-}
+pub use script::{ScriptedStep, MAX_IDLE};
+pub use session::{PresentMode, ScreenshotInfo, ViewerError, ViewerOptions, ViewerScene, ViewerSummary};
 
 /// Opens the viewer and runs it until the window is closed (or the script ends). Returns
 /// [`ViewerError::NoDisplay`] when there is no window system; [`run_or_render`] falls back to a PNG then.
@@ -276,6 +114,3 @@ pub fn example_main(png_stem: &str, scene: ViewerScene) -> std::process::ExitCod
         }
     }
 }
-
-/// How long a scripted [`ScriptedStep::Idle`] may last at most; longer requests are clamped so a script always ends.
-pub const MAX_IDLE: Duration = Duration::from_secs(600);

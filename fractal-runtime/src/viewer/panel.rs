@@ -4,7 +4,8 @@
 //! softbuffer on the host), so it looks the same on every backend. Moving a slider changes a uniform: it never
 //! recompiles.
 
-use crate::image::{pack_rgba8, unpack_rgba8, Image};
+use fractal_render::image::{pack_rgba8, unpack_rgba8, Image};
+
 use crate::text::{draw_text, fill, text_width, GLYPH};
 
 /// Pixels between the panel's edge and its text.

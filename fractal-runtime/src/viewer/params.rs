@@ -2,9 +2,8 @@
 //! are frame uniforms, so a change never recompiles anything.
 
 use fractal_dsl::Scene;
-
-use crate::error::FrameError;
-use crate::frame::ParamValues;
+use fractal_render::error::FrameError;
+use fractal_render::frame::ParamValues;
 
 /// Steps per range for ↑/↓; Shift steps five at a time.
 const STEPS_PER_RANGE: f64 = 50.0;

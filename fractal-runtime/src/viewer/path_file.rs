@@ -22,9 +22,8 @@
 use std::path::Path;
 
 use fractal_dsl::{CameraKey, PathInterpolation};
+use fractal_render::camera::CameraPath;
 use serde::Deserialize;
-
-use crate::camera::CameraPath;
 
 #[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
 #[serde(rename_all = "snake_case")]

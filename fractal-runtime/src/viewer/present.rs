@@ -12,15 +12,14 @@ use std::num::NonZeroU32;
 use std::sync::Arc;
 
 use fractal_dsl::back::Entry;
+use fractal_render::backend::wgpu::{capture, map_read, read_back, WgpuRenderer, RENDER_WORKGROUP};
+use fractal_render::device::Backend;
+use fractal_render::error::RenderError;
+use fractal_render::frame::Frame;
+use fractal_render::image::Image;
 use rayon::prelude::*;
 use wgpu::util::DeviceExt;
 use winit::window::Window;
-
-use crate::backend::wgpu::{capture, map_read, read_back, WgpuRenderer, RENDER_WORKGROUP};
-use crate::device::Backend;
-use crate::error::RenderError;
-use crate::frame::Frame;
-use crate::image::Image;
 
 use super::panel::Overlay;
 

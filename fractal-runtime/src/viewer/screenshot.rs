@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::image::Image;
+use fractal_render::image::Image;
 
 /// Writes `image` as an RGBA PNG at `path`.
 pub fn write_png(image: &Image, path: &Path) -> Result<(), String> {

@@ -7,6 +7,9 @@ use std::time::{Duration, Instant};
 
 use super::controls::Action;
 
+/// How long a scripted [`ScriptedStep::Idle`] may last at most; longer requests are clamped so a script always ends.
+pub const MAX_IDLE: Duration = Duration::from_secs(600);
+
 /// One step of a script. Steps that take no frame (press, release, trigger, look, screenshot) apply to the next frame
 /// drawn.
 #[derive(Clone, Debug, PartialEq)]
@@ -26,7 +29,7 @@ pub enum ScriptedStep {
     /// Save the next frame drawn, as presented in the window, to this PNG file; the steps after it apply to the
     /// frames after that one.
     Screenshot(PathBuf),
-    /// Keep drawing frames for this long (at most [`super::MAX_IDLE`]), e.g. while another program looks at the
+    /// Keep drawing frames for this long (at most [`MAX_IDLE`]), e.g. while another program looks at the
     /// window.
     Idle(Duration),
 }
@@ -72,7 +75,7 @@ impl ScriptPlayer {
                 }
                 ScriptedStep::Idle(d) => {
                     let since = *self.idle_since.get_or_insert(now);
-                    if now.duration_since(since) < (*d).min(super::MAX_IDLE) {
+                    if now.duration_since(since) < (*d).min(MAX_IDLE) {
                         return frame;
                     }
                     self.idle_since = None;

@@ -24,7 +24,7 @@ fn export_writes_every_target() {
 }
 
 /// Engine packages go into the directory -o names; a one-file package (Shadertoy) goes to standard output without
-/// it. The packages' contents are checked by `fractal-runtime/tests/engines.rs`.
+/// it. The packages' contents are checked by `fractal-runtime/tests/tools/engines.rs`.
 #[test]
 fn export_writes_engine_packages() {
     let dir = scratch("export_engines");

@@ -3,12 +3,13 @@
 
 use std::time::Instant;
 
-use super::{millis, KernelClock, Timed, Timer, Work};
-use crate::backend::cpu::CpuRenderer;
-use crate::bench::baseline_cpu;
-use crate::device::DeviceInfo;
-use crate::error::RenderError;
-use crate::renderer::Renderer;
+use fractal_render::backend::cpu::CpuRenderer;
+use fractal_render::device::DeviceInfo;
+use fractal_render::error::RenderError;
+use fractal_render::renderer::Renderer;
+
+use super::dispatch::{millis, KernelClock, Timed, Timer, Work};
+use crate::bench::baseline;
 
 pub(crate) struct CpuTimer {
     renderer: CpuRenderer,
@@ -33,7 +34,7 @@ impl Timer for CpuTimer {
         let start = Instant::now();
         let image = match work {
             Work::Generated(job) => self.renderer.render(job)?,
-            Work::Baseline { width, height } => baseline_cpu::render(*width, *height),
+            Work::Baseline { width, height } => baseline::render(*width, *height),
         };
         let ms = millis(start.elapsed());
         Ok(Timed { image, kernel_ms: ms, frame_ms: ms })

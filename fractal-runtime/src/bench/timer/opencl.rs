@@ -1,20 +1,20 @@
 //! The OpenCL dispatcher (cargo feature `opencl`): runs on the device and profiling queue of a
-//! [`crate::OpenClRenderer`], builds programs through the renderer's cache with its options (`-cl-fast-relaxed-math`
-//! unless precise; the baseline gets the same options as the generated kernel), and reads each kernel's time from its
-//! profiling event.
+//! [`fractal_render::OpenClRenderer`], builds programs through the renderer's cache with its options
+//! (`-cl-fast-relaxed-math` unless precise; the baseline gets the same options as the generated kernel), and reads each
+//! kernel's time from its profiling event.
 
 use std::time::Instant;
 
+use fractal_render::backend::opencl::{device_error, image_buffer, rejected, OpenClRenderer};
+use fractal_render::device::{Backend, DeviceInfo};
+use fractal_render::error::RenderError;
+use fractal_render::image::Image;
+use fractal_render::renderer::Renderer;
 use ocl::enums::ProfilingInfo;
 use ocl::{Buffer, Event, Kernel};
 
-use super::{millis, KernelClock, Timed, Timer, Work};
-use crate::backend::opencl::{device_error, image_buffer, rejected, OpenClRenderer};
-use crate::bench::BASELINE_OPENCL;
-use crate::device::{Backend, DeviceInfo};
-use crate::error::RenderError;
-use crate::image::Image;
-use crate::renderer::Renderer;
+use super::dispatch::{millis, KernelClock, Timed, Timer, Work};
+use crate::bench::baseline::BASELINE_OPENCL;
 
 pub(crate) struct OpenClTimer {
     /// Owns the device, context, profiling queue and program cache.
@@ -96,10 +96,10 @@ impl Timer for OpenClTimer {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::frame::{Frame, ParamValues};
-    use crate::renderer::{KernelSources, RenderJob, Renderer};
-    use crate::{OpenClRenderer, Pose};
     use fractal_dsl::builder::{mandelbulb, scene};
+    use fractal_render::frame::Frame;
+    use fractal_render::renderer::{KernelSources, RenderJob, Renderer};
+    use fractal_render::OpenClRenderer;
 
     /// The bench must time what the renderer draws: the same kernel and frame give the same pixels.
     #[test]
@@ -115,8 +115,7 @@ mod tests {
         };
         let s = scene(mandelbulb(8));
         let kernels = fractal_dsl::compile(&s).unwrap();
-        let pose = Pose::from_camera(&s.camera, 0.0, &|p| p.default).unwrap();
-        let frame = Frame::new(&s, &pose, 0.0, 24, 16, &ParamValues::defaults(&s)).unwrap();
+        let frame = Frame::default_view(&s, 0.0, 24, 16).unwrap();
         let job = RenderJob::new(KernelSources::compiled(&kernels), &frame);
         let timed = timer.run(&Work::Generated(job)).unwrap();
         assert_eq!(timed.image, renderer.render(&job).unwrap());

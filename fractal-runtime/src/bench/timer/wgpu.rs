@@ -1,20 +1,20 @@
-//! The wgpu dispatcher: runs on the device of a [`crate::WgpuRenderer`] opened with timestamp queries when the adapter
-//! has them, and runs a WGSL compute kernel the way the renderer does (uniform upload, 8×8 workgroups, copy to a
-//! read-back buffer, map). Both the generated kernel (`render`, binding 1 = frame uniforms) and the baseline (`main`,
+//! The wgpu dispatcher: runs on the device of a [`fractal_render::WgpuRenderer`] opened with timestamp queries when the
+//! adapter has them, and runs a WGSL compute kernel the way the renderer does (uniform upload, 8×8 workgroups, copy to
+//! a read-back buffer, map). Both the generated kernel (`render`, binding 1 = frame uniforms) and the baseline (`main`,
 //! binding 1 = `{w, h}`) write packed pixels to binding 0, so one path serves both; bind group layouts come from the
 //! shaders themselves.
 
 use std::time::Instant;
 
+use fractal_render::backend::wgpu::{capture, read_back, WgpuRenderer};
+use fractal_render::device::{Backend, DeviceInfo};
+use fractal_render::error::RenderError;
+use fractal_render::image::Image;
+use fractal_render::renderer::Renderer;
 use wgpu::util::DeviceExt;
 
-use super::{millis, KernelClock, Timed, Timer, Work};
-use crate::backend::wgpu::{capture, read_back, WgpuRenderer};
-use crate::bench::BASELINE_WGSL;
-use crate::device::{Backend, DeviceInfo};
-use crate::error::RenderError;
-use crate::image::Image;
-use crate::renderer::Renderer;
+use super::dispatch::{millis, KernelClock, Timed, Timer, Work};
+use crate::bench::baseline::BASELINE_WGSL;
 
 const WORKGROUP: u32 = 8;
 
@@ -241,10 +241,10 @@ impl Timer for WgpuTimer {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::frame::{Frame, ParamValues};
-    use crate::renderer::{KernelSources, RenderJob, Renderer};
-    use crate::{Pose, WgpuRenderer};
     use fractal_dsl::builder::{mandelbulb, scene, sphere, union, vec3, ShapeExt};
+    use fractal_render::frame::Frame;
+    use fractal_render::renderer::{KernelSources, RenderJob, Renderer};
+    use fractal_render::WgpuRenderer;
 
     fn required() -> bool {
         std::env::var("FRACTAL_REQUIRE_GPU_BACKENDS").is_ok_and(|v| v == "1")
@@ -264,8 +264,7 @@ mod tests {
         let (mut timer, mut renderer) = (timer, renderer);
         let s = scene(union(mandelbulb(8), sphere(0.5).translate(vec3(1.2, 0.0, 0.0))));
         let kernels = fractal_dsl::compile(&s).unwrap();
-        let pose = Pose::from_camera(&s.camera, 0.0, &|p| p.default).unwrap();
-        let frame = Frame::new(&s, &pose, 0.0, 40, 24, &ParamValues::defaults(&s)).unwrap();
+        let frame = Frame::default_view(&s, 0.0, 40, 24).unwrap();
         let job = RenderJob::new(KernelSources::compiled(&kernels), &frame);
         let timed = timer.run(&Work::Generated(job)).unwrap();
         assert_eq!(timed.image, renderer.render(&job).unwrap());

@@ -10,16 +10,16 @@
 use std::time::Instant;
 
 use fractal_dsl::{CameraPlacement, Scene};
+use fractal_render::device::Backend;
+use fractal_render::frame::Frame;
+use fractal_render::renderer::Renderer;
+use fractal_render::{ParamValues, Pose};
 
-use super::judged;
+use super::verdict::{capped, judged};
 use crate::accuracy::sweep::{self, Budget, SweepPoint};
 use crate::cli::error::CliError;
-use crate::device::Backend;
-use crate::frame::Frame;
 use crate::quality::Quality;
-use crate::renderer::Renderer;
 use crate::truth::{Truth, TruthSettings};
-use crate::{ParamValues, Pose};
 
 /// A backend of `--also-on`, opened once for all the frames it renders: the renderer, or why it did not open.
 pub(super) type Opened = (Backend, Result<Box<dyn Renderer>, String>);
@@ -88,7 +88,7 @@ pub(super) fn check(
             view.name(),
             100.0 * hits as f64 / view.truth.pixels.len().max(1) as f64,
             settings.iteration_factor,
-            super::capped(scene, settings.iteration_factor),
+            capped(scene, settings.iteration_factor),
             start.elapsed().as_secs_f64()
         ));
         views.push(view);
@@ -186,8 +186,7 @@ mod tests {
         let params = ParamValues::defaults(&s);
         let size = (24, 16);
         let settings = TruthSettings { step_footprints: 0.05, iteration_factor: 1 };
-        let pose = Pose::from_camera(&s.camera, 0.0, &|p| p.default).unwrap();
-        let frame = Frame::new(&s, &pose, 0.0, size.0, size.1, &params).unwrap();
+        let frame = Frame::default_view(&s, 0.0, size.0, size.1).unwrap();
         let truth = Truth::compute(&s, &frame, settings).unwrap();
         let few_steps = Quality { max_steps: Some(12), ..Quality::default() };
         let mut points =

@@ -15,9 +15,7 @@ use glam::DVec3;
 
 use crate::camera::Pose;
 use crate::error::FrameError;
-
-/// The largest image side any renderer accepts; larger sizes are refused before anything is allocated.
-pub const MAX_IMAGE_SIDE: u32 = 16384;
+pub use crate::limits::{MAX_IMAGE_SIDE, MAX_TIME};
 
 /// Values of a scene's parameters, in [`Scene::params`] order (the uniform order).
 #[derive(Clone, Debug, PartialEq)]
@@ -109,10 +107,6 @@ pub enum LightSlot {
     /// Position, and colour · intensity (falls off with the squared distance).
     Point { position: [f32; 3], radiance: [f32; 3] },
 }
-
-/// Largest |scene time| in seconds. The kernels receive time as f32, whose spacing at 1e5 s is 1/128 s: finer than a
-/// frame at 120 fps. Past it frames of an animation collapse onto the same time, and at 1e39 time is infinite.
-pub const MAX_TIME: f64 = 1e5;
 
 /// Checks a scene time against [`MAX_TIME`] (NaN fails too).
 pub fn check_time(time: f64) -> Result<(), FrameError> {
@@ -251,6 +245,12 @@ impl Frame {
         Ok(Frame { layout, width, height, slots })
     }
 
+    /// The scene's own view at `time`: its camera, every parameter at its default, for a `width`×`height` image.
+    pub fn default_view(scene: &Scene, time: f64, width: u32, height: u32) -> Result<Frame, FrameError> {
+        let pose = Pose::from_camera(&scene.camera, time, &|p| p.default)?;
+        Frame::new(scene, &pose, time, width, height, &ParamValues::defaults(scene))
+    }
+
     /// The frame layout of `scene`: the slots [`Frame::new`] packs for it.
     pub fn layout_of(scene: &Scene) -> FrameLayout {
         layout(scene.effective_lights().len(), scene.params().len(), fractal_dsl::analyse::scene_reference(scene))
@@ -338,6 +338,14 @@ mod tests {
 
     fn pose() -> Pose {
         Pose::look_at(DVec3::new(0.0, 0.0, -3.0), DVec3::ZERO, 90.0).unwrap()
+    }
+
+    #[test]
+    fn the_default_view_is_the_scenes_camera_with_default_parameters() {
+        let s = scene(sphere(param("r", 1.0, 0.5..2.0))).camera(camera([0.0, 1.0, -3.0], [0.0; 3]));
+        let pose = Pose::from_camera(&s.camera, 0.5, &|p| p.default).unwrap();
+        let want = Frame::new(&s, &pose, 0.5, 16, 9, &ParamValues::defaults(&s)).unwrap();
+        assert_eq!(Frame::default_view(&s, 0.5, 16, 9), Ok(want));
     }
 
     #[test]

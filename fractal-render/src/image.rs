@@ -1,4 +1,8 @@
-//! Rendered images: RGBA8 pixels packed into u32 exactly as the kernels write them (R in the low byte, A high).
+//! Rendered images: RGBA8 pixels packed into u32 exactly as the kernels write them (R in the low byte, A high), and
+//! the one spelling on the host of how a linear colour becomes such a pixel (clamp, gamma, round), which the CPU
+//! renderer writes with and the tools compare against.
+
+use fractal_dsl::number::math::{v3, Real, V3};
 
 /// A rendered image, row-major from the top-left pixel.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -17,6 +21,30 @@ pub fn pack_rgba8(rgba: [u8; 4]) -> u32 {
 /// Unpacks a kernel pixel into RGBA8.
 pub fn unpack_rgba8(pixel: u32) -> [u8; 4] {
     pixel.to_le_bytes()
+}
+
+/// A linear colour as the kernels write a pixel (the ray program's last step): each channel clamped to [0, 1] (NaN to
+/// 0), raised to 1/`gamma`, rounded to 8 bits; alpha opaque; packed as [`pack_rgba8`] packs. In the colour's own
+/// precision, so the f32 CPU renderer rounds as an f32 kernel does.
+pub fn pack_linear<F: Real>(colour: V3<F>, gamma: f64) -> u32 {
+    let channel = |v: F| {
+        // Rust's max/min drop NaN, so a NaN channel becomes 0 rather than poisoning the pixel.
+        let v = v.max(F::zero()).min(F::one());
+        let v = if gamma == 2.0 {
+            v.sqrt()
+        } else if gamma == 1.0 {
+            v
+        } else {
+            v.powf(F::c(1.0 / gamma))
+        };
+        ((v * F::c(255.0) + F::c(0.5)).f64() as u32).min(255)
+    };
+    channel(colour.x) | (channel(colour.y) << 8) | (channel(colour.z) << 16) | (255 << 24)
+}
+
+/// The RGBA8 pixel of an f64 linear colour ([`pack_linear`]).
+pub fn linear_rgba8(colour: [f64; 3], gamma: f64) -> [u8; 4] {
+    unpack_rgba8(pack_linear(v3(colour[0], colour[1], colour[2]), gamma))
 }
 
 impl Image {
@@ -62,5 +90,13 @@ mod tests {
         assert!(!img.is_uniform());
         assert_eq!(img.count_unlike([0, 0, 0, 255], 2), 1);
         assert_eq!(img.count_unlike([0, 0, 0, 255], 3), 0);
+    }
+
+    #[test]
+    fn packing_rounds_and_applies_gamma() {
+        assert_eq!(pack_linear(v3(1.0f32, 0.0, 0.25), 2.0), 0xff80_00ff);
+        assert_eq!(pack_linear(v3(0.5f32, 2.0, -1.0), 1.0), 0xff00_ff80);
+        assert_eq!(pack_linear(v3(f32::NAN, 0.0, 0.0), 2.0), 0xff00_0000);
+        assert_eq!(linear_rgba8([1.0, 0.0, 0.25], 2.0), [255, 0, 128, 255]);
     }
 }

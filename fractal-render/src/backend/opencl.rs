@@ -36,11 +36,13 @@ fn no_device(reason: impl ToString) -> RenderError {
     RenderError::NoDevice { backend: Backend::OpenCl, reason: reason.to_string() }
 }
 
-pub(crate) fn device_error(e: ocl::Error) -> RenderError {
+/// An OpenCL call that failed on the device, as a [`RenderError::Device`].
+pub fn device_error(e: ocl::Error) -> RenderError {
     RenderError::Device { backend: Backend::OpenCl, message: brief(&e) }
 }
 
-pub(crate) fn rejected(e: ocl::Error) -> RenderError {
+/// A program or kernel the driver refused, as a [`RenderError::KernelRejected`] with its log.
+pub fn rejected(e: ocl::Error) -> RenderError {
     RenderError::KernelRejected { backend: Backend::OpenCl, log: brief(&e) }
 }
 
@@ -132,7 +134,7 @@ impl OpenClRenderer {
     }
 
     /// The renderer's queue (created with profiling enabled), for dispatchers that share its device.
-    pub(crate) fn queue(&self) -> &Queue {
+    pub fn queue(&self) -> &Queue {
         &self.queue
     }
 
@@ -177,7 +179,7 @@ impl OpenClRenderer {
     }
 
     /// The frame's uniform slots in a read-only buffer on the renderer's queue.
-    pub(crate) fn frame_buffer(&self, frame: &Frame) -> Result<Buffer<f32>, RenderError> {
+    pub fn frame_buffer(&self, frame: &Frame) -> Result<Buffer<f32>, RenderError> {
         let floats: &[f32] = bytemuck::cast_slice(frame.slots());
         Buffer::<f32>::builder()
             .queue(self.queue.clone())
@@ -302,7 +304,7 @@ pub fn probe_opencl(
 }
 
 /// A write-only buffer for a packed RGBA8 image of `width`×`height`; too large for the device is [`RenderError::TooLarge`].
-pub(crate) fn image_buffer(queue: &Queue, width: u32, height: u32) -> Result<Buffer<u32>, RenderError> {
+pub fn image_buffer(queue: &Queue, width: u32, height: u32) -> Result<Buffer<u32>, RenderError> {
     Buffer::<u32>::builder()
         .queue(queue.clone())
         .flags(flags::MEM_WRITE_ONLY)

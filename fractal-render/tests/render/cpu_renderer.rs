@@ -1,16 +1,11 @@
 //! The CPU renderer against analytic answers: a unit sphere's hit mask and shading, and hard shadows of a sphere on a
 //! plane, with small evaluators written here (the scene compiler generates such evaluators for real scenes).
 
-mod common;
-
-use common::frame_for;
 use fractal_dsl::builder::{plane, scene, sphere, union, ShapeExt};
 use fractal_dsl::eval::{Env, Evaluator, Sample};
 use fractal_dsl::number::math::{length, v3, Real, V3};
 use fractal_dsl::Scene;
-use fractal_runtime::{
-    render_scene, Backend, CpuRenderer, Frame, KernelSources, ParamValues, RenderError, RenderJob, Renderer,
-};
+use fractal_render::{render_scene, Backend, CpuRenderer, Frame, KernelSources, RenderError, RenderJob, Renderer};
 use glam::DVec3;
 
 /// The default surface material of every evaluator here.
@@ -62,7 +57,7 @@ fn sphere_over_plane_scene() -> Scene {
         .light(fractal_dsl::builder::directional(LIGHT, fractal_dsl::builder::rgb(1.0, 1.0, 1.0)))
 }
 
-fn render_cpu(evaluator: &dyn Evaluator<f32>, s: &Scene, frame: &Frame) -> fractal_runtime::Image {
+fn render_cpu(evaluator: &dyn Evaluator<f32>, s: &Scene, frame: &Frame) -> fractal_render::Image {
     CpuRenderer::new()
         .render(&RenderJob::new(KernelSources::default().with_cpu(evaluator, s), frame))
         .expect("CPU render")
@@ -91,7 +86,7 @@ fn pack(c: DVec3) -> [u8; 4] {
 #[test]
 fn unit_sphere_hit_mask_and_shading_match_the_analytic_sphere() {
     let s = scene(sphere(1.0));
-    let frame = frame_for(&s, 96, 96, &ParamValues::defaults(&s));
+    let frame = Frame::default_view(&s, 0.0, 96, 96).expect("frame");
     let image = render_cpu(&UnitSphere, &s, &frame);
     let background = pack(DVec3::from_array(s.settings.background));
     let light = DVec3::new(0.6, 0.8, -0.4).normalize();
@@ -128,10 +123,10 @@ fn unit_sphere_hit_mask_and_shading_match_the_analytic_sphere() {
 #[test]
 fn f64_rendering_draws_the_same_sphere() {
     let s = scene(sphere(1.0));
-    let frame = frame_for(&s, 48, 48, &ParamValues::defaults(&s));
+    let frame = Frame::default_view(&s, 0.0, 48, 48).expect("frame");
     let single = render_cpu(&UnitSphere, &s, &frame);
     let double = render_scene::<f64, _>(&UnitSphere, &s, &frame).expect("f64 render");
-    let differing = common::fraction_different(&single, &double, 1);
+    let differing = crate::common::fraction_different(&single, &double, 1);
     assert!(differing < 0.02, "{:.1} % of pixels differ between f32 and f64", differing * 100.0);
 }
 
@@ -139,7 +134,7 @@ fn f64_rendering_draws_the_same_sphere() {
 fn hard_shadows_darken_exactly_the_shadowed_ground() {
     let lit_scene = sphere_over_plane_scene();
     let shadowed_scene = sphere_over_plane_scene().hard_shadows();
-    let frame = frame_for(&lit_scene, 80, 60, &ParamValues::defaults(&lit_scene));
+    let frame = Frame::default_view(&lit_scene, 0.0, 80, 60).expect("frame");
     let lit = render_cpu(&SphereOverPlane, &lit_scene, &frame);
     let shadowed = render_cpu(&SphereOverPlane, &shadowed_scene, &frame);
 
@@ -175,7 +170,7 @@ fn hard_shadows_darken_exactly_the_shadowed_ground() {
 }
 
 /// Pixels of `b` darker than `a` by more than 2 levels in some channel, and brighter likewise.
-fn darker_and_brighter(a: &fractal_runtime::Image, b: &fractal_runtime::Image) -> (usize, usize) {
+fn darker_and_brighter(a: &fractal_render::Image, b: &fractal_render::Image) -> (usize, usize) {
     let (mut darker, mut brighter) = (0, 0);
     for (p, q) in a.pixels.iter().zip(&b.pixels) {
         let (p, q) = (p.to_le_bytes(), q.to_le_bytes());
@@ -189,7 +184,7 @@ fn darker_and_brighter(a: &fractal_runtime::Image, b: &fractal_runtime::Image) -
 fn effects_change_the_picture_the_way_they_should() {
     use fractal_dsl::builder::rgb;
     let base = sphere_over_plane_scene();
-    let frame = frame_for(&base, 80, 60, &ParamValues::defaults(&base));
+    let frame = Frame::default_view(&base, 0.0, 80, 60).expect("frame");
     let plain = render_cpu(&SphereOverPlane, &base, &frame);
     let pixels = plain.pixels.len();
     let effect = |s: Scene| darker_and_brighter(&plain, &render_cpu(&SphereOverPlane, &s, &frame));
@@ -215,7 +210,7 @@ fn effects_change_the_picture_the_way_they_should() {
 #[test]
 fn jobs_without_an_evaluator_or_with_another_scenes_frame_are_errors() {
     let s = scene(sphere(1.0));
-    let frame = frame_for(&s, 8, 8, &ParamValues::defaults(&s));
+    let frame = Frame::default_view(&s, 0.0, 8, 8).expect("frame");
     let mut r = CpuRenderer::new();
     assert_eq!(r.device().backend, Backend::Cpu);
     let err = r.render(&RenderJob::new(KernelSources::default().with_wgsl("x"), &frame)).unwrap_err();
@@ -233,12 +228,12 @@ fn jobs_without_an_evaluator_or_with_another_scenes_frame_are_errors() {
 #[test]
 fn packet_marching_draws_the_scalar_renderers_image() {
     use fractal_dsl::eval::interp::Interpreter;
-    for (name, scene) in common::builtin_scenes() {
+    for (name, scene) in crate::common::builtin_scenes() {
         let interp = Interpreter::new(&scene).expect("a valid scene");
         // 61 columns: the last packet of each row is partly padding.
-        let frame = frame_for(&scene, 61, 20, &ParamValues::defaults(&scene));
+        let frame = Frame::default_view(&scene, 0.0, 61, 20).expect("frame");
         let packets = Evaluator::<f32>::packets(&interp).expect("the interpreter has a packet instance");
-        let packed = fractal_runtime::backend::cpu::render_packets(packets, &scene, &frame).expect("render");
+        let packed = fractal_render::backend::cpu::render_packets(packets, &scene, &frame).expect("render");
         let scalar = render_scene::<f32, _>(&interp, &scene, &frame).expect("render");
         let differing = packed.pixels.iter().zip(&scalar.pixels).filter(|(a, b)| a != b).count();
         assert_eq!(differing, 0, "{name}: {differing} pixels differ between packet and scalar marching");

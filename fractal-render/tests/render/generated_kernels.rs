@@ -3,16 +3,15 @@
 //! uniforms, and their probe kernels evaluated at points. This is the plumbing's end-to-end check; the full
 //! agreement suite over the built-in scenes lives with the facade.
 
-mod common;
-
-use common::available;
 use fractal_dsl::back::{opencl, wgsl, Entry};
 use fractal_dsl::builder::*;
 use fractal_dsl::eval::interp::Interpreter;
 use fractal_dsl::eval::{Env, Evaluator};
 use fractal_dsl::number::math::v3;
 use fractal_dsl::Scene;
-use fractal_runtime::{CpuRenderer, Frame, Image, KernelSources, ParamValues, RenderJob, Renderer, WgpuRenderer};
+use fractal_render::{CpuRenderer, Frame, Image, KernelSources, ParamValues, RenderJob, Renderer, WgpuRenderer};
+
+use crate::common::available;
 
 /// Scenes that between them use time, a parameter, both light kinds, specular, shadows, occlusion, glow and fog.
 fn scenes() -> Vec<(&'static str, Scene)> {
@@ -51,12 +50,12 @@ fn frame(s: &Scene) -> Frame {
     if params.get("radius").is_some() {
         params.set("radius", 0.9).expect("in range");
     }
-    let pose = fractal_runtime::Pose::from_camera(&s.camera, 0.7, &|p| params.lookup(p)).expect("camera");
+    let pose = fractal_render::Pose::from_camera(&s.camera, 0.7, &|p| params.lookup(p)).expect("camera");
     Frame::new(s, &pose, 0.7, 64, 64, &params).expect("frame")
 }
 
 fn check_alike(name: &str, backend: &str, cpu: &Image, other: &Image) {
-    let differing = common::fraction_different(cpu, other, 3);
+    let differing = crate::common::fraction_different(cpu, other, 3);
     assert!(
         differing < 0.01,
         "{name}: {:.2} % of {backend} pixels differ from the CPU's by more than 3 levels",
@@ -68,7 +67,7 @@ fn check_alike(name: &str, backend: &str, cpu: &Image, other: &Image) {
 fn compiled_scenes_render_alike_on_every_backend() {
     let mut gpu = available("wgpu", WgpuRenderer::new());
     #[cfg(feature = "opencl")]
-    let mut cl = available("OpenCL", fractal_runtime::OpenClRenderer::new(false));
+    let mut cl = available("OpenCL", fractal_render::OpenClRenderer::new(false));
     for (name, s) in scenes() {
         let kernels = fractal_dsl::compile(&s).unwrap();
         let interpreter = Interpreter::new(&s).unwrap();
@@ -139,7 +138,7 @@ fn compiled_probes_match_the_interpreter() {
         #[cfg(feature = "opencl")]
         if let Some(got) = available(
             "OpenCL",
-            fractal_runtime::probe_opencl(&opencl::write(&program, Entry::Probe), &frame, &points, true),
+            fractal_render::probe_opencl(&opencl::write(&program, Entry::Probe), &frame, &points, true),
         ) {
             check_probe(name, "OpenCL", &s, &frame, &points, &got);
         }

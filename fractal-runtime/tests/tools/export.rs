@@ -7,11 +7,7 @@
 //!
 //! The built-in scenes and their kernels change as the compiler does, so nothing here pins kernel text.
 
-mod common;
-
 use std::path::{Path, PathBuf};
-
-use common::{run_validator, tool_available};
 
 use fractal_dsl::builder::{scene, sphere};
 use fractal_dsl::eval::{Env, Sample};
@@ -20,9 +16,11 @@ use fractal_dsl::number::math::{v3, Num, V3};
 use fractal_dsl::{compile, CompiledScene, DefaultParams, Kernels, NativeFns, Scene};
 use fractal_runtime::export::{export, export_compiled, export_scene, ExportError, Exported, Target, ENTRY_POINT};
 
+use crate::common::{run_validator, tool_available};
+
 /// Every built-in scene's file name (without extension), scene and compiled kernels.
 fn builtin_scenes() -> Vec<(String, Scene, Kernels)> {
-    common::builtin_scenes()
+    crate::common::builtin_scenes()
         .into_iter()
         .map(|(name, scene)| {
             let kernels = compile(&scene).unwrap();

@@ -1,12 +1,10 @@
 //! Backend selection: explicit choices, and `auto` falling back along wgpu → OpenCL → CPU when a backend cannot draw
 //! a job.
 
-mod common;
-
 use fractal_dsl::builder::{scene, sphere};
 use fractal_dsl::eval::{Env, Evaluator, Sample};
 use fractal_dsl::number::math::{length, v3, V3};
-use fractal_runtime::{select, Backend, BackendChoice, KernelSources, ParamValues, RenderJob, RendererOptions};
+use fractal_render::{select, Backend, BackendChoice, Frame, KernelSources, RenderJob, RendererOptions};
 
 struct UnitSphere;
 
@@ -29,7 +27,7 @@ fn cpu_can_be_chosen() {
 #[test]
 fn auto_falls_back_to_the_backend_the_job_can_run_on() {
     let s = scene(sphere(1.0));
-    let frame = common::frame_for(&s, 24, 24, &ParamValues::defaults(&s));
+    let frame = Frame::default_view(&s, 0.0, 24, 24).expect("frame");
     let mut r = select(BackendChoice::Auto, &RendererOptions::default()).expect("auto opens something");
     let opened = r.take_notes();
     assert!(opened.iter().any(|n| n.starts_with("using ")), "{opened:?}");
@@ -41,7 +39,7 @@ fn auto_falls_back_to_the_backend_the_job_can_run_on() {
     assert_eq!(r.device().backend, Backend::Cpu);
     let notes = r.take_notes().join("\n");
     assert!(notes.contains("using cpu"), "{notes}");
-    if common::backends_required() {
+    if crate::common::backends_required() {
         assert!(notes.contains("wgpu failed, falling back"), "{notes}");
     }
 }
@@ -49,7 +47,7 @@ fn auto_falls_back_to_the_backend_the_job_can_run_on() {
 #[test]
 fn auto_reports_every_failure_when_nothing_can_draw() {
     let s = scene(sphere(1.0));
-    let frame = common::frame_for(&s, 8, 8, &ParamValues::defaults(&s));
+    let frame = Frame::default_view(&s, 0.0, 8, 8).expect("frame");
     let mut r = select(BackendChoice::Auto, &RendererOptions::default()).expect("auto opens something");
     let err = r.render(&RenderJob::new(KernelSources::default(), &frame)).unwrap_err();
     let message = err.to_string();

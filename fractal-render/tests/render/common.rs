@@ -1,14 +1,11 @@
-//! What the runtime's integration tests share: fixture kernels, frames for them, and the rule for backends
+//! What the renderer's tests share: fixture kernels, frames for them, the built-in scenes, and the rule for backends
 //! that are missing (skip with a note, or fail when FRACTAL_REQUIRE_GPU_BACKENDS=1).
-
-// Each test binary uses its own subset of these functions.
-#![allow(dead_code)]
 
 use std::path::Path;
 
 use fractal_dsl::builder::{mandelbulb, param, scene, sphere};
 use fractal_dsl::Scene;
-use fractal_runtime::{Frame, ParamValues, Pose, RenderError};
+use fractal_render::{Frame, Image, ParamValues, Pose, RenderError};
 
 /// Whether the environment demands the wgpu and OpenCL backends (CI sets FRACTAL_REQUIRE_GPU_BACKENDS=1).
 pub fn backends_required() -> bool {
@@ -40,14 +37,15 @@ pub fn mandelbulb_scene() -> Scene {
     scene(mandelbulb(8))
 }
 
-pub fn frame_for(s: &Scene, width: u32, height: u32, params: &ParamValues) -> Frame {
+/// A frame of the scene's camera at t = 0 with these parameter values.
+fn frame_for(s: &Scene, width: u32, height: u32, params: &ParamValues) -> Frame {
     let pose = Pose::from_camera(&s.camera, 0.0, &|p| params.lookup(p)).expect("camera");
     Frame::new(s, &pose, 0.0, width, height, params).expect("frame")
 }
 
 pub fn mandelbulb_frame(width: u32, height: u32) -> Frame {
     let s = mandelbulb_scene();
-    frame_for(&s, width, height, &ParamValues::defaults(&s))
+    Frame::default_view(&s, 0.0, width, height).expect("frame")
 }
 
 /// The scene the sphere probe fixtures evaluate: a sphere whose radius is param 0.
@@ -91,7 +89,7 @@ pub fn check_sphere_probe(samples: &[[f32; 8]], points: &[[f32; 4]], radius: f64
 }
 
 /// Fraction of pixels whose channels differ by more than `tolerance` levels.
-pub fn fraction_different(a: &fractal_runtime::Image, b: &fractal_runtime::Image, tolerance: u8) -> f64 {
+pub fn fraction_different(a: &Image, b: &Image, tolerance: u8) -> f64 {
     assert_eq!((a.width, a.height), (b.width, b.height));
     let differing = a
         .pixels
@@ -121,33 +119,4 @@ pub fn builtin_scenes() -> Vec<(String, Scene)> {
             (name, scene)
         })
         .collect()
-}
-
-/// Whether the external validator `tool` can be run; a missing one fails the test only when it is required.
-pub fn tool_available(tool: &str) -> bool {
-    let package = if tool == "spirv-val" { "spirv-tools" } else { "glslang-tools" };
-    match std::process::Command::new(tool).arg("--version").output() {
-        Ok(_) => true,
-        Err(e) if backends_required() => {
-            panic!("{tool} is required (FRACTAL_REQUIRE_GPU_BACKENDS=1) but cannot be run ({e}): install {package}")
-        }
-        Err(e) => {
-            eprintln!("note: skipping the {tool} check, {tool} cannot be run ({e}): install {package}");
-            false
-        }
-    }
-}
-
-/// Runs a validator on `file`; its output is the failure message.
-pub fn run_validator(tool: &str, args: &[&str], file: &Path) {
-    let output = std::process::Command::new(tool).args(args).arg(file).output().expect("run the validator");
-    assert!(
-        output.status.success(),
-        "{tool} {} rejected {} ({}):\n{}{}",
-        args.join(" "),
-        file.display(),
-        output.status,
-        String::from_utf8_lossy(&output.stdout),
-        String::from_utf8_lossy(&output.stderr)
-    );
 }

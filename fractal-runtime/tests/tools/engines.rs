@@ -10,16 +10,15 @@
 //!
 //! External validators are skipped with a note when missing, unless FRACTAL_REQUIRE_GPU_BACKENDS=1.
 
-mod common;
-
 use std::collections::HashMap;
 use std::path::PathBuf;
 
-use common::{available, builtin_scenes, frame_for, run_validator, tool_available};
 use fractal_dsl::back::{wgsl, Entry};
+use fractal_render::{Frame, KernelSources, RenderJob, Renderer, WgpuRenderer};
 use fractal_runtime::package::{package, Engine, Package};
-use fractal_runtime::{KernelSources, ParamValues, RenderJob, Renderer, WgpuRenderer};
 use naga_oil::compose::{ComposableModuleDescriptor, Composer, NagaModuleDescriptor, ShaderDefValue};
+
+use crate::common::{available, builtin_scenes, run_validator, tool_available};
 
 fn packaged(name: &str, scene: &fractal_dsl::Scene, engine: Engine) -> Package {
     package(scene, name, engine).unwrap_or_else(|e| panic!("{name} for {engine}: {e}"))
@@ -159,7 +158,7 @@ fn the_wgsl_library_agrees_with_the_probe_kernel_on_wgpu() {
              \x20   probe_out[2u * i + 1u] = vec4<f32>(sdf_material(p), s.shininess);\n\
              }}\n"
         );
-        let frame = frame_for(&scene, 8, 8, &ParamValues::defaults(&scene));
+        let frame = Frame::default_view(&scene, 0.0, 8, 8).expect("frame");
         let (min, max) = scene_box(&scene);
         let points: Vec<[f32; 4]> = (0..256)
             .map(|i| {
@@ -430,7 +429,7 @@ fn the_wgsl_library_renders_the_kernels_image_on_wgpu() {
              \x20   out_px[gid.y * w + gid.x] = c.x | (c.y << 8u) | (c.z << 16u) | (255u << 24u);\n\
              }}\n"
         );
-        let frame = frame_for(&scene, 96, 54, &ParamValues::defaults(&scene));
+        let frame = Frame::default_view(&scene, 0.0, 96, 54).expect("frame");
         let kernels = fractal_dsl::compile(&scene).expect("compile");
         let job = |wgsl| RenderJob::new(KernelSources { wgsl: Some(wgsl), opencl: None, cpu: None }, &frame);
         let got = gpu.render(&job(&render)).unwrap_or_else(|e| panic!("{name}: the library: {e}"));

@@ -1,10 +1,9 @@
 //! The wgpu renderer and WGSL probe runner on whatever adapter wgpu finds (lavapipe without a GPU), with the
 //! hand-written fixture kernels in `tests/kernels`.
 
-mod common;
+use fractal_render::{probe_wgsl, Backend, KernelSources, RenderError, RenderJob, Renderer, WgpuRenderer};
 
-use common::*;
-use fractal_runtime::{probe_wgsl, Backend, KernelSources, RenderError, RenderJob, Renderer, WgpuRenderer};
+use crate::common::*;
 
 fn renderer() -> Option<WgpuRenderer> {
     available("wgpu", WgpuRenderer::new())

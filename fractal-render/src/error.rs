@@ -1,8 +1,9 @@
-//! The runtime's errors: what can go wrong packing a frame, placing a camera, or running a kernel on a device.
+//! The renderer's errors: what can go wrong packing a frame, placing a camera, or running a kernel on a device.
 //! Nothing here panics on a missing GPU or driver; every failure is one of these values with a message a user can act
 //! on.
 
 use crate::device::Backend;
+use crate::limits::MAX_TIME;
 use fractal_dsl::validate::num;
 
 /// A camera that cannot be placed.
@@ -40,7 +41,7 @@ pub enum FrameError {
     NonFiniteValue { expr: String, value: f64, time: f64 },
     #[error("light {}: the direction is zero at time {}", index + 1, num(*time))]
     ZeroLightDirection { index: usize, time: f64 },
-    #[error("time {} is outside ±{} s: the kernels keep time in f32, which cannot tell frames apart beyond that", num(*.0), num(crate::frame::MAX_TIME))]
+    #[error("time {} is outside ±{} s: the kernels keep time in f32, which cannot tell frames apart beyond that", num(*.0), num(MAX_TIME))]
     Time(f64),
     #[error("the frame has {got} slots, its layout needs {expected}")]
     SlotCount { expected: usize, got: usize },

@@ -1,13 +1,11 @@
 //! The OpenCL renderer and probe runner on the first OpenCL platform (pocl without a GPU), with the hand-written
 //! fixture kernels in `tests/kernels`.
-#![cfg(feature = "opencl")]
 
-mod common;
-
-use common::*;
-use fractal_runtime::{
+use fractal_render::{
     probe_opencl, Backend, KernelSources, OpenClRenderer, RenderError, RenderJob, Renderer, WgpuRenderer,
 };
+
+use crate::common::*;
 
 fn renderer(precise: bool) -> Option<OpenClRenderer> {
     available("OpenCL", OpenClRenderer::new(precise))
@@ -75,7 +73,7 @@ fn probes_return_the_sphere_distance() {
 }
 
 /// Whether a pixel of the Mandelbulb fixture shows the bulb: it differs from that row's background gradient.
-fn fixture_hit(image: &fractal_runtime::Image, x: u32, y: u32) -> bool {
+fn fixture_hit(image: &fractal_render::Image, x: u32, y: u32) -> bool {
     let v = -(2.0 * (y as f32 + 0.5) - image.height as f32) / image.height as f32;
     let background = [0.08f32, 0.09, 0.12].map(|c| ((c + 0.08 * v).clamp(0.0, 1.0).sqrt() * 255.0 + 0.5) as u8);
     let got = image.rgba(x, y).unwrap();

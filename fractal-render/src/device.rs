@@ -1,6 +1,6 @@
 //! What a renderer runs on: the [`Backend`] families and the [`DeviceInfo`] a renderer reports for the device it got.
 //!
-//! Plain data at the bottom of the runtime: errors name a backend, renderers describe their device, and nothing here
+//! Plain data at the bottom of the crate: errors name a backend, renderers describe their device, and nothing here
 //! depends on any other module of the crate.
 
 use std::fmt;

@@ -1,10 +1,16 @@
-//! The hand-written baseline ported line for line to scalar Rust (f32, one rayon task per row), so the CPU backend
-//! has a baseline on its own device too. Same constants, same operations in the same order as
-//! `baseline/mandelbulb.cl`; only the vector helpers are spelled out.
+//! The hand-written baseline the generated kernels are timed against: the Mandelbulb kernel in OpenCL C and WGSL
+//! (`baseline/`, compiled into the program for the GPU dispatchers), and its port line for line to scalar Rust (f32,
+//! one rayon task per row), so the CPU backend has a baseline on its own device too. The port has the same
+//! constants and the same operations in the same order as `baseline/mandelbulb.cl`; only the vector helpers are
+//! spelled out.
 
+use fractal_render::image::Image;
 use rayon::prelude::*;
 
-use crate::image::Image;
+/// The hand-written baseline in OpenCL C: kernel `render(__global uint* out, int w, int h)`.
+pub const BASELINE_OPENCL: &str = include_str!("../../baseline/mandelbulb.cl");
+/// The hand-written baseline in WGSL: entry `main`, 8×8 workgroups, binding 0 pixels, binding 1 `{w, h}`.
+pub const BASELINE_WGSL: &str = include_str!("../../baseline/mandelbulb.wgsl");
 
 const MAX_STEPS: i32 = 128;
 const ITERS: i32 = 8;

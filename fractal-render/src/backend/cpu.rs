@@ -3,8 +3,9 @@
 //! the evaluator has a packet instance ([`Evaluator::packets`]), eight neighbouring pixels are traced together
 //! ([`render_packets`]): the same program on [`F32x8`] lanes, with a lane whose march ends taking the row's next ray.
 //!
-//! What is this renderer's own: the pixel loop, the lane scheduling and the packing of colours. It reads the camera,
-//! lights, time and parameters from the same [`Frame`] uniforms the kernels read.
+//! What is this renderer's own: the pixel loop and the lane scheduling; colours are packed as the kernels pack them
+//! ([`pack_linear`]). It reads the camera, lights, time and parameters from the same [`Frame`] uniforms the kernels
+//! read.
 
 use fractal_dsl::analyse::{bound, fold::fold_node, Aabb};
 use fractal_dsl::eval::{Env, Evaluator, PacketEvaluator, Reference, Sample};
@@ -20,7 +21,7 @@ use std::cell::Cell;
 use crate::device::{Backend, DeviceInfo};
 use crate::error::{FrameError, RenderError};
 use crate::frame::{Frame, LightSlot};
-use crate::image::Image;
+use crate::image::{pack_linear, Image};
 pub use crate::renderer::PixelTrace;
 use crate::renderer::{RenderJob, Renderer, Traced};
 
@@ -51,7 +52,8 @@ impl Renderer for CpuRenderer {
             job.kernels.cpu.ok_or(RenderError::MissingKernel { backend: Backend::Cpu, what: "CPU evaluator" })?;
         let pixels = trace_scene::<f32, _>(kernel.evaluator, kernel.scene, job.frame)?;
         let gamma = kernel.scene.settings.gamma;
-        let packed = pixels.iter().map(|p| pack(v3(p.colour[0] as f32, p.colour[1] as f32, p.colour[2] as f32), gamma));
+        let packed =
+            pixels.iter().map(|p| pack_linear(v3(p.colour[0] as f32, p.colour[1] as f32, p.colour[2] as f32), gamma));
         let image = Image { width: job.width(), height: job.height(), pixels: packed.collect() };
         Ok(Traced { image, pixels })
     }
@@ -107,7 +109,7 @@ fn render_with_bound<F: Real, E: Evaluator<F> + ?Sized>(
     pixels.par_chunks_mut(width).enumerate().for_each(|(y, row)| {
         let on = view.on(evaluator);
         for (x, px) in row.iter_mut().enumerate() {
-            *px = pack(view.trace_pixel(&on, x as u32, y as u32).colour, view.rules.gamma);
+            *px = pack_linear(view.trace_pixel(&on, x as u32, y as u32).colour, view.rules.gamma);
         }
     });
     Ok(Image { width: frame.width(), height: frame.height(), pixels })
@@ -141,7 +143,7 @@ pub fn render_packets(packets: &dyn PacketEvaluator, scene: &Scene, frame: &Fram
             let shaded = shade::shade(&view.rules, &view8, &on, (ro, rd), &m);
             for (i, px) in chunk.iter_mut().enumerate() {
                 let colour = if marches[x0 + i].1 { lane3(shaded.colour, i) } else { view.background() };
-                *px = pack(colour, view.rules.gamma);
+                *px = pack_linear(colour, view.rules.gamma);
             }
         }
     });
@@ -214,7 +216,7 @@ impl<F: Real, E: Evaluator<F> + ?Sized> Evaluator<F> for Counted<'_, E> {
 }
 
 /// The ray program's view of a scene through a scalar evaluator, at one frame's time and parameters.
-pub(crate) struct Scalar<'a, F, E: ?Sized> {
+pub struct Scalar<'a, F, E: ?Sized> {
     eval: &'a E,
     env: Env<'a, F>,
     /// The frame's perturbation reference orbit (empty without one).
@@ -260,8 +262,9 @@ struct Pixel<F> {
     normal: Option<V3<F>>,
 }
 
-/// The ray program set up for one frame: its rules, the frame's camera and lights, time and parameters.
-pub(crate) struct View<F> {
+/// The ray program set up for one frame: its rules, the frame's camera and lights, time and parameters. Public for
+/// tools that march rays of their own through a frame and shade them as this renderer does (the ground truth).
+pub struct View<F> {
     rules: Rules,
     view: ray::View<F>,
     time: F,
@@ -275,7 +278,7 @@ fn f3<F: Real>(v: [f32; 3]) -> V3<F> {
 }
 
 impl<F: Real> View<F> {
-    pub(crate) fn new(scene: &Scene, frame: &Frame, scene_bound: Option<Aabb>) -> Result<View<F>, RenderError> {
+    pub fn new(scene: &Scene, frame: &Frame, scene_bound: Option<Aabb>) -> Result<View<F>, RenderError> {
         let expected = Frame::layout_of(scene);
         if frame.layout() != expected {
             return Err(FrameError::SlotCount { expected: expected.slots(), got: frame.layout().slots() }.into());
@@ -312,30 +315,30 @@ impl<F: Real> View<F> {
     }
 
     /// The scene through `eval` at this frame's time and parameters.
-    pub(crate) fn on<'a, E: Evaluator<F> + ?Sized>(&'a self, eval: &'a E) -> Scalar<'a, F, E> {
+    pub fn on<'a, E: Evaluator<F> + ?Sized>(&'a self, eval: &'a E) -> Scalar<'a, F, E> {
         Scalar { eval, env: Env::new(self.time, &self.params), orbit: &self.orbit }
     }
 
     /// Pixel footprint per unit distance along a ray.
-    pub(crate) fn footprint(&self) -> F {
+    pub fn footprint(&self) -> F {
         self.view.footprint
     }
 
-    pub(crate) fn max_distance(&self) -> F {
+    pub fn max_distance(&self) -> F {
         F::c(self.rules.max_distance)
     }
 
-    pub(crate) fn background(&self) -> V3<F> {
+    pub fn background(&self) -> V3<F> {
         let b = self.rules.background;
         v3(F::c(b[0]), F::c(b[1]), F::c(b[2]))
     }
 
     /// Step 1: the ray through the point (px, py) of the image, in pixels from the top left corner.
-    pub(crate) fn ray(&self, px: F, py: F) -> (V3<F>, V3<F>) {
+    pub fn ray(&self, px: F, py: F) -> (V3<F>, V3<F>) {
         self.view.ray(px, py)
     }
 
-    pub(crate) fn hit_epsilon(&self, t: F) -> F {
+    pub fn hit_epsilon(&self, t: F) -> F {
         march::hit_epsilon(&self.rules, &self.view, t)
     }
 
@@ -362,7 +365,7 @@ impl<F: Real> View<F> {
 
     /// The colour of the surface at `p` with normal `n`, hit at distance `t` along `rd` with epsilon `eps`.
     #[allow(clippy::too_many_arguments)]
-    pub(crate) fn shade_hit<E: Evaluator<F> + ?Sized>(
+    pub fn shade_hit<E: Evaluator<F> + ?Sized>(
         &self,
         on: &Scalar<'_, F, E>,
         p: V3<F>,
@@ -473,36 +476,13 @@ fn set_lane3(v: &mut V3<F32x8>, i: usize, x: V3<f32>) {
     (v.x.0[i], v.y.0[i], v.z.0[i]) = (x.x, x.y, x.z);
 }
 
-/// Step 7 as this renderer writes its image: clamp, gamma, pack RGBA8 with R in the low byte.
-pub(crate) fn pack<F: Real>(colour: V3<F>, gamma: f64) -> u32 {
-    let channel = |v: F| {
-        // Rust's max/min drop NaN, so a NaN channel becomes 0 rather than poisoning the pixel.
-        let v = v.max(F::zero()).min(F::one());
-        let v = if gamma == 2.0 {
-            v.sqrt()
-        } else if gamma == 1.0 {
-            v
-        } else {
-            v.powf(F::c(1.0 / gamma))
-        };
-        ((v * F::c(255.0) + F::c(0.5)).f64() as u32).min(255)
-    };
-    channel(colour.x) | (channel(colour.y) << 8) | (channel(colour.z) << 16) | (255 << 24)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::image::unpack_rgba8;
     use fractal_dsl::analyse::has_specular;
     use fractal_dsl::builder::*;
     use fractal_dsl::number::math::length;
-
-    #[test]
-    fn packing_rounds_and_applies_gamma() {
-        assert_eq!(pack(v3(1.0f32, 0.0, 0.25), 2.0), 0xff80_00ff);
-        assert_eq!(pack(v3(0.5f32, 2.0, -1.0), 1.0), 0xff00_ff80);
-        assert_eq!(pack(v3(f32::NAN, 0.0, 0.0), 2.0), 0xff00_0000);
-    }
 
     struct UnitSphere;
     impl Evaluator<f32> for UnitSphere {
@@ -519,12 +499,11 @@ mod tests {
     #[test]
     fn the_bound_clips_rays_without_changing_what_is_inside() {
         let s = scene(sphere(1.0));
-        let pose = crate::Pose::from_camera(&s.camera, 0.0, &|p| p.default).unwrap();
-        let frame = Frame::new(&s, &pose, 0.0, 48, 48, &crate::ParamValues::defaults(&s)).unwrap();
+        let frame = Frame::default_view(&s, 0.0, 48, 48).unwrap();
         let render = |b: Option<Aabb>| render_with_bound::<f32, _>(&UnitSphere, &s, &frame, b).unwrap();
         // Marches that start at the bound's entry end within the hit epsilon of the same surface point.
         let unlike = |a: &Image, b: &Image| {
-            let far = |p: &u32, q: &u32| unpack(*p).iter().zip(unpack(*q)).any(|(x, y)| x.abs_diff(y) > 1);
+            let far = |p: &u32, q: &u32| unpack_rgba8(*p).iter().zip(unpack_rgba8(*q)).any(|(x, y)| x.abs_diff(y) > 1);
             a.pixels.iter().zip(&b.pixels).filter(|(p, q)| far(p, q)).count()
         };
         let unbounded = render(None);
@@ -534,17 +513,13 @@ mod tests {
         assert_eq!(unlike(&loose, &unbounded), 0);
         // A bound that holds only the top half of the sphere cuts the march short for rays towards the bottom half.
         let half = render(Some(Aabb { min: [-1.0, 0.0, -1.0], max: [1.0, 1.0, 1.0] }));
-        let background = pack(v3(0.08f32, 0.09, 0.12), 2.0);
-        let hits = unbounded.count_unlike(unpack(background), 0);
-        let half_hits = half.count_unlike(unpack(background), 0);
+        let background = pack_linear(v3(0.08f32, 0.09, 0.12), 2.0);
+        let hits = unbounded.count_unlike(unpack_rgba8(background), 0);
+        let half_hits = half.count_unlike(unpack_rgba8(background), 0);
         assert!(half_hits < hits * 9 / 10 && half_hits > hits / 4, "{half_hits} of {hits} hits left: no clipping");
         // A bound behind the camera: every ray misses.
         let behind = render(Some(Aabb { min: [-1.0, -1.0, -10.0], max: [1.0, 1.0, -9.0] }));
         assert!(behind.pixels.iter().all(|&p| p == background));
-    }
-
-    fn unpack(p: u32) -> [u8; 4] {
-        p.to_le_bytes()
     }
 
     /// A scene's `normal_pixel_epsilon` takes the normal's tetrahedral taps that many footprints apart at the hit,
@@ -555,8 +530,7 @@ mod tests {
         use fractal_dsl::eval::interp::Interpreter;
         let fine = scene(mandelbulb(8).iterations(6)).camera(camera([1.2, 1.0, -2.2], [0.0; 3])).pixel_epsilon(0.05);
         let wide = fine.clone().normal_pixel_epsilon(1.0);
-        let pose = crate::Pose::from_camera(&fine.camera, 0.0, &|p| p.default).unwrap();
-        let frame = Frame::new(&fine, &pose, 0.0, 40, 30, &crate::ParamValues::defaults(&fine)).unwrap();
+        let frame = Frame::default_view(&fine, 0.0, 40, 30).unwrap();
         let trace = |s: &Scene| trace_scene::<f64, _>(&Interpreter::new(s).unwrap(), s, &frame).unwrap();
         let (before, after) = (trace(&fine), trace(&wide));
         let view = View::<f64>::new(&wide, &frame, None).unwrap();

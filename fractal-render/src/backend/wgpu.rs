@@ -65,7 +65,7 @@ impl WgpuRenderer {
 
     /// Opens the preferred adapter among `backends` and asks for those of `wanted` features the adapter has (the
     /// bench wants timestamp queries where they exist).
-    pub(crate) fn with_features(backends: wgpu::Backends, wanted: wgpu::Features) -> Result<WgpuRenderer, RenderError> {
+    pub fn with_features(backends: wgpu::Backends, wanted: wgpu::Features) -> Result<WgpuRenderer, RenderError> {
         let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
         desc.backends = backends.with_env();
         // Release-build flags in every build: validation layers would make debug builds measure something else.
@@ -278,7 +278,7 @@ impl WgpuRenderer {
     }
 
     /// Turns a scoped error, or any error that escaped the scopes, into a device error.
-    pub(crate) fn check(&self, scoped: Option<wgpu::Error>) -> Result<(), RenderError> {
+    pub fn check(&self, scoped: Option<wgpu::Error>) -> Result<(), RenderError> {
         let mut messages: Vec<String> = scoped.into_iter().map(|e| e.to_string()).collect();
         if let Ok(mut escaped) = self.uncaptured.lock() {
             messages.append(&mut escaped);
@@ -293,7 +293,7 @@ impl WgpuRenderer {
 
 /// Copies `bytes` of `source` into `readback` (a MAP_READ | COPY_DST buffer of at least `bytes`), waits for the device
 /// and returns them as u32 words.
-pub(crate) fn read_back(
+pub fn read_back(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
     source: &wgpu::Buffer,
@@ -308,7 +308,7 @@ pub(crate) fn read_back(
 }
 
 /// Waits for the device and returns the first `bytes` of a MAP_READ buffer, which is unmapped again afterwards.
-pub(crate) fn map_read(device: &wgpu::Device, buffer: &wgpu::Buffer, bytes: u64) -> Result<Vec<u8>, String> {
+pub fn map_read(device: &wgpu::Device, buffer: &wgpu::Buffer, bytes: u64) -> Result<Vec<u8>, String> {
     let slice = buffer.slice(..bytes);
     let (sender, receiver) = mpsc::channel();
     slice.map_async(wgpu::MapMode::Read, move |result| {
@@ -323,7 +323,7 @@ pub(crate) fn map_read(device: &wgpu::Device, buffer: &wgpu::Buffer, bytes: u64)
 
 /// Runs `f` inside validation, out-of-memory and internal error scopes and returns the first error they caught, so a
 /// kernel, buffer or surface the driver refuses is an error value rather than a panic.
-pub(crate) fn capture<T>(device: &wgpu::Device, f: impl FnOnce() -> T) -> (T, Option<wgpu::Error>) {
+pub fn capture<T>(device: &wgpu::Device, f: impl FnOnce() -> T) -> (T, Option<wgpu::Error>) {
     let internal = device.push_error_scope(wgpu::ErrorFilter::Internal);
     let memory = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
     let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);

@@ -1,0 +1,11 @@
+//! The renderer's integration tests, in one binary: the CPU renderer against analytic answers, the wgpu and OpenCL
+//! renderers on hand-written fixture kernels (`tests/kernels`), backend selection, and the scene compiler's kernels
+//! drawn by every backend.
+
+mod common;
+mod cpu_renderer;
+mod generated_kernels;
+#[cfg(feature = "opencl")]
+mod opencl_renderer;
+mod select;
+mod wgpu_renderer;
