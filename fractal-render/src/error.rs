@@ -4,7 +4,7 @@
 
 use crate::device::Backend;
 use crate::limits::MAX_TIME;
-use fractal_dsl::validate::num;
+use fractal_dsl::validate::number_text;
 
 /// A camera that cannot be placed.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -32,16 +32,16 @@ pub enum FrameError {
     ParamMismatch { expected: String, found: String },
     #[error("the scene has no parameter named `{0}`")]
     UnknownParam(String),
-    #[error("parameter `{name}` = {} is outside its range {}..{}", num(*.value), num(*.min), num(*.max))]
+    #[error("parameter `{name}` = {} is outside its range {}..{}", number_text(*.value), number_text(*.min), number_text(*.max))]
     ParamOutOfRange { name: String, value: f64, min: f64, max: f64 },
     /// `index` counts from 0; messages number lights from 1, as the validator does.
-    #[error("light {}: {what} is not finite at time {}", index + 1, num(*time))]
+    #[error("light {}: {what} is not finite at time {}", index + 1, number_text(*time))]
     NonFiniteLight { index: usize, what: &'static str, time: f64 },
-    #[error("`{expr}` is {} at time {}: the shape it sizes or places cannot be drawn then", num(*.value), num(*.time))]
+    #[error("`{expr}` is {} at time {}: the shape it sizes or places cannot be drawn then", number_text(*.value), number_text(*.time))]
     NonFiniteValue { expr: String, value: f64, time: f64 },
-    #[error("light {}: the direction is zero at time {}", index + 1, num(*time))]
+    #[error("light {}: the direction is zero at time {}", index + 1, number_text(*time))]
     ZeroLightDirection { index: usize, time: f64 },
-    #[error("time {} is outside ±{} s: the kernels keep time in f32, which cannot tell frames apart beyond that", num(*.0), num(MAX_TIME))]
+    #[error("time {} is outside ±{} s: the kernels keep time in f32, which cannot tell frames apart beyond that", number_text(*.0), number_text(MAX_TIME))]
     Time(f64),
     #[error("the frame has {got} slots, its layout needs {expected}")]
     SlotCount { expected: usize, got: usize },

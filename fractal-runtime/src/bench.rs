@@ -50,7 +50,7 @@ use crate::accuracy::{measure, Observed, TrueError};
 use crate::truth::{Truth, TruthSettings};
 
 pub use baseline::{BASELINE_OPENCL, BASELINE_WGSL};
-pub use precision::Accuracy;
+pub use precision::Deviation;
 pub use record::BenchRecord;
 pub use report::{BaselineFigures, BenchReport, CameraMotion, Stats, Timings};
 pub use timer::KernelClock;

@@ -462,7 +462,7 @@ impl Lower {
                     Misfit::NotConstant => {
                         error(arg, format!("{slot} must be a constant: `t` and `param(..)` cannot be used here"))
                     }
-                    Misfit::NotFinite(x) => error(arg, format!("{slot} must be finite, found {}", v::num(x))),
+                    Misfit::NotFinite(x) => error(arg, format!("{slot} must be finite, found {}", v::number_text(x))),
                 })
             }
         }
@@ -471,7 +471,7 @@ impl Lower {
     fn constant_argument(&mut self, slot: &str, e: &syn::Expr, depth: usize) -> syn::Result<f64> {
         match self.eval(e, depth)? {
             Value::Number(x) => constant(&x).map_err(|misfit| match misfit {
-                Misfit::NotFinite(x) => error(e, format!("{slot} must be finite, found {}", v::num(x))),
+                Misfit::NotFinite(x) => error(e, format!("{slot} must be finite, found {}", v::number_text(x))),
                 _ => error(e, format!("{slot} must be a constant: `t` and `param(..)` cannot be used here")),
             }),
             other => Err(error(e, format!("{slot} must be a number, found {}", other.ty().a()))),

@@ -39,20 +39,26 @@ impl Limits {
     }
     fn describe_lo(&self) -> String {
         match self.lo {
-            Some((lo, closed)) => format!("{} {}", if closed { ">=" } else { ">" }, num(lo)),
+            Some((lo, closed)) => format!("{} {}", if closed { ">=" } else { ">" }, number_text(lo)),
             None => String::new(),
         }
     }
     fn describe_hi(&self) -> String {
         match self.hi {
-            Some((hi, closed)) => format!("{} {}", if closed { "<=" } else { "<" }, num(hi)),
+            Some((hi, closed)) => format!("{} {}", if closed { "<=" } else { "<" }, number_text(hi)),
             None => String::new(),
         }
     }
     fn describe_interval(&self) -> String {
         match (self.lo, self.hi) {
             (Some((lo, lc)), Some((hi, hc))) => {
-                format!("in {}{}, {}{}", if lc { "[" } else { "(" }, num(lo), num(hi), if hc { "]" } else { ")" })
+                format!(
+                    "in {}{}, {}{}",
+                    if lc { "[" } else { "(" },
+                    number_text(lo),
+                    number_text(hi),
+                    if hc { "]" } else { ")" }
+                )
             }
             _ => format!("{}{}", self.describe_lo(), self.describe_hi()),
         }
@@ -70,7 +76,7 @@ impl Limits {
 }
 
 /// A number as messages show it: integers without a fraction, very large or small values in exponent form.
-pub fn num(v: f64) -> String {
+pub fn number_text(v: f64) -> String {
     if v == 0.0 || !v.is_finite() || (1e-4..1e15).contains(&v.abs()) {
         format!("{v}")
     } else {
@@ -105,9 +111,9 @@ pub const MAX_MAGNITUDE: f64 = f32::MAX as f64;
 /// (`1e308` is finite in f64 and `inf` on every GPU).
 pub fn value_problem(v: f64) -> Option<String> {
     if !v.is_finite() {
-        Some(format!("numbers must be finite, found {}", num(v)))
+        Some(format!("numbers must be finite, found {}", number_text(v)))
     } else if v.abs() > MAX_MAGNITUDE {
-        Some(format!("numbers must lie within ±3.4e38 (the kernels compute in f32), found {}", num(v)))
+        Some(format!("numbers must lie within ±3.4e38 (the kernels compute in f32), found {}", number_text(v)))
     } else {
         None
     }
@@ -152,16 +158,16 @@ pub(super) fn number(out: &mut Vec<Problem>, arg: &'static str, what: &str, e: &
     if constant {
         let v = r.lo;
         if !v.is_finite() {
-            out.push(Problem::new(arg, format!("{what} must be finite, found {}", num(v))));
+            out.push(Problem::new(arg, format!("{what} must be finite, found {}", number_text(v))));
         } else if !lim.lo_ok(v) {
-            out.push(Problem::new(arg, format!("{what} must be {}, found {}", lim.describe(true), num(v))));
+            out.push(Problem::new(arg, format!("{what} must be {}, found {}", lim.describe(true), number_text(v))));
         } else if !lim.hi_ok(v) {
-            out.push(Problem::new(arg, format!("{what} must be {}, found {}", lim.describe(false), num(v))));
+            out.push(Problem::new(arg, format!("{what} must be {}, found {}", lim.describe(false), number_text(v))));
         }
         return;
     }
     let unbounded = |end: f64| !end.is_finite();
-    let span = format!("{}..{}", num(r.lo), num(r.hi));
+    let span = format!("{}..{}", number_text(r.lo), number_text(r.hi));
     let low_bad = lim.lo.is_some() && !lim.lo_ok(r.lo);
     let high_bad = lim.hi.is_some() && !lim.hi_ok(r.hi);
     let message = if low_bad {
@@ -169,14 +175,14 @@ pub(super) fn number(out: &mut Vec<Problem>, arg: &'static str, what: &str, e: &
         if unbounded(r.lo) {
             format!("{what} must be {rule}, but no lower bound is known for its value, so it may leave that range")
         } else {
-            format!("{what} must be {rule}, but it can go down to {} (its range is {span})", num(r.lo))
+            format!("{what} must be {rule}, but it can go down to {} (its range is {span})", number_text(r.lo))
         }
     } else if high_bad {
         let rule = lim.describe(false);
         if unbounded(r.hi) {
             format!("{what} must be {rule}, but no upper bound is known for its value, so it may leave that range")
         } else {
-            format!("{what} must be {rule}, but it can go up to {} (its range is {span})", num(r.hi))
+            format!("{what} must be {rule}, but it can go up to {} (its range is {span})", number_text(r.hi))
         }
     } else {
         return;

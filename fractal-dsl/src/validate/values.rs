@@ -123,9 +123,10 @@ pub(super) fn check_args(decls: &[ArgDecl], values: &[ArgValue]) -> Vec<Problem>
                     let whole = e.as_lit().filter(|v| v.fract() == 0.0 && *v >= 0.0);
                     match whole {
                         Some(v) if v <= most as f64 => {}
-                        Some(v) => {
-                            o.push(Problem::new(name, format!("{what} {axis} must be <= {most}, found {}", num(v))))
-                        }
+                        Some(v) => o.push(Problem::new(
+                            name,
+                            format!("{what} {axis} must be <= {most}, found {}", number_text(v)),
+                        )),
                         None => o.push(Problem::new(name, format!("{what} {axis} must be a non-negative integer"))),
                     }
                 }
@@ -196,17 +197,17 @@ pub(super) fn abs_between(o: &mut Vec<Problem>, family: &str, arg: FractalArg, e
         return;
     }
     let (r, constant) = value_range(e);
-    let rule = format!("|{}| must be in [{}, {}]", arg.name, num(lo), num(hi));
+    let rule = format!("|{}| must be in [{}, {}]", arg.name, number_text(lo), number_text(hi));
     let fits = |a: f64, b: f64| (a >= lo && b <= hi) || (a >= -hi && b <= -lo);
     if fits(r.lo, r.hi) {
         return;
     }
     let message = if constant {
-        format!("{family} {rule}, found {}", num(r.lo))
+        format!("{family} {rule}, found {}", number_text(r.lo))
     } else if !r.lo.is_finite() || !r.hi.is_finite() {
         format!("{family} {rule}, but no bound is known for its value, so it may leave that range")
     } else {
-        format!("{family} {rule}, but its range is {}..{}", num(r.lo), num(r.hi))
+        format!("{family} {rule}, but its range is {}..{}", number_text(r.lo), number_text(r.hi))
     };
     o.push(Problem::new(arg.name, message));
 }
@@ -335,8 +336,8 @@ pub fn check_camera(c: &Camera) -> Vec<Problem> {
                     o.push(problem(format!(
                         "camera key times must increase strictly: key {} at {} follows {}",
                         i + 1,
-                        num(k.time),
-                        num(keys[i - 1].time)
+                        number_text(k.time),
+                        number_text(keys[i - 1].time)
                     )));
                 }
             }
@@ -441,12 +442,17 @@ pub fn check_param(p: &ParamDecl) -> Vec<Problem> {
     } else if p.min >= p.max {
         out.push(Problem::new(
             "range",
-            format!("param {name:?} range must have min < max, found {}..{}", num(p.min), num(p.max)),
+            format!("param {name:?} range must have min < max, found {}..{}", number_text(p.min), number_text(p.max)),
         ));
     } else if !(p.min..=p.max).contains(&p.default) {
         out.push(Problem::new(
             "default",
-            format!("param {name:?} default must be within {}..{}, found {}", num(p.min), num(p.max), num(p.default)),
+            format!(
+                "param {name:?} default must be within {}..{}, found {}",
+                number_text(p.min),
+                number_text(p.max),
+                number_text(p.default)
+            ),
         ));
     }
     out
@@ -464,6 +470,7 @@ pub fn check_param_again(first: &ParamDecl, again: &ParamDecl) -> Option<String>
     } else {
         (first, again)
     };
-    let describe = |p: &ParamDecl| format!("default {} in {}..{}", num(p.default), num(p.min), num(p.max));
+    let describe =
+        |p: &ParamDecl| format!("default {} in {}..{}", number_text(p.default), number_text(p.min), number_text(p.max));
     Some(format!("param {:?} is declared twice with different values: {} and {}", first.name, describe(a), describe(b)))
 }

@@ -13,9 +13,9 @@ use fractal_render::image::{linear_rgba8, unpack_rgba8, Image};
 
 use crate::accuracy::metrics::{is_miss, scene_hits};
 
-/// One comparison with the reference.
+/// How far a bench's image lies from the f64 reference: one comparison.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
-pub struct Accuracy {
+pub struct Deviation {
     /// Size the comparison was made at.
     pub width: u32,
     pub height: u32,
@@ -26,7 +26,7 @@ pub struct Accuracy {
     pub mean_colour_difference: Option<f64>,
 }
 
-impl Accuracy {
+impl Deviation {
     pub fn describe(&self) -> String {
         let mask = match self.hit_mismatch {
             Some(f) => format!("hit/miss differs on {:.3} % of pixels", 100.0 * f),
@@ -75,12 +75,12 @@ fn mean_colour_difference(a: &Image, b: &Image) -> f64 {
 }
 
 /// A scene image against its reference.
-pub fn compare_scene(scene: &Scene, image: &Image, reference: &Image) -> Accuracy {
+pub fn compare_scene(scene: &Scene, image: &Image, reference: &Image) -> Deviation {
     let hit_mismatch = match (scene_hits(scene, image), scene_hits(scene, reference)) {
         (Some(a), Some(b)) => Some(mismatch(&a, &b)),
         _ => None,
     };
-    Accuracy {
+    Deviation {
         width: image.width,
         height: image.height,
         hit_mismatch,
@@ -89,9 +89,9 @@ pub fn compare_scene(scene: &Scene, image: &Image, reference: &Image) -> Accurac
 }
 
 /// A baseline image against the reference of the scene set up like it: hit masks only.
-pub fn compare_baseline(scene: &Scene, image: &Image, reference: &Image) -> Accuracy {
+pub fn compare_baseline(scene: &Scene, image: &Image, reference: &Image) -> Deviation {
     let hit_mismatch = scene_hits(scene, reference).map(|r| mismatch(&baseline_hits(image), &r));
-    Accuracy { width: image.width, height: image.height, hit_mismatch, mean_colour_difference: None }
+    Deviation { width: image.width, height: image.height, hit_mismatch, mean_colour_difference: None }
 }
 
 #[cfg(test)]

@@ -13,7 +13,7 @@ use fractal_render::frame::ParamValues;
 use fractal_render::select::RendererOptions;
 use serde::Serialize;
 
-use super::precision::Accuracy;
+use super::precision::Deviation;
 use super::report::{BenchReport, Stats, Timings};
 
 /// How the program and its kernels were built.
@@ -117,7 +117,7 @@ impl TimingRecord {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct BaselineRecord {
     pub timings: TimingRecord,
-    pub error: Option<Accuracy>,
+    pub error: Option<Deviation>,
     /// generated / baseline, median kernel time.
     pub kernel_ratio: f64,
     /// generated / baseline, median frame time.
@@ -146,7 +146,7 @@ pub struct BenchRecord {
     pub build: BuildRecord,
     pub generated: TimingRecord,
     /// Error against the f64 interpreter with the same settings (precision).
-    pub error: Accuracy,
+    pub error: Deviation,
     /// Error against the ground truth.
     pub true_error: TrueError,
     pub baseline: Option<BaselineRecord>,

@@ -4,7 +4,7 @@
 use fractal_render::device::DeviceInfo;
 use fractal_render::select::RendererOptions;
 
-use super::precision::Accuracy;
+use super::precision::Deviation;
 use super::timer::KernelClock;
 use crate::accuracy::TrueError;
 
@@ -86,7 +86,7 @@ impl Timings {
 pub struct BaselineFigures {
     pub timings: Timings,
     /// Hit/miss disagreement of the baseline with the scene's f64 reference (only for the baseline's own scene).
-    pub accuracy: Option<Accuracy>,
+    pub accuracy: Option<Deviation>,
 }
 
 /// Everything one bench run measured.
@@ -101,7 +101,7 @@ pub struct BenchReport {
     pub options: RendererOptions,
     pub generated: Timings,
     /// Against the f64 interpreter with the same settings: f32 rounding alone.
-    pub accuracy: Accuracy,
+    pub accuracy: Deviation,
     /// Against the ground truth ([`crate::truth`]) at the scene's iteration count.
     pub true_error: TrueError,
     pub baseline: Option<BaselineFigures>,

@@ -131,7 +131,7 @@ fn check_frames(args: &RenderArgs, loaded: &LoadedScene, params: &ParamValues) -
     };
     for f in range.iter() {
         frame_at(loaded, params, f as f64 / args.fps, args.render.size).map_err(|e| CliError {
-            message: format!("frame {f} at {} fps: {e}", fractal_dsl::validate::num(args.fps)),
+            message: format!("frame {f} at {} fps: {e}", fractal_dsl::validate::number_text(args.fps)),
             ..e
         })?;
     }
