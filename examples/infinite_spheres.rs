@@ -7,7 +7,7 @@
 //! The same scene ships as `scenes/fractal/infinite_spheres.fractal`.
 
 use fractal::prelude::*;
-use fractal_runtime::viewer::{example_main, ViewerScene};
+use fractal::view::{example_main, ViewerScene};
 
 static SPHERES: CompiledScene = scene! {
     scene(

@@ -4,8 +4,8 @@
 //!
 //! Press Space to pause the flow, ← / → to step time. With no display the scene is rendered to `julia.png` instead.
 
-use fractal_runtime::viewer::{example_main, ViewerScene};
+use fractal::view::{example_main, ViewerScene};
 
 fn main() -> std::process::ExitCode {
-    example_main("julia", ViewerScene::compiled("julia", &scenes::JULIA))
+    example_main("julia", ViewerScene::compiled("julia", &fractal::scenes::JULIA))
 }

@@ -5,8 +5,8 @@
 //! Tab selects the `scale` parameter and ↑ / ↓ change it without recompiling. With no display the scene is rendered
 //! to `mandelbox.png` instead.
 
-use fractal_runtime::viewer::{example_main, ViewerScene};
+use fractal::view::{example_main, ViewerScene};
 
 fn main() -> std::process::ExitCode {
-    example_main("mandelbox", ViewerScene::compiled("amazing_box", &scenes::AMAZING_BOX))
+    example_main("mandelbox", ViewerScene::compiled("amazing_box", &fractal::scenes::AMAZING_BOX))
 }

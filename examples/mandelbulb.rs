@@ -5,8 +5,8 @@
 //! Click to capture the mouse, WASD/QE to fly, H for the other keys. With no display the scene is rendered to
 //! `mandelbulb.png` in the current folder instead.
 
-use fractal_runtime::viewer::{example_main, ViewerScene};
+use fractal::view::{example_main, ViewerScene};
 
 fn main() -> std::process::ExitCode {
-    example_main("mandelbulb", ViewerScene::compiled("mandelbulb", &scenes::MANDELBULB))
+    example_main("mandelbulb", ViewerScene::compiled("mandelbulb", &fractal::scenes::MANDELBULB))
 }

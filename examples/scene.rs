@@ -5,7 +5,7 @@
 //!
 //! With no display the scene is rendered to `<name>.png` in the current folder instead.
 
-use fractal_runtime::viewer::{example_main, ViewerScene};
+use fractal::view::{example_main, ViewerScene};
 
 fn main() -> std::process::ExitCode {
     let name = std::env::args().nth(1).unwrap_or_else(|| "mandelbulb".to_string());
