@@ -32,6 +32,64 @@ pub fn fixture(name: &str) -> String {
     std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("reading {}: {e}", path.display()))
 }
 
+/// The hand-written baseline's Mandelbulb tracer (`fractal-runtime/baseline/`, the kernel `fractal bench --baseline`
+/// times) made a fixture: its formulas as they are, its entry point reading the image size, the camera and the key
+/// light from the frame uniform (layout: 1 light, 0 params) as a generated `render` does. Each replaced line must be
+/// found, so a change to the baseline that this does not follow fails here rather than testing something else.
+pub fn mandelbulb_fixture(language: &str) -> String {
+    let baseline =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../fractal-runtime/baseline/mandelbulb").with_extension(language);
+    let mut text = std::fs::read_to_string(&baseline).unwrap_or_else(|e| panic!("reading {}: {e}", baseline.display()));
+    let replacements: &[(&str, &str)] = match language {
+        "wgsl" => &[
+            (
+                "struct Params { w: u32, h: u32 }",
+                "struct Frame {\n    camera_position: vec4<f32>,\n    camera_right: vec4<f32>,\n    camera_up: vec4<f32>,\n    \
+                 camera_forward: vec4<f32>,\n    lights: array<vec4<f32>, 2>,\n}",
+            ),
+            ("var<uniform> params: Params;", "var<uniform> frame: Frame;"),
+            ("fn main(", "fn render("),
+            ("let w = params.w;", "let w = u32(frame.camera_right.w);"),
+            ("let h = params.h;", "let h = u32(frame.camera_up.w);"),
+            ("let ro = vec3<f32>(1.2, 1.0, -2.2);", "let ro = frame.camera_position.xyz;"),
+            ("let ww = normalize(-ro);", ""),
+            ("let uu = normalize(cross(vec3<f32>(0.0, 1.0, 0.0), ww));", ""),
+            ("let vv = cross(ww, uu);", ""),
+            (
+                "let rd = normalize(u * uu + v * vv + 1.8 * ww);",
+                "let rd = normalize(frame.camera_forward.xyz + u * frame.camera_right.xyz + v * frame.camera_up.xyz);",
+            ),
+            ("let l = normalize(vec3<f32>(0.6, 0.8, -0.4));", "let l = frame.lights[0].xyz;"),
+            ("* (0.15 + 0.85 * diff) * ao;", "* (0.15 + 0.85 * diff) * ao * frame.lights[1].xyz;"),
+        ],
+        "cl" => &[
+            (
+                "__kernel void render(__global uint* out, int w, int h) {",
+                "typedef struct {\n    float4 camera_position;\n    float4 camera_right;\n    float4 camera_up;\n    \
+                 float4 camera_forward;\n    float4 lights[2];\n} Frame;\n\n\
+                 __kernel void render(__global uint* out, __constant Frame* frame) {\n    \
+                 int w = (int)frame->camera_right.w;\n    int h = (int)frame->camera_up.w;",
+            ),
+            ("float3 ro = (float3)(1.2f, 1.0f, -2.2f);", "float3 ro = frame->camera_position.xyz;"),
+            ("float3 ww = normalize(-ro);", ""),
+            ("float3 uu = normalize(cross((float3)(0.0f, 1.0f, 0.0f), ww));", ""),
+            ("float3 vv = cross(ww, uu);", ""),
+            (
+                "float3 rd = normalize(u * uu + v * vv + 1.8f * ww);",
+                "float3 rd = normalize(frame->camera_forward.xyz + u * frame->camera_right.xyz + v * frame->camera_up.xyz);",
+            ),
+            ("float3 l = normalize((float3)(0.6f, 0.8f, -0.4f));", "float3 l = frame->lights[0].xyz;"),
+            ("* (0.15f + 0.85f * diff) * ao;", "* (0.15f + 0.85f * diff) * ao * frame->lights[1].xyz;"),
+        ],
+        other => panic!("no baseline in {other}"),
+    };
+    for (from, to) in replacements {
+        assert_eq!(text.matches(from).count(), 1, "`{from}` is not once in {}", baseline.display());
+        text = text.replace(from, to);
+    }
+    text
+}
+
 /// The scene the Mandelbulb fixture kernels draw (their frame layout: 1 light, 0 params), with the default camera.
 pub fn mandelbulb_scene() -> Scene {
     scene(mandelbulb(8))

@@ -1,5 +1,6 @@
 //! The renderer's integration tests, in one binary: the CPU renderer against analytic answers, the wgpu and OpenCL
-//! renderers on hand-written fixture kernels (`tests/kernels`), backend selection, and the scene compiler's kernels
+//! renderers on kernels written without the compiler (the bench's hand-written baseline reading the frame, and the
+//! sphere probes in `tests/kernels`), backend selection, and the scene compiler's kernels
 //! drawn by every backend.
 
 mod common;

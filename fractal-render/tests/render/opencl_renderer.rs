@@ -1,5 +1,5 @@
-//! The OpenCL renderer and probe runner on the first OpenCL platform (pocl without a GPU), with the hand-written
-//! fixture kernels in `tests/kernels`.
+//! The OpenCL renderer and probe runner on the first OpenCL platform (pocl without a GPU), with kernels written
+//! without the compiler ([`crate::common::mandelbulb_fixture`], the sphere probe in `tests/kernels`).
 
 use fractal_render::{
     probe_opencl, Backend, KernelSources, OpenClRenderer, RenderError, RenderJob, Renderer, WgpuRenderer,
@@ -20,7 +20,7 @@ fn renders_the_mandelbulb_fixture() {
     eprintln!("OpenCL device: {info}");
     assert_eq!(r.build_options(), "-cl-fast-relaxed-math");
 
-    let source = fixture("mandelbulb_render.cl");
+    let source = mandelbulb_fixture("cl");
     let frame = mandelbulb_frame(64, 64);
     let image = r.render(&RenderJob::new(KernelSources::default().with_opencl(&source), &frame)).expect("render");
     assert_eq!((image.width, image.height, image.pixels.len()), (64, 64, 64 * 64));
@@ -45,8 +45,7 @@ fn renders_the_mandelbulb_fixture() {
 fn build_errors_carry_the_build_log() {
     let Some(mut r) = renderer(false) else { return };
     let frame = mandelbulb_frame(16, 16);
-    let broken =
-        fixture("mandelbulb_render.cl").replace("float3 ro = frame->camera_position.xyz;", "float3 ro = nope;");
+    let broken = mandelbulb_fixture("cl").replace("float3 ro = frame->camera_position.xyz;", "float3 ro = nope;");
     match r.render(&RenderJob::new(KernelSources::default().with_opencl(&broken), &frame)) {
         Err(RenderError::KernelRejected { backend: Backend::OpenCl, log }) => {
             assert!(log.contains("nope"), "build log does not name the error: {log}");
@@ -84,7 +83,7 @@ fn fixture_hit(image: &fractal_render::Image, x: u32, y: u32) -> bool {
 fn opencl_and_wgpu_draw_the_same_fixture() {
     let (Some(mut cl), Some(mut gpu)) = (renderer(true), available("wgpu", WgpuRenderer::new())) else { return };
     let frame = mandelbulb_frame(96, 96);
-    let (cl_src, wgsl_src) = (fixture("mandelbulb_render.cl"), fixture("mandelbulb_render.wgsl"));
+    let (cl_src, wgsl_src) = (mandelbulb_fixture("cl"), mandelbulb_fixture("wgsl"));
     let a = cl.render(&RenderJob::new(KernelSources::default().with_opencl(&cl_src), &frame)).expect("OpenCL");
     let b = gpu.render(&RenderJob::new(KernelSources::default().with_wgsl(&wgsl_src), &frame)).expect("wgpu");
     // The same pose from the same uniforms: the hit masks agree except where the two drivers' pow/acos/atan2 round

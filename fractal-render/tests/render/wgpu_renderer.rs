@@ -1,5 +1,5 @@
-//! The wgpu renderer and WGSL probe runner on whatever adapter wgpu finds (lavapipe without a GPU), with the
-//! hand-written fixture kernels in `tests/kernels`.
+//! The wgpu renderer and WGSL probe runner on whatever adapter wgpu finds (lavapipe without a GPU), with kernels
+//! written without the compiler ([`crate::common::mandelbulb_fixture`], the sphere probe in `tests/kernels`).
 
 use fractal_render::{probe_wgsl, Backend, KernelSources, RenderError, RenderJob, Renderer, WgpuRenderer};
 
@@ -17,7 +17,7 @@ fn renders_the_mandelbulb_fixture() {
     assert!(!info.name.is_empty(), "{info}");
     eprintln!("wgpu device: {info}");
 
-    let source = fixture("mandelbulb_render.wgsl");
+    let source = mandelbulb_fixture("wgsl");
     let frame = mandelbulb_frame(64, 64);
     let image = r.render(&RenderJob::new(KernelSources::default().with_wgsl(&source), &frame)).expect("render");
     assert_eq!((image.width, image.height, image.pixels.len()), (64, 64, 64 * 64));
@@ -36,7 +36,7 @@ fn renders_the_mandelbulb_fixture() {
 #[test]
 fn sizes_that_are_not_multiples_of_the_workgroup_render() {
     let Some(mut r) = renderer() else { return };
-    let source = fixture("mandelbulb_render.wgsl");
+    let source = mandelbulb_fixture("wgsl");
     let small = mandelbulb_frame(37, 21);
     let image = r.render(&RenderJob::new(KernelSources::default().with_wgsl(&source), &small)).expect("render");
     assert_eq!(image.pixels.len(), 37 * 21);
@@ -51,7 +51,7 @@ fn sizes_that_are_not_multiples_of_the_workgroup_render() {
 fn broken_kernels_are_errors_with_locations() {
     let Some(mut r) = renderer() else { return };
     let frame = mandelbulb_frame(16, 16);
-    let broken = fixture("mandelbulb_render.wgsl").replace("let ro = frame.camera_position.xyz;", "let ro = nope;");
+    let broken = mandelbulb_fixture("wgsl").replace("let ro = frame.camera_position.xyz;", "let ro = nope;");
     match r.render(&RenderJob::new(KernelSources::default().with_wgsl(&broken), &frame)) {
         Err(RenderError::KernelRejected { backend: Backend::Wgpu, log }) => {
             assert!(log.contains("nope"), "{log}");
@@ -66,7 +66,7 @@ fn broken_kernels_are_errors_with_locations() {
     let err = r.render(&RenderJob::new(KernelSources::default().with_wgsl(&probe_only), &frame)).unwrap_err();
     assert!(matches!(err, RenderError::KernelRejected { .. }), "{err}");
     // The renderer still works after rejecting kernels.
-    let good = fixture("mandelbulb_render.wgsl");
+    let good = mandelbulb_fixture("wgsl");
     assert!(r.render(&RenderJob::new(KernelSources::default().with_wgsl(&good), &frame)).is_ok());
 }
 
