@@ -5,6 +5,15 @@
 
 use std::fmt;
 
+/// The environment variable that makes a missing GPU backend (and the tools its tests need) an error instead of a
+/// skip: `cargo xtask test` sets it to `1`, so CI cannot pass by skipping what it was meant to run.
+pub const REQUIRE_GPU_BACKENDS: &str = "FRACTAL_REQUIRE_GPU_BACKENDS";
+
+/// Whether a backend that cannot be opened is an error rather than a skip ([`REQUIRE_GPU_BACKENDS`] is `1`).
+pub fn backends_required() -> bool {
+    std::env::var(REQUIRE_GPU_BACKENDS).is_ok_and(|v| v == "1")
+}
+
 /// The three renderer families.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Backend {

@@ -13,6 +13,7 @@ mod harness;
 mod rows;
 mod tolerance;
 
+use fractal_render::device::backends_required;
 use std::sync::Mutex;
 
 use fractal::dsl::back::{self, Entry};
@@ -22,10 +23,6 @@ use fractal::dsl::number::math::V3;
 use fractal::render::{Frame, ParamValues, Pose, ProbeSample, WgpuRenderer};
 use harness::{cpu_answers, Answer, Column, Row, Subject};
 use tolerance::Class;
-
-fn require_gpu() -> bool {
-    std::env::var("FRACTAL_REQUIRE_GPU_BACKENDS").is_ok_and(|v| v == "1")
-}
 
 /// Every row: the vocabulary, then the hard cases.
 fn all_rows() -> Vec<Row> {
@@ -224,7 +221,7 @@ fn check(opened: Result<Box<dyn Subject>, (&'static str, String)>) {
     let column = match opened {
         Ok(mut subject) => harness::run(subject.as_mut(), &all_rows()),
         Err((name, why)) => {
-            if require_gpu() {
+            if backends_required() {
                 panic!("{name} is required (FRACTAL_REQUIRE_GPU_BACKENDS=1) but unavailable: {why}");
             }
             harness::skipped(name, &all_rows(), &why)

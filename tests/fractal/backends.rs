@@ -13,6 +13,7 @@
 
 use fractal::render::{CpuRenderer, Frame, Image, KernelSources, RenderJob, Renderer};
 use fractal::scenes;
+use fractal_render::device::backends_required;
 
 const SIZE: u32 = 96;
 const CHANNEL_TOLERANCE: u8 = 8;
@@ -25,10 +26,6 @@ const COLOUR_AGREEMENT: f64 = 0.97;
 /// lavapipe rounds like the CPU and agrees on 100 %; pocl fuses multiply-adds (OpenCL's default `FP_CONTRACT`) and
 /// agrees on 90 % (97 % with `#pragma OPENCL FP_CONTRACT OFF`, measured). The hit mask is held to the usual 99 %.
 const DEEP_ZOOM_COLOUR_AGREEMENT: f64 = 0.85;
-
-fn require_gpu() -> bool {
-    std::env::var("FRACTAL_REQUIRE_GPU_BACKENDS").is_ok_and(|v| v == "1")
-}
 
 fn frame_of(scene: &fractal::dsl::Scene) -> Frame {
     frame_at(scene, 0.0)
@@ -152,7 +149,7 @@ fn compiled(name: &str) -> &'static fractal::dsl::CompiledScene {
 fn wgpu_draws_what_the_cpu_draws() {
     match fractal::render::WgpuRenderer::new() {
         Ok(r) => check_backend("wgpu", r, |name| KernelSources::default().with_wgsl(compiled(name).wgsl())),
-        Err(e) if !require_gpu() => eprintln!("skipped: no wgpu adapter ({e})"),
+        Err(e) if !backends_required() => eprintln!("skipped: no wgpu adapter ({e})"),
         Err(e) => panic!("wgpu is required (FRACTAL_REQUIRE_GPU_BACKENDS=1) but unavailable: {e}"),
     }
 }
@@ -164,7 +161,7 @@ fn opencl_draws_what_the_cpu_draws() {
         let label = if precise { "opencl precise" } else { "opencl fast" };
         match fractal::render::OpenClRenderer::new(precise) {
             Ok(r) => check_backend(label, r, |name| KernelSources::default().with_opencl(compiled(name).opencl())),
-            Err(e) if !require_gpu() => eprintln!("skipped: no OpenCL device ({e})"),
+            Err(e) if !backends_required() => eprintln!("skipped: no OpenCL device ({e})"),
             Err(e) => panic!("OpenCL is required (FRACTAL_REQUIRE_GPU_BACKENDS=1) but unavailable: {e}"),
         }
     }
@@ -250,13 +247,13 @@ fn check_traces(label: &str, renderer: &mut impl Renderer, sources: impl Fn(&fra
 fn gpu_traces_match_the_cpu_traces() {
     match fractal::render::WgpuRenderer::new() {
         Ok(mut r) => check_traces("wgpu", &mut r, |k| KernelSources::default().with_wgsl(&k.wgsl)),
-        Err(e) if !require_gpu() => eprintln!("wgpu skipped: no adapter ({e})"),
+        Err(e) if !backends_required() => eprintln!("wgpu skipped: no adapter ({e})"),
         Err(e) => panic!("wgpu is required (FRACTAL_REQUIRE_GPU_BACKENDS=1) but unavailable: {e}"),
     }
     #[cfg(feature = "opencl")]
     match fractal::render::OpenClRenderer::new(false) {
         Ok(mut r) => check_traces("opencl", &mut r, |k| KernelSources::default().with_opencl(&k.opencl)),
-        Err(e) if !require_gpu() => eprintln!("OpenCL skipped: no device ({e})"),
+        Err(e) if !backends_required() => eprintln!("OpenCL skipped: no device ({e})"),
         Err(e) => panic!("OpenCL is required (FRACTAL_REQUIRE_GPU_BACKENDS=1) but unavailable: {e}"),
     }
 }
@@ -275,13 +272,13 @@ fn tracing_a_render_kernel_is_an_error() {
     };
     match fractal::render::WgpuRenderer::new() {
         Ok(mut r) => refuses("wgpu", &mut r, KernelSources::default().with_wgsl(compiled.wgsl())),
-        Err(e) if !require_gpu() => eprintln!("wgpu skipped: no adapter ({e})"),
+        Err(e) if !backends_required() => eprintln!("wgpu skipped: no adapter ({e})"),
         Err(e) => panic!("wgpu is required (FRACTAL_REQUIRE_GPU_BACKENDS=1) but unavailable: {e}"),
     }
     #[cfg(feature = "opencl")]
     match fractal::render::OpenClRenderer::new(false) {
         Ok(mut r) => refuses("opencl", &mut r, KernelSources::default().with_opencl(compiled.opencl())),
-        Err(e) if !require_gpu() => eprintln!("OpenCL skipped: no device ({e})"),
+        Err(e) if !backends_required() => eprintln!("OpenCL skipped: no device ({e})"),
         Err(e) => panic!("OpenCL is required (FRACTAL_REQUIRE_GPU_BACKENDS=1) but unavailable: {e}"),
     }
 }

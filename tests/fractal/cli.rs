@@ -5,6 +5,7 @@
 //! GPU backends: the wgpu test skips with a note when no adapter opens, and fails instead when
 //! FRACTAL_REQUIRE_GPU_BACKENDS=1 (CI, where lavapipe is installed).
 
+use fractal_render::device::backends_required;
 use std::collections::{BTreeMap, BTreeSet};
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -44,10 +45,6 @@ fn stdout(out: &Output) -> String {
 #[track_caller]
 fn assert_ok(out: &Output) {
     assert!(out.status.success(), "exit {:?}\nstderr:\n{}", out.status.code(), stderr(out));
-}
-
-fn backends_required() -> bool {
-    std::env::var("FRACTAL_REQUIRE_GPU_BACKENDS").is_ok_and(|v| v == "1")
 }
 
 fn files_in(dir: &Path) -> BTreeSet<String> {

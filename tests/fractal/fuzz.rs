@@ -303,7 +303,7 @@ fn random_token_streams_never_break_the_parser_and_accepted_ones_agree_on_every_
     let mut rng = Rng(seed | 1);
     let mut gpu = match WgpuRenderer::new() {
         Ok(gpu) => Some(gpu),
-        Err(e) if std::env::var("FRACTAL_REQUIRE_GPU_BACKENDS").is_ok_and(|v| v == "1") => {
+        Err(e) if fractal_render::device::backends_required() => {
             panic!("wgpu required but unavailable: {e}")
         }
         Err(e) => {

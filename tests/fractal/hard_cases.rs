@@ -6,11 +6,8 @@ use fractal::dsl::builder::*;
 use fractal::dsl::eval::interp::Interpreter;
 use fractal::dsl::{compile, Scene};
 use fractal::render::{CpuRenderer, Frame, Image, KernelSources, ParamValues, Pose, RenderJob, Renderer, WgpuRenderer};
+use fractal_render::device::backends_required;
 use glam::DVec3;
-
-fn require_gpu() -> bool {
-    std::env::var("FRACTAL_REQUIRE_GPU_BACKENDS").is_ok_and(|v| v == "1")
-}
 
 /// Renders `scene` from `pose` with the CPU renderer and, when available, wgpu.
 fn render_both(scene: &Scene, pose: &Pose, size: u32) -> Vec<(&'static str, Image)> {
@@ -31,7 +28,7 @@ fn render_with(scene: &Scene, pose: &Pose, size: u32, with_opencl: bool) -> Vec<
         Ok(mut gpu) => {
             out.push(("wgpu", gpu.render(&RenderJob::new(KernelSources::compiled(&kernels), &frame)).unwrap()))
         }
-        Err(e) if !require_gpu() => eprintln!("wgpu skipped: {e}"),
+        Err(e) if !backends_required() => eprintln!("wgpu skipped: {e}"),
         Err(e) => panic!("wgpu required but unavailable: {e}"),
     }
     #[cfg(feature = "opencl")]
@@ -40,7 +37,7 @@ fn render_with(scene: &Scene, pose: &Pose, size: u32, with_opencl: bool) -> Vec<
             Ok(mut cl) => {
                 out.push(("opencl", cl.render(&RenderJob::new(KernelSources::compiled(&kernels), &frame)).unwrap()))
             }
-            Err(e) if !require_gpu() => eprintln!("opencl skipped: {e}"),
+            Err(e) if !backends_required() => eprintln!("opencl skipped: {e}"),
             Err(e) => panic!("opencl required but unavailable: {e}"),
         }
     }

@@ -14,6 +14,7 @@
 //! only one window-system event loop. Without Xvfb the window test is skipped with a note, or fails when
 //! `FRACTAL_REQUIRE_GPU_BACKENDS=1`.
 
+use fractal_render::device::backends_required;
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
@@ -48,7 +49,7 @@ const LINGER: Duration = Duration::from_secs(6);
 const TOLERANCE: u8 = 1;
 
 fn require_backends() -> bool {
-    std::env::var("FRACTAL_REQUIRE_GPU_BACKENDS").is_ok_and(|v| v == "1")
+    backends_required()
 }
 
 fn on_path(program: &str) -> Option<PathBuf> {

@@ -5,12 +5,8 @@ use std::path::Path;
 
 use fractal_dsl::builder::{mandelbulb, param, scene, sphere};
 use fractal_dsl::Scene;
+pub use fractal_render::device::backends_required;
 use fractal_render::{Frame, Image, ParamValues, Pose, RenderError};
-
-/// Whether the environment demands the wgpu and OpenCL backends (CI sets FRACTAL_REQUIRE_GPU_BACKENDS=1).
-pub fn backends_required() -> bool {
-    std::env::var("FRACTAL_REQUIRE_GPU_BACKENDS").is_ok_and(|v| v == "1")
-}
 
 /// The opened backend, or `None` with a printed note when it is missing and not required.
 pub fn available<T>(backend: &str, opened: Result<T, RenderError>) -> Option<T> {

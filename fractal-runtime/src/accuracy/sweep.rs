@@ -466,7 +466,7 @@ mod tests {
         let truth = Truth::compute(&glowing, &frame, TruthSettings::default()).unwrap();
         let mut renderer = match fractal_render::select::open(Backend::Wgpu, &RendererOptions::default()) {
             Ok(r) => r,
-            Err(e) if std::env::var("FRACTAL_REQUIRE_GPU_BACKENDS").is_ok_and(|v| v == "1") => {
+            Err(e) if fractal_render::device::backends_required() => {
                 panic!("wgpu required but unavailable: {e}")
             }
             Err(e) => return eprintln!("wgpu skipped: {e}"),

@@ -1,15 +1,11 @@
 //! What the tools' tests share: the built-in scenes, the external validators, and the rule for backends and tools
 //! that are missing (skip with a note, or fail when FRACTAL_REQUIRE_GPU_BACKENDS=1).
 
+use fractal_render::device::backends_required;
 use std::path::Path;
 
 use fractal_dsl::Scene;
 use fractal_render::RenderError;
-
-/// Whether the environment demands the wgpu and OpenCL backends (CI sets FRACTAL_REQUIRE_GPU_BACKENDS=1).
-pub fn backends_required() -> bool {
-    std::env::var("FRACTAL_REQUIRE_GPU_BACKENDS").is_ok_and(|v| v == "1")
-}
 
 /// The opened backend, or `None` with a printed note when it is missing and not required.
 pub fn available<T>(backend: &str, opened: Result<T, RenderError>) -> Option<T> {

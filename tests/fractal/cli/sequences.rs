@@ -79,10 +79,7 @@ fn video_goes_through_ffmpeg() {
     let has_ffmpeg = Command::new("ffmpeg").arg("-version").output().is_ok_and(|o| o.status.success());
     if !has_ffmpeg {
         // The test command installs ffmpeg and asks for every external tool; elsewhere the video path is optional.
-        assert!(
-            !std::env::var("FRACTAL_REQUIRE_GPU_BACKENDS").is_ok_and(|v| v == "1"),
-            "ffmpeg is required (FRACTAL_REQUIRE_GPU_BACKENDS=1) but not installed"
-        );
+        assert!(!backends_required(), "ffmpeg is required (FRACTAL_REQUIRE_GPU_BACKENDS=1) but not installed");
         eprintln!("note: skipping, ffmpeg is not installed");
         return;
     }

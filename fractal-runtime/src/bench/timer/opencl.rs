@@ -107,7 +107,7 @@ mod tests {
         let (mut timer, mut renderer) = match (OpenClTimer::new(false), OpenClRenderer::new(false)) {
             (Ok(t), Ok(r)) => (t, r),
             (Err(e), _) | (_, Err(e)) => {
-                let required = std::env::var("FRACTAL_REQUIRE_GPU_BACKENDS").is_ok_and(|v| v == "1");
+                let required = fractal_render::device::backends_required();
                 assert!(!required, "OpenCL is required but could not be opened: {e}");
                 eprintln!("note: skipping, no OpenCL device: {e}");
                 return;

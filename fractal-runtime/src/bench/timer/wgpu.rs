@@ -247,7 +247,7 @@ mod tests {
     use fractal_render::WgpuRenderer;
 
     fn required() -> bool {
-        std::env::var("FRACTAL_REQUIRE_GPU_BACKENDS").is_ok_and(|v| v == "1")
+        fractal_render::device::backends_required()
     }
 
     /// The bench must time what the renderer draws: the same kernel and frame give the same pixels.
