@@ -39,7 +39,7 @@
 //! ```
 //!
 //! **Render an image** on the CPU (or [`WgpuRenderer`], `OpenClRenderer` with the `opencl` feature, or whichever
-//! [`select`] finds) and **write it** as a PNG:
+//! [`select()`] finds) and **write it** as a PNG:
 //!
 //! ```
 //! use fractal::prelude::*;

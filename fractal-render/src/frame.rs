@@ -4,9 +4,10 @@
 //! Lights are expressions of `t` and `param(..)`; they are evaluated here (in f64, then rounded to f32), so a kernel
 //! only reads numbers and a moving light never recompiles anything.
 //!
-//! A scene with perturbed Mandelbrot patterns ([`fractal_dsl::formula::mandelbrot`]) also gets the reference orbit of the
-//! camera position's pattern coordinates, computed here in f64 from the f64 pose: that is what lets a zoom go past
-//! what the kernels' f32 can resolve.
+//! A scene with perturbed Mandelbrot patterns
+//! ([`fractal_dsl::formula::mandelbrot`](mod@fractal_dsl::formula::mandelbrot)) also gets the reference orbit of the
+//! camera position's pattern coordinates, computed here in f64 from the f64 pose: that is what lets a zoom go past what
+//! the kernels' f32 can resolve.
 
 use fractal_dsl::analyse::ReferenceSpec;
 use fractal_dsl::back::FrameLayout;

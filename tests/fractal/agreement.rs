@@ -270,9 +270,9 @@ agreement_tests! {
 }
 
 /// The reference's two spellings of the power-8 Mandelbulb, the trig-free polynomial and the trigonometric form
-/// (reached through a parameter power of 8; its range starts at 8, so the step factor is the same 0.75), are one map: in f64 they must agree far below every f32 tolerance
-/// above, on the pole axis too. Otherwise the f32 comparisons of one of them would be measured against a wrong
-/// reference.
+/// (reached through a parameter power of 8; its range starts at 8, so the step factor is the same 0.75), are one map:
+/// in f64 they must agree far below every f32 tolerance above, on the pole axis too. Otherwise the f32 comparisons of
+/// one of them would be measured against a wrong reference.
 #[test]
 fn trig_free_and_trigonometric_mandelbulb_agree_at_power_8_in_f64() {
     let rows = rows::hard_cases();

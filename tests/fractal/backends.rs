@@ -2,10 +2,11 @@
 //! OpenCL (the OpenCL C kernel, precise and fast-math) — must draw the same picture: hit masks agree on at least 99 %
 //! of pixels and colours agree within a stated tolerance. This also proves every render kernel builds on each driver.
 //! A scene with a camera path is also drawn at its last key (for `mandelbrot_zoom`, a view 1.04e-12 wide, where its
-//! pattern is computed by perturbation). And every scene draws something at its own camera and time — at least 5 % of its pixels hit — with no NaN or Inf
-//! anywhere in its CPU traces (colour before packing, depth, normal), which packing to RGBA8 would hide. The GPU
-//! backends' trace kernels (the render kernel that also keeps each pixel's depth, normal and steps, which the accuracy
-//! report reads) agree with the CPU's traces on a set of scenes chosen to cover the render algorithm's paths.
+//! pattern is computed by perturbation). And every scene draws something at its own camera and time — at least 5 % of
+//! its pixels hit — with no NaN or Inf anywhere in its CPU traces (colour before packing, depth, normal), which packing
+//! to RGBA8 would hide. The GPU backends' trace kernels (the render kernel that also keeps each pixel's depth, normal
+//! and steps, which the accuracy report reads) agree with the CPU's traces on a set of scenes chosen to cover the
+//! render algorithm's paths.
 //!
 //! Tolerance: a pixel "agrees" when every channel is within 8/255 of the CPU image. The kernels run the same algorithm
 //! in f32, but GPU built-ins (sqrt, pow, normalize, sin) may differ by a few ulps; near a silhouette or a shadow edge

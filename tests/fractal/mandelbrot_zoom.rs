@@ -1,19 +1,19 @@
 //! The deep zoom of the `mandelbrot_zoom` scene. At the deepest key of its camera path the view is 1e-12 wide, 10⁻¹⁴
 //! per pixel here, where f32 numbers near 0.74 are 6·10⁻⁸ apart. The pattern there is computed by perturbation
-//! (`fractal_dsl::formula::mandelbrot`): the frame's f64 reference orbit at the camera position, and per pixel the hit's offset
-//! from the camera, rd·t, in f32.
+//! (`fractal_dsl::formula::mandelbrot`): the frame's f64 reference orbit at the camera position, and per pixel the
+//! hit's offset from the camera, rd·t, in f32.
 //!
 //! The check, at every pixel of a 96×54 render: the escape count the CPU renderer's perturbed pattern computes (f32,
 //! the frame's orbit, the renderer's own t) against the count of a double-double (106-bit) iteration of the same
 //! pixel's c = camera + rd·t. Near the set's boundary counts are chaotic below the pixel scale: moving c by a
 //! fiftieth of a pixel changes the double-double count of about half of these pixels (a thousandth of a pixel: a
 //! quarter of them). Such a pixel has no count at any precision an f64 renderer has — an f64 ulp of c is already a
-//! hundredth of a pixel here, and a direct f64 iteration gets those pixels wrong as often as perturbation does. The test
-//! measures them (their share is printed and bounded) and holds the perturbed counts to the others, the *resolvable*
-//! pixels: those whose double-double count stays the same when c moves by a fiftieth of a pixel either way. There the
-//! perturbed count must be exact on ≥ 99 % (measured 99.6 %; a direct f64 iteration: 99.8 %). The plain f32 iteration,
-//! for contrast, must fail (< 50 %; measured 0 %), which shows the test can tell. The backends' renders of this key are
-//! compared with the CPU's in `tests/backends.rs`.
+//! hundredth of a pixel here, and a direct f64 iteration gets those pixels wrong as often as perturbation does. The
+//! test measures them (their share is printed and bounded) and holds the perturbed counts to the others, the
+//! *resolvable* pixels: those whose double-double count stays the same when c moves by a fiftieth of a pixel either
+//! way. There the perturbed count must be exact on ≥ 99 % (measured 99.6 %; a direct f64 iteration: 99.8 %). The plain
+//! f32 iteration, for contrast, must fail (< 50 %; measured 0 %), which shows the test can tell. The backends' renders
+//! of this key are compared with the CPU's in `tests/backends.rs`.
 //!
 //! Counts are read from the smooth value ν = n + 1 − log₂(log₂|z|): escape means 16 < |z| < 16² + 2, so
 //! log₂(log₂|z|) lies in (2, 3) and n = ⌊ν⌋ + 2.

@@ -1,8 +1,9 @@
-//! Which Mandelbrot patterns a frame's perturbation reference serves ([`crate::formula::mandelbrot`]): the calls
-//! `mandelbrot(a, b, n)` whose first two arguments are coordinates of the point, on a shape whose material reads
-//! world coordinates (nothing above it moves the point). The frame computes one reference orbit at the camera's
-//! position for those axes, long enough for the largest count; every such call with the same axes is computed by
-//! perturbation around it, every other call by the plain iteration.
+//! Which Mandelbrot patterns a frame's perturbation reference serves
+//! ([`crate::formula::mandelbrot`](mod@crate::formula::mandelbrot)): the calls `mandelbrot(a, b, n)` whose first two
+//! arguments are coordinates of the point, on a shape whose material reads world coordinates (nothing above it moves
+//! the point). The frame computes one reference orbit at the camera's position for those axes, long enough for the
+//! largest count; every such call with the same axes is computed by perturbation around it, every other call by the
+//! plain iteration.
 
 use crate::ir::{Expr, Func, Material, Node, Scene};
 use crate::visit::{material_exprs, visit_node_exprs};

@@ -66,8 +66,8 @@ pub fn f32_literal(v: f64) -> String {
 /// | R + 1 + i/2 | `orbit[i / 2]`: entry i of the reference orbit in xy (even i) or zw (odd i) | |
 ///
 /// Pixel (x, y) looks along forward + u·right + v·up with u = (2(x + 0.5) − w)/h and v = −(2(y + 0.5) − h)/h.
-/// The reference orbit ([`crate::formula::mandelbrot`]) is that of the camera position's pattern coordinates; the
-/// sample function reads the hit point relative to the camera, rd·t.
+/// The reference orbit ([`crate::formula::mandelbrot`](mod@crate::formula::mandelbrot)) is that of the camera
+/// position's pattern coordinates; the sample function reads the hit point relative to the camera, rd·t.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct FrameLayout {
     pub lights: usize,

@@ -27,7 +27,8 @@ pub struct Env<'a, F> {
     pub time: F,
     pub params: &'a [F],
     /// The frame's perturbation reference at the point being sampled; `None` evaluates those patterns around the
-    /// reference point 0, which is the plain iteration ([`crate::formula::mandelbrot`]).
+    /// reference point 0, which is the plain iteration
+    /// ([`crate::formula::mandelbrot`](mod@crate::formula::mandelbrot)).
     pub reference: Option<Reference<'a, F>>,
 }
 

@@ -1,6 +1,7 @@
 //! Gradient noise (Perlin's improved noise) in 2D and 3D and its fractal sums (fbm), patterns expressions can call —
 //! written once, generic over [`Num`], and reached through the leaf table (`noise2`, `noise3`, `fbm2`, `fbm3` in every
-//! kernel that uses them). The other pattern, the Mandelbrot set, is [`crate::formula::mandelbrot`].
+//! kernel that uses them). The other pattern, the Mandelbrot set, is
+//! [`crate::formula::mandelbrot`](mod@crate::formula::mandelbrot).
 //!
 //! The lattice hash is the permutation polynomial (34x² + x) mod 289 (Gustavson and McEwan's table-free noise), on
 //! whole numbers below 2^23, so every product is exact in f32 and every backend picks the same gradients: there is no

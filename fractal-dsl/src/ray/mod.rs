@@ -1,7 +1,7 @@
 //! The ray program: every step of a pixel's ray — camera ray, bound clip, march with its variants, sign refinement,
-//! normal, material, lights, shadows, occlusion, glow and fog — written once over any [`Num`], as the leaf formulas
-//! are. The CPU renderer runs it in f32, f64 and [`crate::number::lanes::F32x8`] packets; what a renderer adds is only
-//! how it finds its pixels, schedules rays and writes its image.
+//! normal, material, lights, shadows, occlusion, glow and fog — written once over any [`Num`](crate::number::Num), as
+//! the leaf formulas are. The CPU renderer runs it in f32, f64 and [`crate::number::lanes::F32x8`] packets; what a
+//! renderer adds is only how it finds its pixels, schedules rays and writes its image.
 //!
 //! The program reads a scene through [`SceneFns`] (distance and material, from whichever evaluator runs it), its
 //! settings as [`Rules`] (fixed per scene: code the scene does not need is not run) and a frame's camera and lights

@@ -34,9 +34,9 @@ impl fmt::Display for ValidationError {
 
 impl std::error::Error for ValidationError {}
 
-/// A scene that breaks rules of the language: every broken rule [`validate`] found. Every way into the compiler and
-/// the evaluators ([`crate::compile`], [`crate::eval::interp::Interpreter::new`]) returns it for a scene made with the
-/// builder; the parser and `scene!` report the same rules at their source location instead.
+/// A scene that breaks rules of the language: every broken rule [`validate`](super::validate) found. Every way into the
+/// compiler and the evaluators ([`crate::compile`], [`crate::eval::interp::Interpreter::new`]) returns it for a scene
+/// made with the builder; the parser and `scene!` report the same rules at their source location instead.
 #[derive(Clone, Debug, PartialEq)]
 pub struct InvalidScene(pub Vec<ValidationError>);
 

@@ -480,9 +480,9 @@ fn high_power_mandelbulbs_stay_finite_in_f64() {
     }
 }
 
-/// Case 3 in f32. `formula::mandelbulb_escape` keeps |z|^power below 2^120, but `length` squares the new z, which overflows
-/// f32 (2^128) once |z| passes 2^64: the estimate becomes +∞. With bailout 256, 15% of points within 1.5 of the origin
-/// at power 16 and 3% at power 32 are affected (measured over 100 000 points).
+/// Case 3 in f32. `formula::mandelbulb_escape` keeps |z|^power below 2^120, but `length` squares the new z, which
+/// overflows f32 (2^128) once |z| passes 2^64: the estimate becomes +∞. With bailout 256, 15% of points within 1.5 of
+/// the origin at power 16 and 3% at power 32 are affected (measured over 100 000 points).
 #[test]
 fn high_power_mandelbulbs_stay_finite_in_f32() {
     let d = formula::de_mandelbulb(v3(-0.73857415f32, -1.087467, 0.24681997), 16.0, 8, 256.0)[0];
@@ -552,8 +552,8 @@ fn smooth_union_at_zero_and_huge_blend_radius() {
 }
 
 /// The quaternion Julia estimate at the critical point: z = 0 has a vanishing derivative, so the formula divides
-/// 0 by 0 when c = 0 (NaN) and a positive log by 0 for escaping c (+∞). Kept as a record until `formula::de_julia` guards
-/// the division.
+/// 0 by 0 when c = 0 (NaN) and a positive log by 0 for escaping c (+∞). Kept as a record until `formula::de_julia`
+/// guards the division.
 #[test]
 fn julia_at_its_critical_point_is_finite() {
     for c in [[0.0; 4], [0.3, 0.0, 0.0, 0.0]] {

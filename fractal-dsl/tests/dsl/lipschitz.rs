@@ -1,6 +1,6 @@
 //! Distances are lower bounds: exact primitives, CSG and rigid transforms are 1-Lipschitz, and each fractal's
-//! estimator times its step factor ([`fractal_dsl::Fractal::step_factor`]) stays within the Lipschitz bound on sampled pairs.
-//! The fractal tests print the measured ratios; the step factors in the IR are set from them.
+//! estimator times its step factor ([`fractal_dsl::Fractal::step_factor`]) stays within the Lipschitz bound on sampled
+//! pairs. The fractal tests print the measured ratios; the step factors in the IR are set from them.
 
 use fractal_dsl::builder::*;
 use fractal_dsl::eval::interp::Interpreter;
@@ -193,9 +193,9 @@ fn julia_escapes(p: [f64; 3], c: [f64; 4], iterations: u32, bailout: f64) -> boo
 }
 
 /// The largest |f(p) − f(q)| / |p − q| of the scaled estimator over `pairs` pairs of exterior points near the surface
-/// (raw estimate below 10% of `half`, the bound's half extent), |p − q| = 1% of `half`. At smaller separations the estimators' fine detail makes the
-/// largest ratio grow without limit as the sample count grows (measured: 49 at 1e-4 for the default Mandelbulb);
-/// at the step scale it settles.
+/// (raw estimate below 10% of `half`, the bound's half extent), |p − q| = 1% of `half`. At smaller separations the
+/// estimators' fine detail makes the largest ratio grow without limit as the sample count grows (measured: 49 at 1e-4
+/// for the default Mandelbulb); at the step scale it settles.
 fn measured_ratio(fractal: Fractal, half: f64, exterior: &dyn Fn([f64; 3]) -> bool, pairs: usize, seed: u64) -> f64 {
     let step = fractal.step_factor_or_default();
     let interp = Interpreter::new(&scene(fractal)).unwrap();

@@ -1,7 +1,7 @@
-//! Each fractal family's membership test (declared in `vocab/fractals.rs`, formulas `in_*` in `formula/membership.rs`): it pairs every
-//! estimator leaf with a membership leaf of the same arguments, it agrees with points whose membership is known from
-//! the set's definition, it never puts a point outside the family's declared bound, and where the estimate says the
-//! surface is well away it says outside.
+//! Each fractal family's membership test (declared in `vocab/fractals.rs`, formulas `in_*` in `formula/membership.rs`):
+//! it pairs every estimator leaf with a membership leaf of the same arguments, it agrees with points whose membership
+//! is known from the set's definition, it never puts a point outside the family's declared bound, and where the
+//! estimate says the surface is well away it says outside.
 
 use fractal_dsl::builder::*;
 use fractal_dsl::formula::leaf::{LeafArg, LeafOut};

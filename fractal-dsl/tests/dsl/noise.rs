@@ -1,6 +1,7 @@
 //! Gradient noise: its range, its slope (the displacement's Lipschitz bound reads the declared slopes, so a slope
 //! above them would let a march step through a displaced surface), and its variety (not a constant, not periodic at
-//! small scales). The measured values are printed; the declared constants in `fractal_dsl::formula::noise` must stay above.
+//! small scales). The measured values are printed; the declared constants in `fractal_dsl::formula::noise` must stay
+//! above.
 
 use fractal_dsl::formula::noise::{fbm2, fbm3, noise2, noise3, NOISE2_SLOPE, NOISE3_SLOPE};
 use fractal_dsl::number::math::v3;

@@ -303,7 +303,8 @@ pub fn probe_opencl(
     OpenClRenderer::new(precise)?.probe(source, frame, points)
 }
 
-/// A write-only buffer for a packed RGBA8 image of `width`×`height`; too large for the device is [`RenderError::TooLarge`].
+/// A write-only buffer for a packed RGBA8 image of `width`×`height`; too large for the device is
+/// [`RenderError::TooLarge`].
 pub fn image_buffer(queue: &Queue, width: u32, height: u32) -> Result<Buffer<u32>, RenderError> {
     Buffer::<u32>::builder()
         .queue(queue.clone())

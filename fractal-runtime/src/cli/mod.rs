@@ -1,6 +1,6 @@
-//! The `fractal` command line: `render`, `bench`, `accuracy`, `export`, `mesh`, `list`, `gallery` and `view` (the interactive viewer,
-//! [`crate::viewer`]). The binary is a shim that passes in the built-in scene table ([`SceneLibrary`]), so the runtime
-//! does not depend on the scene library.
+//! The `fractal` command line: `render`, `bench`, `accuracy`, `export`, `mesh`, `list`, `gallery` and `view` (the
+//! interactive viewer, [`crate::viewer`]). The binary is a shim that passes in the built-in scene table
+//! ([`SceneLibrary`]), so the runtime does not depend on the scene library.
 //!
 //! Errors print as one `error: …` line on stderr and exit with 2 for usage errors and 1 for failures
 //! ([`error::CliError`]); nothing a user types makes the program panic.

@@ -2,10 +2,11 @@
 //!
 //! The field meshed is max(scene distance, distance to the meshing box) − level: the scene cut to the box, so every
 //! mesh is closed, at the level its settings give. The grid has one empty cell of padding around the box. Corner
-//! samples are taken a layer at a time (rows in parallel); a tile of 8×8 corners whose centre is outside and farther from the surface than the tile's half
-//! diagonal plus 1.5 cells is filled from that one sample — outside, the field is a distance bound, so no surface
-//! passes through the tile and none of its corners sits on an edge the surface crosses. Inside, a fractal's estimate
-//! is no distance (the Juliabulb's reads −0.5 a hair from its surface), so tiles inside are always sampled.
+//! samples are taken a layer at a time (rows in parallel); a tile of 8×8 corners whose centre is outside and farther
+//! from the surface than the tile's half diagonal plus 1.5 cells is filled from that one sample — outside, the field is
+//! a distance bound, so no surface passes through the tile and none of its corners sits on an edge the surface crosses.
+//! Inside, a fractal's estimate is no distance (the Juliabulb's reads −0.5 a hair from its surface), so tiles inside
+//! are always sampled.
 //!
 //! Every cell whose corners differ in sign gets one vertex: the mean of the crossings on its edges (linear
 //! interpolation), moved once along the gradient onto the surface and kept inside its cell. Every grid edge whose ends

@@ -15,8 +15,9 @@ impl Truth {
     /// between `n` and the true surface's normals across the pixel's footprint — the centre's, and those of the
     /// surface where the sub-rays [`CONE_NORMAL_SPACING`] pixels apart on a 3×3 lattice around the centre meet it,
     /// each from rays that far around it. A pixel shades one normal for all it covers, and the surface under it turns
-    /// by up to [`ROUGH_DEGREES`](super::ROUGH_DEGREES) where it counts as smooth, so any normal the surface takes within the pixel is as
-    /// right as the centre's; `None` when no sub-ray finds a normal. Computed once per pixel and kept.
+    /// by up to [`ROUGH_DEGREES`](super::ROUGH_DEGREES) where it counts as smooth, so any normal the surface takes
+    /// within the pixel is as right as the centre's; `None` when no sub-ray finds a normal. Computed once per pixel and
+    /// kept.
     pub fn cone_normal_error(&self, x: u32, y: u32, n: [f64; 3]) -> Option<f64> {
         let index = (y * self.width + x) as usize;
         let normals = self.cone_normals[index].get_or_init(|| self.normals_across(x, y));

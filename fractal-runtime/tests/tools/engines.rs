@@ -134,8 +134,8 @@ fn wgsl_libraries_validate_and_bevy_materials_compose_with_naga_oil() {
 
 /// The WGSL library's `sdf`, `sdf_material` and sample terms against the scene's own probe kernel, on the same
 /// device at the same points (at the parameters' defaults, t = 0). Both are the same lowered code, with parameters
-/// read from the library's globals instead of the frame ([`DISTANCE_ULPS`], [`COLOUR_DIFFERENCE`]); a scene with a perturbed pattern
-/// differs in albedo only (the library iterates it plainly), so its albedo is not compared.
+/// read from the library's globals instead of the frame ([`DISTANCE_ULPS`], [`COLOUR_DIFFERENCE`]); a scene with a
+/// perturbed pattern differs in albedo only (the library iterates it plainly), so its albedo is not compared.
 #[test]
 fn the_wgsl_library_agrees_with_the_probe_kernel_on_wgpu() {
     let Some(mut gpu) = available("wgpu", WgpuRenderer::new()) else { return };

@@ -88,14 +88,14 @@ pub fn distance_tolerance(family: Family, class: Class) -> Tol {
         (CpuF32, Julia) => ulps(12.0),
         (Gpu | FastMath, Julia) => ulps(16.0),
         // Mandelbulb: the same cancellation, except at high powers and bailouts, where r^power spans many binades, and
-        // in the trigonometric form (any power but the literal 8, the Juliabulb), which takes θ = atan2(ρ, z): acos(z/r)
-        // lost ~1e-4 rad near the poles on lavapipe, which a Juliabulb orbit magnified past any tolerance. Measured ≤
-        // 27.6 on the CPU (power 8 with bailout 256), 9.6 on pocl. lavapipe's atan2 and pow are less accurate than
-        // libm's (Vulkan allows several ulps; pow 3 + 2|x·log2 y| ulps): 119.7 on power 7.5 near never-escaping
-        // points (CPU 0.5), 89.8 down the pole axis (CPU 15.7). The Juliabulb measures ≤ 13.7 on lavapipe, 1.4 on the
-        // CPU (outside the set; inside only the sign is compared, see the harness). pocl's fast math depends on the
-        // host it compiles for: ≤ 9.6 on an AMD EPYC, 120.7 on an Intel Xeon (power 8 with bailout 256 at a
-        // never-escaping point on x = 0, where the estimate is −0.012), so fast math gets the GPU bound.
+        // in the trigonometric form (any power but the literal 8, the Juliabulb), which takes θ = atan2(ρ, z):
+        // acos(z/r) lost ~1e-4 rad near the poles on lavapipe, which a Juliabulb orbit magnified past any tolerance.
+        // Measured ≤ 27.6 on the CPU (power 8 with bailout 256), 9.6 on pocl. lavapipe's atan2 and pow are less
+        // accurate than libm's (Vulkan allows several ulps; pow 3 + 2|x·log2 y| ulps): 119.7 on power 7.5 near
+        // never-escaping points (CPU 0.5), 89.8 down the pole axis (CPU 15.7). The Juliabulb measures ≤ 13.7 on
+        // lavapipe, 1.4 on the CPU (outside the set; inside only the sign is compared, see the harness). pocl's fast
+        // math depends on the host it compiles for: ≤ 9.6 on an AMD EPYC, 120.7 on an Intel Xeon (power 8 with bailout
+        // 256 at a never-escaping point on x = 0, where the estimate is −0.012), so fast math gets the GPU bound.
         // The Juliabulb's derivative takes the map's azimuthal stretch |sin pθ|·r/ρ (`sdf::de_juliabulb`), so
         // lavapipe's sin at arguments up to 8π reaches its estimate too: measured 203 on lavapipe near the surface
         // (13.7 before the stretch).

@@ -52,9 +52,9 @@ fn path_keys(scene: &Scene, studied: f64) -> Vec<(f64, [f64; 3], [f64; 3])> {
 }
 
 /// Checks the scene default and the settings within budget at the sweep's time `studied` (`points`, judged against
-/// the truth at `settings`) from every other key of the scene's camera path, telling `say` each key's truth, each key's figures on
-/// each backend, then the verdicts on the default and on the fastest setting. Returns whether the scene has such a
-/// key (nothing is said when not).
+/// the truth at `settings`) from every other key of the scene's camera path, telling `say` each key's truth, each key's
+/// figures on each backend, then the verdicts on the default and on the fastest setting. Returns whether the scene has
+/// such a key (nothing is said when not).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn check(
     scene: &Scene,
@@ -123,7 +123,8 @@ pub(super) fn check(
         (false, _) => format!("the scene default is not within budget at {}", default_fails.join(", ")),
     });
 
-    // The settings within budget at the sweep's time, fastest first: the first within budget at every key is the path's.
+    // The settings within budget at the sweep's time, fastest first: the first within budget at every key is the
+    // path's.
     let mut candidates: Vec<&SweepPoint> = points.iter().filter(|p| budget.violations(&p.error).is_empty()).collect();
     candidates.sort_by(|a, b| a.time_ms.total_cmp(&b.time_ms));
     let mut rejected = Vec::new();
