@@ -160,11 +160,13 @@ fn the_window_shows_the_offline_render_of_the_scripted_pose() {
     if xwd.is_none() {
         eprintln!("note: not comparing the X server's copy of the window (needs our own Xvfb and xwd)");
     }
+    // The child test by its full name in this binary (`viewer::viewer_child_process`), so `--exact` finds it.
+    let child_test = format!("{}::viewer_child_process", module_path!().split_once("::").map_or("", |(_, m)| m));
     for mode in ["auto", "cpu-softbuffer", "hot-reload", "animated"] {
         let dir = scratch_dir(mode);
         let exe = std::env::current_exe().expect("the test binary's path");
         let mut child = Command::new(exe)
-            .args(["--exact", "viewer_child_process", "--ignored", "--nocapture", "--test-threads=1"])
+            .args(["--exact", &child_test, "--ignored", "--nocapture", "--test-threads=1"])
             .env(CHILD_ENV, &dir)
             .env(MODE_ENV, mode)
             .env("DISPLAY", &display)
