@@ -1,4 +1,4 @@
-//! What the renderer's tests share: fixture kernels, frames for them, the built-in scenes, and the rule for backends
+//! What the renderer's tests share: fixture kernels, frames for them, and the rule for backends
 //! that are missing (skip with a note, or fail when FRACTAL_REQUIRE_GPU_BACKENDS=1).
 
 use std::path::Path;
@@ -152,25 +152,4 @@ pub fn fraction_different(a: &Image, b: &Image, tolerance: u8) -> f64 {
         .filter(|(x, y)| x.to_le_bytes().iter().zip(y.to_le_bytes()).any(|(p, q)| p.abs_diff(q) > tolerance))
         .count();
     differing as f64 / a.pixels.len() as f64
-}
-
-/// Every built-in scene's file name (without extension) and scene, read from `scenes/fractal/*.fractal`.
-pub fn builtin_scenes() -> Vec<(String, Scene)> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/fractal");
-    let mut files: Vec<std::path::PathBuf> = std::fs::read_dir(&dir)
-        .unwrap_or_else(|e| panic!("cannot list {}: {e}", dir.display()))
-        .map(|entry| entry.expect("directory entry").path())
-        .filter(|p| p.extension().is_some_and(|e| e == "fractal"))
-        .collect();
-    files.sort();
-    assert!(!files.is_empty(), "no .fractal files in {}", dir.display());
-    files
-        .into_iter()
-        .map(|path| {
-            let name = path.file_stem().expect("file name").to_string_lossy().into_owned();
-            let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-            let scene = fractal_dsl::parse::parse_str(&text).unwrap_or_else(|e| panic!("{}:{e}", path.display()));
-            (name, scene)
-        })
-        .collect()
 }

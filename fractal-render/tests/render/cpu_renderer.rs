@@ -228,13 +228,13 @@ fn jobs_without_an_evaluator_or_with_another_scenes_frame_are_errors() {
 #[test]
 fn packet_marching_draws_the_scalar_renderers_image() {
     use fractal_dsl::eval::interp::Interpreter;
-    for (name, scene) in crate::common::builtin_scenes() {
-        let interp = Interpreter::new(&scene).expect("a valid scene");
+    for (name, scene) in scenes::ALL.iter().map(|(n, c)| (*n, c.scene())) {
+        let interp = Interpreter::new(scene).expect("a valid scene");
         // 61 columns: the last packet of each row is partly padding.
-        let frame = Frame::default_view(&scene, 0.0, 61, 20).expect("frame");
+        let frame = Frame::default_view(scene, 0.0, 61, 20).expect("frame");
         let packets = Evaluator::<f32>::packets(&interp).expect("the interpreter has a packet instance");
-        let packed = fractal_render::backend::cpu::render_packets(packets, &scene, &frame).expect("render");
-        let scalar = render_scene::<f32, _>(&interp, &scene, &frame).expect("render");
+        let packed = fractal_render::backend::cpu::render_packets(packets, scene, &frame).expect("render");
+        let scalar = render_scene::<f32, _>(&interp, scene, &frame).expect("render");
         let differing = packed.pixels.iter().zip(&scalar.pixels).filter(|(a, b)| a != b).count();
         assert_eq!(differing, 0, "{name}: {differing} pixels differ between packet and scalar marching");
     }

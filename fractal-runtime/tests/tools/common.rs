@@ -1,10 +1,9 @@
-//! What the tools' tests share: the built-in scenes, the external validators, and the rule for backends and tools
+//! What the tools' tests share: the external validators and the rule for backends and tools
 //! that are missing (skip with a note, or fail when FRACTAL_REQUIRE_GPU_BACKENDS=1).
 
 use fractal_render::device::backends_required;
 use std::path::Path;
 
-use fractal_dsl::Scene;
 use fractal_render::RenderError;
 
 /// The opened backend, or `None` with a printed note when it is missing and not required.
@@ -19,27 +18,6 @@ pub fn available<T>(backend: &str, opened: Result<T, RenderError>) -> Option<T> 
             None
         }
     }
-}
-
-/// Every built-in scene's file name (without extension) and scene, read from `scenes/fractal/*.fractal`.
-pub fn builtin_scenes() -> Vec<(String, Scene)> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/fractal");
-    let mut files: Vec<std::path::PathBuf> = std::fs::read_dir(&dir)
-        .unwrap_or_else(|e| panic!("cannot list {}: {e}", dir.display()))
-        .map(|entry| entry.expect("directory entry").path())
-        .filter(|p| p.extension().is_some_and(|e| e == "fractal"))
-        .collect();
-    files.sort();
-    assert!(!files.is_empty(), "no .fractal files in {}", dir.display());
-    files
-        .into_iter()
-        .map(|path| {
-            let name = path.file_stem().expect("file name").to_string_lossy().into_owned();
-            let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-            let scene = fractal_dsl::parse::parse_str(&text).unwrap_or_else(|e| panic!("{}:{e}", path.display()));
-            (name, scene)
-        })
-        .collect()
 }
 
 /// Whether the external validator `tool` can be run; a missing one fails the test only when it is required.

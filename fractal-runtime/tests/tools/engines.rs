@@ -18,7 +18,7 @@ use fractal_render::{Frame, KernelSources, RenderJob, Renderer, WgpuRenderer};
 use fractal_runtime::package::{package, Engine, Package};
 use naga_oil::compose::{ComposableModuleDescriptor, Composer, NagaModuleDescriptor, ShaderDefValue};
 
-use crate::common::{available, builtin_scenes, run_validator, tool_available};
+use crate::common::{available, run_validator, tool_available};
 
 fn packaged(name: &str, scene: &fractal_dsl::Scene, engine: Engine) -> Package {
     package(scene, name, engine).unwrap_or_else(|e| panic!("{name} for {engine}: {e}"))
@@ -48,9 +48,9 @@ fn validate_wgsl(label: &str, module: &naga::Module, source: &str) {
 
 #[test]
 fn every_scene_packages_for_every_engine_with_the_whole_library() {
-    for (name, scene) in builtin_scenes() {
+    for (name, scene) in scenes::ALL.iter().map(|(n, c)| (*n, c.scene())) {
         for engine in Engine::ALL {
-            let p = packaged(&name, &scene, engine);
+            let p = packaged(name, scene, engine);
             let library = &p.files[0].contents;
             for function in ["sdf(", "sdf_normal(", "sdf_material(", "sdf_raymarch(", "SDF_BOUND_RADIUS"] {
                 assert!(library.contains(function), "{name} for {engine}: the library lacks {function}");
@@ -85,14 +85,14 @@ fn wgsl_libraries_validate_and_bevy_materials_compose_with_naga_oil() {
     const VIEW: &str = "#define_import_path bevy_pbr::mesh_view_bindings\n\n\
         struct View {\n    clip_from_world: mat4x4<f32>,\n    clip_from_view: mat4x4<f32>,\n    world_position: vec3<f32>,\n    viewport: vec4<f32>,\n}\n\n\
         @group(0) @binding(0) var<uniform> view: View;\n";
-    for (name, scene) in builtin_scenes() {
-        let plain = packaged(&name, &scene, Engine::Wgsl);
+    for (name, scene) in scenes::ALL.iter().map(|(n, c)| (*n, c.scene())) {
+        let plain = packaged(name, scene, Engine::Wgsl);
         let source = file(&plain, &format!("{name}.wgsl"));
         let module =
             naga::front::wgsl::parse_str(source).unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(source)));
-        validate_wgsl(&name, &module, source);
+        validate_wgsl(name, &module, source);
 
-        let bevy = packaged(&name, &scene, Engine::Bevy);
+        let bevy = packaged(name, scene, Engine::Bevy);
         let mut composer = Composer::default();
         for (path, stub) in [("forward_io.wgsl", FORWARD_IO), ("mesh_view_bindings.wgsl", VIEW)] {
             let added = composer
@@ -139,8 +139,8 @@ fn wgsl_libraries_validate_and_bevy_materials_compose_with_naga_oil() {
 #[test]
 fn the_wgsl_library_agrees_with_the_probe_kernel_on_wgpu() {
     let Some(mut gpu) = available("wgpu", WgpuRenderer::new()) else { return };
-    for (name, scene) in builtin_scenes() {
-        let library = &packaged(&name, &scene, Engine::Wgsl).files[0].contents;
+    for (name, scene) in scenes::ALL.iter().map(|(n, c)| (*n, c.scene())) {
+        let library = &packaged(name, scene, Engine::Wgsl).files[0].contents;
         let probe = format!(
             "{library}\n\
              struct ProbeFrame {{\n    origin: vec4<f32>,\n}}\n\n\
@@ -158,8 +158,8 @@ fn the_wgsl_library_agrees_with_the_probe_kernel_on_wgpu() {
              \x20   probe_out[2u * i + 1u] = vec4<f32>(sdf_material(p), s.shininess);\n\
              }}\n"
         );
-        let frame = Frame::default_view(&scene, 0.0, 8, 8).expect("frame");
-        let (min, max) = scene_box(&scene);
+        let frame = Frame::default_view(scene, 0.0, 8, 8).expect("frame");
+        let (min, max) = scene_box(scene);
         let points: Vec<[f32; 4]> = (0..256)
             .map(|i| {
                 let u = |k: f64| (0.5 + 0.5 * (k * (i as f64 + 1.0)).sin()) as f32;
@@ -167,7 +167,7 @@ fn the_wgsl_library_agrees_with_the_probe_kernel_on_wgpu() {
                 [at(0, 12.9898), at(1, 78.233), at(2, 37.719), 0.0]
             })
             .collect();
-        let program = fractal_dsl::lower::lower(&scene);
+        let program = fractal_dsl::lower::lower(scene);
         let got = gpu.probe(&probe, &frame, &points).unwrap_or_else(|e| panic!("{name}: the library: {e}"));
         let want = gpu.probe(&wgsl::write(&program, Entry::Probe), &frame, &points).expect("the probe kernel");
         let perturbed = program.reference.is_some();
@@ -238,8 +238,8 @@ fn glsl_libraries_pass_glslang_as_glsl_450_and_es_300() {
     if !tool_available("glslangValidator") {
         return;
     }
-    for (name, scene) in builtin_scenes() {
-        let library = packaged(&name, &scene, Engine::Glsl).files[0].contents.clone();
+    for (name, scene) in scenes::ALL.iter().map(|(n, c)| (*n, c.scene())) {
+        let library = packaged(name, scene, Engine::Glsl).files[0].contents.clone();
         glslang(&format!("{name}.450.frag"), &format!("#version 450\n{library}{GLSL_MAIN}"), &[]);
         let es = format!("#version 300 es\nprecision highp float;\nprecision highp int;\n{library}{GLSL_MAIN}");
         glslang(&format!("{name}.es.frag"), &es, &[]);
@@ -251,8 +251,8 @@ fn shadertoy_packages_pass_glslang_with_the_shadertoy_prelude() {
     if !tool_available("glslangValidator") {
         return;
     }
-    for (name, scene) in builtin_scenes() {
-        let p = packaged(&name, &scene, Engine::Shadertoy);
+    for (name, scene) in scenes::ALL.iter().map(|(n, c)| (*n, c.scene())) {
+        let p = packaged(name, scene, Engine::Shadertoy);
         let text = file(&p, &format!("{name}.glsl"));
         assert!(text.contains("void mainImage(out vec4 fragColor, in vec2 fragCoord)"), "{name}: no mainImage");
         let wrapped = format!(
@@ -285,8 +285,8 @@ fn godot_packages_pass_glslang_after_a_thin_wrapper() {
     if !tool_available("glslangValidator") {
         return;
     }
-    for (name, scene) in builtin_scenes() {
-        let p = packaged(&name, &scene, Engine::Godot);
+    for (name, scene) in scenes::ALL.iter().map(|(n, c)| (*n, c.scene())) {
+        let p = packaged(name, scene, Engine::Godot);
         let include_name = format!("{name}.gdshaderinc");
         let include = godot_include_as_glsl(file(&p, &include_name));
         glslang(&format!("{name}.godot.frag"), &format!("#version 450\n{include}{GLSL_MAIN}"), &[]);
@@ -332,8 +332,8 @@ fn hlsl_libraries_pass_glslang_hlsl_front_end() {
     if !tool_available("glslangValidator") {
         return;
     }
-    for (name, scene) in builtin_scenes() {
-        let library = packaged(&name, &scene, Engine::Hlsl).files[0].contents.clone();
+    for (name, scene) in scenes::ALL.iter().map(|(n, c)| (*n, c.scene())) {
+        let library = packaged(name, scene, Engine::Hlsl).files[0].contents.clone();
         glslang_hlsl(&format!("{name}.hlsl"), &format!("{library}{HLSL_MAIN}"), "main");
     }
 }
@@ -346,8 +346,8 @@ fn unity_packages_pass_glslang_hlsl_front_end() {
     const UNITY_CG: &str = "float4 _Time;\nfloat3 _WorldSpaceCameraPos;\nfloat4 _ScreenParams;\n\
         float4x4 unity_ObjectToWorld;\nfloat4x4 UNITY_MATRIX_P;\nfloat4x4 UNITY_MATRIX_VP;\n\
         float4 UnityObjectToClipPos(float4 v) { return mul(UNITY_MATRIX_VP, mul(unity_ObjectToWorld, v)); }\n";
-    for (name, scene) in builtin_scenes() {
-        let p = packaged(&name, &scene, Engine::Unity);
+    for (name, scene) in scenes::ALL.iter().map(|(n, c)| (*n, c.scene())) {
+        let p = packaged(name, scene, Engine::Unity);
         let include_name = format!("{name}.hlsl");
         let library = file(&p, &include_name);
         // The Custom Function entry points, called as Shader Graph would.
@@ -381,8 +381,8 @@ fn unreal_packages_pass_glslang_hlsl_front_end() {
     }
     const VIEW: &str = "struct ViewParameters {\n    float4x4 ViewToClip;\n    float4 ViewSizeAndInvSize;\n};\n\
         cbuffer View_ { ViewParameters View; };\n";
-    for (name, scene) in builtin_scenes() {
-        let p = packaged(&name, &scene, Engine::Unreal);
+    for (name, scene) in scenes::ALL.iter().map(|(n, c)| (*n, c.scene())) {
+        let p = packaged(name, scene, Engine::Unreal);
         let library = file(&p, &format!("{name}.ush"));
         let body = file(&p, &format!("{name}_custom_node.hlsl"));
         // Unreal wraps a Custom node's code in a function of its inputs and additional outputs.
@@ -409,8 +409,8 @@ fn unreal_packages_pass_glslang_hlsl_front_end() {
 #[test]
 fn the_wgsl_library_renders_the_kernels_image_on_wgpu() {
     let Some(mut gpu) = available("wgpu", WgpuRenderer::new()) else { return };
-    for (name, scene) in builtin_scenes() {
-        let library = &packaged(&name, &scene, Engine::Wgsl).files[0].contents;
+    for (name, scene) in scenes::ALL.iter().map(|(n, c)| (*n, c.scene())) {
+        let library = &packaged(name, scene, Engine::Wgsl).files[0].contents;
         let render = format!(
             "{library}\n\
              struct CameraFrame {{\n    origin: vec4<f32>,\n    right: vec4<f32>,\n    up: vec4<f32>,\n    forward: vec4<f32>,\n}}\n\n\
@@ -429,8 +429,8 @@ fn the_wgsl_library_renders_the_kernels_image_on_wgpu() {
              \x20   out_px[gid.y * w + gid.x] = c.x | (c.y << 8u) | (c.z << 16u) | (255u << 24u);\n\
              }}\n"
         );
-        let frame = Frame::default_view(&scene, 0.0, 96, 54).expect("frame");
-        let kernels = fractal_dsl::compile(&scene).expect("compile");
+        let frame = Frame::default_view(scene, 0.0, 96, 54).expect("frame");
+        let kernels = fractal_dsl::compile(scene).expect("compile");
         let job = |wgsl| RenderJob::new(KernelSources { wgsl: Some(wgsl), opencl: None, cpu: None }, &frame);
         let got = gpu.render(&job(&render)).unwrap_or_else(|e| panic!("{name}: the library: {e}"));
         let want = gpu.render(&job(&kernels.wgsl)).expect("the render kernel");

@@ -20,11 +20,12 @@ use crate::common::{run_validator, tool_available};
 
 /// Every built-in scene's file name (without extension), scene and compiled kernels.
 fn builtin_scenes() -> Vec<(String, Scene, Kernels)> {
-    crate::common::builtin_scenes()
-        .into_iter()
-        .map(|(name, scene)| {
+    scenes::ALL
+        .iter()
+        .map(|(name, compiled)| {
+            let scene = compiled.scene().clone();
             let kernels = compile(&scene).unwrap();
-            (name, scene, kernels)
+            (name.to_string(), scene, kernels)
         })
         .collect()
 }
