@@ -241,6 +241,16 @@ impl Camera {
         self.fov_degrees = degrees;
         self
     }
+    /// A thin lens of radius `radius` (scene units): depth of field, with the scene's samples spread over the lens.
+    pub fn aperture(mut self, radius: f64) -> Camera {
+        self.aperture = radius;
+        self
+    }
+    /// The distance along the view direction a lens holds in focus (default: the distance to the target at t = 0).
+    pub fn focus(mut self, distance: f64) -> Camera {
+        self.focus = Some(distance);
+        self
+    }
     pub fn linear(mut self) -> Camera {
         if let CameraPlacement::Path { interpolation, .. } = &mut self.placement {
             *interpolation = PathInterpolation::Linear;
@@ -315,6 +325,17 @@ impl Scene {
     /// normal at the pixel's scale, where a fine epsilon would take it from detail far below the pixel.
     pub fn normal_pixel_epsilon(mut self, k: f64) -> Scene {
         self.settings.normal_epsilon = Some(k);
+        self
+    }
+    /// Up to `n` rays per pixel: a first batch, then more only where they disagree (1: one ray through the centre).
+    pub fn samples(mut self, n: u32) -> Scene {
+        self.settings.samples = n;
+        self
+    }
+    /// The adaptive threshold of [`Scene::samples`]: a pixel stops once the standard error of its mean display luma
+    /// is below `e` (display units; smaller is smoother and slower).
+    pub fn sample_threshold(mut self, e: f64) -> Scene {
+        self.settings.sample_threshold = e;
         self
     }
     /// Take hits on the escape-time fractals' drawn sets themselves: where the estimate falls below the hit epsilon

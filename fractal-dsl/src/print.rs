@@ -284,6 +284,12 @@ fn camera(c: &Camera) -> String {
     if c.fov_degrees != Camera::default().fov_degrees {
         let _ = write!(s, ".fov({})", lit(c.fov_degrees));
     }
+    if c.aperture != 0.0 {
+        let _ = write!(s, ".aperture({})", lit(c.aperture));
+    }
+    if let Some(d) = c.focus {
+        let _ = write!(s, ".focus({})", lit(d));
+    }
     s
 }
 
@@ -337,5 +343,11 @@ fn settings(out: &mut String, s: &RenderSettings) {
     }
     if s.gamma != d.gamma {
         line(format!("gamma({})", lit(s.gamma)));
+    }
+    if s.samples != d.samples {
+        line(format!("samples({})", s.samples));
+    }
+    if s.sample_threshold != d.sample_threshold {
+        line(format!("sample_threshold({})", lit(s.sample_threshold)));
     }
 }

@@ -85,8 +85,11 @@ impl<'a> RenderJob<'a> {
 /// and the depth and normal images a render writes beside its colours.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PixelTrace {
-    /// Linear colour before clamping and gamma (NaN or Inf here is a broken pixel even when packing hides it).
+    /// Linear colour before display (NaN or Inf here is a broken pixel even when packing hides it): the centre ray's
+    /// with one sample, else the mean of the samples clamped to [0, 1] ([`fractal_dsl::ray::pixel`]).
     pub colour: [f64; 3],
+    /// Samples the pixel took. The other fields are its centre ray's (sample 0).
+    pub samples: u32,
     /// Whether the march hit the surface.
     pub hit: bool,
     /// Where the march stopped: the hit, or the last t of a miss (past the end of the ray, or where the steps ran
@@ -107,6 +110,7 @@ impl Default for PixelTrace {
     fn default() -> Self {
         PixelTrace {
             colour: [0.0; 3],
+            samples: 1,
             hit: false,
             t: f64::NAN,
             steps: 0,
@@ -121,12 +125,13 @@ impl PixelTrace {
     /// Words per pixel of a `trace` kernel's output ([`fractal_dsl::back::Entry::Trace`]): three float4 slots.
     pub const KERNEL_WORDS: usize = 12;
 
-    /// A pixel as a `trace` kernel wrote it: (normal, t), (steps, hit, out of steps, 0), (colour, 0).
+    /// A pixel as a `trace` kernel wrote it: (normal, t), (steps, hit, out of steps, samples), (colour, 0).
     pub fn from_kernel(words: &[f32]) -> PixelTrace {
         let w = |i: usize| f64::from(words[i]);
         let (hit, steps) = (words[5] > 0.5, words[4] as u32);
         PixelTrace {
             colour: [w(8), w(9), w(10)],
+            samples: words[7] as u32,
             hit,
             // A ray that misses the scene's bound takes no step; the CPU's trace has no t for it either.
             t: if hit || steps > 0 { w(3) } else { f64::NAN },

@@ -507,7 +507,7 @@ impl<'a, D: Dialect> Kernel<'a, D> {
             self.line(l1, &self.constant("pixel", index, &format!("{} * ({py} * w + {px})", d.index_lit(3))));
             let rows = [
                 format!("{}, {}", v(vals.normal), v(vals.t)),
-                format!("{}, {}, {}, {}", v(vals.steps), v(vals.hit), v(vals.out_of_steps), self.lit(0.0)),
+                format!("{}, {}, {}, {}", v(vals.steps), v(vals.hit), v(vals.out_of_steps), v(vals.samples)),
                 format!("{}, {}", v(vals.colour), self.lit(0.0)),
             ];
             for (k, row) in rows.iter().enumerate() {

@@ -190,6 +190,11 @@ pub struct Camera {
     pub placement: CameraPlacement,
     /// Vertical field of view in degrees.
     pub fov_degrees: f64,
+    /// Radius of a thin lens in scene units (0: a pinhole, everything in focus).
+    pub aperture: f64,
+    /// Distance along the view direction that a lens holds in focus; `None`: the distance from the camera to its
+    /// target (the first key's, on a path) at time 0.
+    pub focus: Option<f64>,
 }
 
 impl Default for Camera {
@@ -198,6 +203,8 @@ impl Default for Camera {
             placement: CameraPlacement::LookAt { position: [1.2, 1.0, -2.2].into(), target: [0.0, 0.0, 0.0].into() },
             // The baseline's focal length 1.8: fov = 2·atan(1/1.8).
             fov_degrees: 2.0 * (1.0f64 / 1.8).atan().to_degrees(),
+            aperture: 0.0,
+            focus: None,
         }
     }
 }
@@ -248,6 +255,12 @@ pub struct RenderSettings {
     pub fog: Option<Fog>,
     pub background: [f64; 3],
     pub gamma: f64,
+    /// The most rays a pixel may take (1: one ray through its centre). Beyond the first batch a pixel takes more
+    /// only while its samples disagree ([`crate::ray::pixel`]).
+    pub samples: u32,
+    /// The adaptive threshold: a pixel stops taking samples once the standard error of its mean display luma is
+    /// below this (in display units, 1 = full scale).
+    pub sample_threshold: f64,
 }
 
 impl Default for RenderSettings {
@@ -268,9 +281,15 @@ impl Default for RenderSettings {
             fog: None,
             background: [0.08, 0.09, 0.12],
             gamma: 2.0,
+            samples: 1,
+            sample_threshold: DEFAULT_SAMPLE_THRESHOLD,
         }
     }
 }
+
+/// The default adaptive threshold of [`RenderSettings::sample_threshold`] (measured: `docs/settings.md`, “Samples
+/// per pixel”).
+pub const DEFAULT_SAMPLE_THRESHOLD: f64 = 0.004;
 
 /// A complete scene: geometry, lights, camera and render settings.
 #[derive(Clone, Debug, PartialEq)]

@@ -72,6 +72,8 @@ pub struct Program {
     /// sample function takes the point relative to it as a second argument, [`REFERENCE_OFFSET`].
     pub reference: Option<crate::analyse::ReferenceSpec>,
     pub settings: RenderSettings,
+    /// The camera's thin lens, if it has one (its samples spread over it).
+    pub lens: Option<crate::ray::pixel::Lens>,
 }
 
 /// The name of the sample function's second argument where the scene has a perturbation reference: the point minus
@@ -150,6 +152,7 @@ fn lower_with(scene: &Scene, perturb: bool) -> Program {
         refine: analyse::sign_refinement(&folded.root, &folded.settings),
         reference: plan.reference,
         settings: folded.settings.clone(),
+        lens: crate::ray::pixel::Lens::of(&folded.camera),
         distance,
         distance_result,
         sample,

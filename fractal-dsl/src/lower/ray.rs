@@ -97,7 +97,7 @@ pub fn functions(program: &Program) -> Vec<RayFunction> {
 impl Program {
     /// The ray program's rules for this scene.
     pub fn rules(&self) -> Rules {
-        Rules::from_settings(&self.settings, self.refine, self.specular, self.bound)
+        Rules::from_settings(&self.settings, (self.refine, self.specular), self.bound, self.lens)
     }
 
     fn calls(&self) -> Calls {
@@ -122,19 +122,22 @@ pub struct PixelVals {
     pub steps: Val,
     /// 1 where the march ran out of steps, 0 otherwise.
     pub out_of_steps: Val,
+    /// The samples the pixel took.
+    pub samples: Val,
 }
 
 impl PixelVals {
-    pub fn all(&self) -> [Val; 7] {
-        [self.display, self.colour, self.normal, self.t, self.hit, self.steps, self.out_of_steps]
+    pub fn all(&self) -> [Val; 8] {
+        [self.display, self.colour, self.normal, self.t, self.hit, self.steps, self.out_of_steps, self.samples]
     }
 }
 
 /// The argument names of [`pixel`]'s body: the pixel's column and row (whole numbers, as F).
 pub const PIXEL_ARGS: [&str; 2] = ["fx", "fy"];
 
-/// The render kernel's per-pixel body: steps 1–7 of the ray program for pixel ([`PIXEL_ARGS`]) of the frame. The
-/// body computes every value of [`PixelVals`]: prune it to those the kernel writes.
+/// The render kernel's per-pixel body: steps 1–7 of the ray program for pixel ([`PIXEL_ARGS`]) of the frame, with
+/// its samples ([`crate::ray::pixel::pixel`]). The body computes every value of [`PixelVals`] (the march values are
+/// sample 0's): prune it to those the kernel writes.
 pub fn pixel(program: &Program) -> (Body, PixelVals) {
     let rules = program.rules();
     let (body, vals) = trace(|| {
@@ -159,20 +162,20 @@ pub fn pixel(program: &Program) -> (Body, PixelVals) {
             footprint: scalar(FrameField::Footprint),
             lights,
         };
-        let half = Sym::lit(0.5);
-        let (ro, rd) = view.ray(Sym::arg(PIXEL_ARGS[0]) + half, Sym::arg(PIXEL_ARGS[1]) + half);
         let scene = program.calls();
-        let (m, _) = march::march(&rules, &view, &scene, ro, rd);
-        let shaded = shade::shade(&rules, &view, &scene, (ro, rd), &m);
+        let (x, y) = (Sym::arg(PIXEL_ARGS[0]), Sym::arg(PIXEL_ARGS[1]));
+        let drawn = crate::ray::pixel::pixel(&rules, &view, &scene, x, y);
+        let m = drawn.centre;
         let flag = |m| Sym::select(m, Sym::lit(1.0), Sym::lit(0.0));
         PixelVals {
-            display: Sym::vector(shade::display(&rules, shaded.colour)),
-            colour: Sym::vector(shaded.colour),
-            normal: Sym::vector(shaded.normal),
+            display: Sym::vector(shade::display(&rules, drawn.colour)),
+            colour: Sym::vector(drawn.colour),
+            normal: Sym::vector(drawn.shaded.normal),
             t: m.t.0,
             hit: m.hit.0,
             steps: m.steps.0,
             out_of_steps: flag(m.out_of_steps(rules.max_steps)).0,
+            samples: drawn.samples.0,
         }
     });
     (body, vals)

@@ -498,6 +498,8 @@ pub(crate) static METHODS: &[Entry] = &[
         Ok(Value::Light(a.light()?.intensity(a.num()?)))
     }),
     meth(T::Camera, "fov", &[p("degrees", T::Const)], T::Camera, |a| camera(a.camera()?.fov(a.konst()?))),
+    meth(T::Camera, "aperture", &[p("radius", T::Const)], T::Camera, |a| camera(a.camera()?.aperture(a.konst()?))),
+    meth(T::Camera, "focus", &[p("distance", T::Const)], T::Camera, |a| camera(a.camera()?.focus(a.konst()?))),
     meth(T::Camera, "linear", &[], T::Camera, |a| {
         let c = a.camera()?;
         path_only(&c, "linear")?;
@@ -538,6 +540,10 @@ pub(crate) static METHODS: &[Entry] = &[
     }),
     meth(T::Scene, "background", &[p("color", T::ConstColor)], T::Scene, |a| scene(a.scene()?.background(a.color()?))),
     meth(T::Scene, "gamma", &[p("gamma", T::Const)], T::Scene, |a| scene(a.scene()?.gamma(a.konst()?))),
+    meth(T::Scene, "samples", &[p("n", T::Int)], T::Scene, |a| scene(a.scene()?.samples(a.int()?))),
+    meth(T::Scene, "sample_threshold", &[p("threshold", T::Const)], T::Scene, |a| {
+        scene(a.scene()?.sample_threshold(a.konst()?))
+    }),
 ];
 
 /// Names that stand alone (not called).

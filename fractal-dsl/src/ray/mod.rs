@@ -19,6 +19,7 @@
 //!    shadow, fog. 5. **Miss**: background. 6. **Glow** on hits and misses. 7. **Display**: clamp and gamma.
 
 pub mod march;
+pub mod pixel;
 pub mod rules;
 pub mod scene;
 pub mod shade;

@@ -1,6 +1,7 @@
 //! What the ray program reads besides the scene: its constants, the scene's settings as [`Rules`] and a frame's camera
 //! and lights as a [`View`] (with step 1, the camera ray).
 
+use super::pixel::{Lens, Sampling};
 use crate::analyse::{self, fold::fold_node, Aabb, SignRefinement};
 use crate::number::math::{normalize, V3};
 use crate::number::Num;
@@ -61,6 +62,10 @@ pub struct Rules {
     pub specular: bool,
     /// The box rays are clipped to (`None`: march from 0 to max_distance).
     pub bound: Option<Aabb>,
+    /// How many samples a pixel takes.
+    pub sampling: Sampling,
+    /// The camera's thin lens, if it has one.
+    pub lens: Option<Lens>,
 }
 
 impl Rules {
@@ -74,16 +79,17 @@ impl Rules {
     pub fn with_bound(scene: &Scene, bound: Option<Aabb>) -> Rules {
         let folded = fold_node(&scene.root);
         let s = &scene.settings;
-        Rules::from_settings(s, analyse::sign_refinement(&folded, s), analyse::has_specular(&folded), bound)
+        let analysed = (analyse::sign_refinement(&folded, s), analyse::has_specular(&folded));
+        Rules::from_settings(s, analysed, bound, Lens::of(&scene.camera))
     }
 
-    /// The rules of a scene's `settings`, with the analyses of its tree: how its hits are refined by sign, whether a
-    /// material can have a specular term, and the box rays are clipped to.
+    /// The rules of a scene's `settings`, with the analyses of its tree (how its hits are refined by sign, whether a
+    /// material can have a specular term), the box rays are clipped to and its camera's lens.
     pub fn from_settings(
         s: &RenderSettings,
-        refine: Option<SignRefinement>,
-        specular: bool,
+        (refine, specular): (Option<SignRefinement>, bool),
         bound: Option<Aabb>,
+        lens: Option<Lens>,
     ) -> Rules {
         Rules {
             max_steps: s.max_steps,
@@ -100,6 +106,8 @@ impl Rules {
             gamma: s.gamma,
             specular,
             bound,
+            sampling: Sampling { samples: s.samples, threshold: s.sample_threshold },
+            lens,
         }
     }
 }

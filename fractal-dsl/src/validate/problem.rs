@@ -12,6 +12,9 @@ pub const MAX_EXPR_NODES: usize = 100_000;
 pub const MAX_LIGHTS: usize = 16;
 /// Largest `max_steps`.
 pub const MAX_MARCH_STEPS: u32 = 10_000;
+/// Most rays a pixel may take (`samples`): a 16×16 supersampling, past which a still is better accumulated
+/// progressively.
+pub const MAX_SAMPLES: u32 = 256;
 /// Largest `max_distance`. The kernels keep the ray parameter in f32, whose spacing is 64 units at 1e9; beyond the f32
 /// range (3.4e38) one backend would march to infinity and another draw nothing.
 pub const MAX_DISTANCE: f64 = 1e9;

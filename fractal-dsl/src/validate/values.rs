@@ -313,6 +313,10 @@ pub fn check_camera(c: &Camera) -> Vec<Problem> {
     let mut out = Vec::new();
     let o = &mut out;
     constant(o, "degrees", "camera fov", c.fov_degrees, within(0.0, false, 180.0, false));
+    constant(o, "radius", "camera aperture", c.aperture, within(0.0, true, MAX_DISTANCE, true));
+    if let Some(d) = c.focus {
+        constant(o, "distance", "camera focus", d, within(0.0, false, MAX_DISTANCE, true));
+    }
     match &c.placement {
         CameraPlacement::LookAt { position, target } => {
             finite(o, "position", "camera position", &position.0.iter().collect::<Vec<_>>());
@@ -401,6 +405,8 @@ pub fn check_settings(s: &RenderSettings) -> Vec<Problem> {
         constant(o, "pixels", "normal_pixel_epsilon", k, gt(0.0));
     }
     constant(o, "omega", "over_relaxation", s.over_relaxation, within(1.0, true, 2.0, true));
+    integer(o, "n", "samples", s.samples, 1, MAX_SAMPLES);
+    constant(o, "threshold", "sample_threshold", s.sample_threshold, within(0.0, true, 1.0, true));
     if let Shadows::Soft(k) = s.shadows {
         constant(o, "k", "soft_shadows k", k, gt(0.0));
     }

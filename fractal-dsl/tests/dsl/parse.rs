@@ -236,6 +236,11 @@ fn cases() -> Vec<(&'static str, Scene)> {
         ),
         ("scene(sphere(1.0)).over_relaxation(1.3)", s(ball()).over_relaxation(1.3)),
         ("scene(sphere(1.0)).normal_pixel_epsilon(0.5)", s(ball()).normal_pixel_epsilon(0.5)),
+        ("scene(sphere(1.0)).samples(16).sample_threshold(0.01)", s(ball()).samples(16).sample_threshold(0.01)),
+        (
+            "scene(sphere(1.0)).camera(camera(vec3(0, 0, -3), vec3(0, 0, 0)).aperture(0.05).focus(2.5))",
+            s(ball()).camera(camera(vec3(0.0, 0.0, -3.0), vec3(0.0, 0.0, 0.0)).aperture(0.05).focus(2.5)),
+        ),
         ("scene(julia(vec4(-0.2, 0.8, 0.0, 0.0))).membership_hits()", scene(julia(vec4(-0.2, 0.8, 0.0, 0.0))).membership_hits()),
         (
             "scene(sphere(1.0)).soft_shadows(8.0).no_shadows().background(rgb(0, 0, 0)).gamma(2.2)",

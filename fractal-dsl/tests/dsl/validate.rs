@@ -72,8 +72,10 @@ fn every_broken_rule_is_reported() {
     let s = scene(sphere(1.0))
         .light(directional(vec3(0.0, 0.0, 0.0), rgb(1.0, 1.0, 1.0)))
         .light(point_light(vec3(0.0, 1.0, 0.0), rgb(1.0, 1.0, 1.0)).intensity(-1.0))
-        .camera(camera(vec3(0.0, 0.0, -3.0), vec3(0.0, 0.0, 0.0)).fov(0.0))
+        .camera(camera(vec3(0.0, 0.0, -3.0), vec3(0.0, 0.0, 0.0)).fov(0.0).aperture(-0.1).focus(0.0))
         .max_steps(0)
+        .samples(0)
+        .sample_threshold(2.0)
         .epsilon(0.0)
         .gamma(0.0);
     assert_eq!(
@@ -82,8 +84,12 @@ fn every_broken_rule_is_reported() {
             "light 1: light direction must be non-zero, found vec3(0, 0, 0)",
             "light 2: light intensity must be >= 0, found -1",
             "camera: camera fov must be in (0, 180), found 0",
+            "camera: camera aperture must be in [0, 1000000000], found -0.1",
+            "camera: camera focus must be in (0, 1000000000], found 0",
             "scene: max_steps must be in 1..=10000, found 0",
             "scene: epsilon must be > 0, found 0",
+            "scene: samples must be in 1..=256, found 0",
+            "scene: sample_threshold must be in [0, 1], found 2",
             "scene: gamma must be > 0, found 0",
         ]
     );

@@ -13,6 +13,7 @@ use fractal_dsl::number::lanes::{F32x8, LANES};
 use fractal_dsl::number::math::{v3, Real, V3};
 use fractal_dsl::number::Num;
 use fractal_dsl::ray::march::{self, March};
+use fractal_dsl::ray::pixel::{self, Accumulated};
 use fractal_dsl::ray::{self, shade, Light, Rules, SceneFns};
 use fractal_dsl::Scene;
 use rayon::prelude::*;
@@ -123,28 +124,44 @@ pub fn render_packets(packets: &dyn PacketEvaluator, scene: &Scene, frame: &Fram
     let view8 = splat_view(&view.view);
     let params: Vec<F32x8> = view.params.iter().map(|&p| F32x8::splat(p)).collect();
     let width = frame.width() as usize;
+    let sampling = view.rules.sampling;
     let mut pixels = vec![0u32; width * frame.height() as usize];
     pixels.par_chunks_mut(width).enumerate().for_each(|(y, row)| {
         let on = Packets { packets, env: Env::new(F32x8::splat(view.time), &params), orbit: &view.orbit };
-        let rays: Vec<(V3<f32>, V3<f32>)> = (0..width).map(|x| view.view.ray(x as f32 + 0.5, y as f32 + 0.5)).collect();
-        let marches = view.march_row(&view8, &on, &rays);
-        for (chunk, x0) in row.chunks_mut(LANES).zip((0..width).step_by(LANES)) {
-            // The last group of a row repeats its last pixel; the repeats are not written.
-            let lane = |i: usize| (x0 + i).min(width - 1);
-            let (mut ro, mut rd, mut m) =
-                (V3::splat(F32x8::splat(0.0)), V3::splat(F32x8::splat(0.0)), March::splat(F32x8::splat(0.0)));
-            for i in 0..LANES {
-                set_lane3(&mut ro, i, rays[lane(i)].0);
-                set_lane3(&mut rd, i, rays[lane(i)].1);
-                m.set_lane(i, &marches[lane(i)].0);
-            }
-            // Hits are settled eight at a time, as they are shaded.
-            let m = march::settle(&view.rules, &on, (ro, rd), m);
-            let shaded = shade::shade(&view.rules, &view8, &on, (ro, rd), &m);
-            for (i, px) in chunk.iter_mut().enumerate() {
-                let colour = if marches[x0 + i].1 { lane3(shaded.colour, i) } else { view.background() };
+        let (fy, half) = (y as f32, 0.5);
+        let centres: Vec<(V3<f32>, V3<f32>)> = (0..width).map(|x| view.view.ray(x as f32 + half, fy + half)).collect();
+        let colours = view.shade_row(&view8, &on, &centres);
+        if sampling.samples <= 1 {
+            for (px, colour) in row.iter_mut().zip(colours) {
                 *px = pack_linear(colour, view.rules.gamma);
             }
+            return;
+        }
+        // The samples after the centre, in the rounds `pixel::pixel` decides at: each round's rays of every pixel
+        // that wants more, shaded together, then added to their pixels in sample order.
+        let mut sums: Vec<Accumulated<f32>> = colours.iter().map(|&c| Accumulated::empty().with(c)).collect();
+        for round in pixel::rounds(sampling.samples) {
+            let wanting: Vec<usize> = (0..width).filter(|&x| sums[x].wants_more(&view.rules)).collect();
+            if wanting.is_empty() {
+                break;
+            }
+            let rays: Vec<(V3<f32>, V3<f32>)> = wanting
+                .iter()
+                .flat_map(|&x| round.clone().map(move |k| (x, k)))
+                .map(|(x, k)| {
+                    let ([dx, dy], on_lens) = pixel::sample_point(k as f32, view.rules.lens.is_some());
+                    pixel::camera_ray(&view.rules, &view.view, x as f32 + dx, fy + dy, on_lens)
+                })
+                .collect();
+            let shaded = view.shade_row(&view8, &on, &rays);
+            for (&x, colours) in wanting.iter().zip(shaded.chunks(round.len())) {
+                for &c in colours {
+                    sums[x] = sums[x].with(c);
+                }
+            }
+        }
+        for (px, sum) in row.iter_mut().zip(sums) {
+            *px = pack_linear(sum.mean(), view.rules.gamma);
         }
     });
     Ok(Image { width: frame.width(), height: frame.height(), pixels })
@@ -184,6 +201,7 @@ pub fn trace_scene_with<F: Real, E: Evaluator<F> + ?Sized>(
             let pixel = view.trace_pixel(&on, x as u32, y as u32);
             *out = PixelTrace {
                 colour: [pixel.colour.x.f64(), pixel.colour.y.f64(), pixel.colour.z.f64()],
+                samples: pixel.samples,
                 hit: pixel.hit,
                 t: pixel.t.f64(),
                 steps: pixel.steps,
@@ -255,6 +273,7 @@ impl SceneFns<F32x8> for Packets<'_> {
 /// One pixel in the renderer's precision.
 struct Pixel<F> {
     colour: V3<F>,
+    samples: u32,
     hit: bool,
     t: F,
     steps: u32,
@@ -342,24 +361,23 @@ impl<F: Real> View<F> {
         march::hit_epsilon(&self.rules, &self.view, t)
     }
 
-    /// The ray program for pixel (x, y): the linear colour before display, and how it was found.
+    /// The ray program for pixel (x, y) ([`pixel::pixel`]): the value before display, and how its centre ray found it.
     fn trace_pixel<E: Evaluator<F> + ?Sized>(&self, on: &Scalar<'_, F, E>, x: u32, y: u32) -> Pixel<F> {
-        let half = F::c(0.5);
-        let (ro, rd) = self.view.ray(F::c(x as f64) + half, F::c(y as f64) + half);
-        let (m, enters) = march::march(&self.rules, &self.view, on, ro, rd);
-        if !enters {
-            let background = self.background();
-            return Pixel { colour: background, hit: false, t: F::nan(), steps: 0, out_of_steps: false, normal: None };
+        let drawn = pixel::pixel(&self.rules, &self.view, on, F::c(x as f64), F::c(y as f64));
+        let (m, samples) = (drawn.centre, drawn.samples.f64() as u32);
+        if !drawn.enters {
+            let colour = if samples > 1 { drawn.colour } else { self.background() };
+            return Pixel { colour, samples, hit: false, t: F::nan(), steps: 0, out_of_steps: false, normal: None };
         }
-        let shaded = shade::shade(&self.rules, &self.view, on, (ro, rd), &m);
         let hit = m.hit();
         Pixel {
-            colour: shaded.colour,
+            colour: drawn.colour,
+            samples,
             hit,
             t: m.t,
             steps: m.steps.f64() as u32,
             out_of_steps: m.out_of_steps(self.rules.max_steps),
-            normal: hit.then_some(shaded.normal),
+            normal: hit.then_some(drawn.shaded.normal),
         }
     }
 
@@ -379,6 +397,31 @@ impl<F: Real> View<F> {
 }
 
 impl View<f32> {
+    /// Steps 2–6 of a row's rays in packets: marched with lanes refilled ([`View::march_row`]), then settled and
+    /// shaded eight at a time. Each ray's linear colour.
+    fn shade_row(&self, view8: &ray::View<F32x8>, on: &Packets<'_>, rays: &[(V3<f32>, V3<f32>)]) -> Vec<V3<f32>> {
+        let marches = self.march_row(view8, on, rays);
+        let mut colours = Vec::with_capacity(rays.len());
+        for x0 in (0..rays.len()).step_by(LANES) {
+            // The last group repeats its last ray; the repeats are not kept.
+            let lane = |i: usize| (x0 + i).min(rays.len() - 1);
+            let (mut ro, mut rd, mut m) =
+                (V3::splat(F32x8::splat(0.0)), V3::splat(F32x8::splat(0.0)), March::splat(F32x8::splat(0.0)));
+            for i in 0..LANES {
+                set_lane3(&mut ro, i, rays[lane(i)].0);
+                set_lane3(&mut rd, i, rays[lane(i)].1);
+                m.set_lane(i, &marches[lane(i)].0);
+            }
+            // Hits are settled eight at a time, as they are shaded.
+            let m = march::settle(&self.rules, on, (ro, rd), m);
+            let shaded = shade::shade(&self.rules, view8, on, (ro, rd), &m);
+            for i in 0..LANES.min(rays.len() - x0) {
+                colours.push(if marches[x0 + i].1 { lane3(shaded.colour, i) } else { self.background() });
+            }
+        }
+        colours
+    }
+
     /// Steps 2–3 of a row of rays, eight lanes at a time: a lane whose march ends takes the row's next ray at once,
     /// so no lane idles while rays remain. Each ray takes exactly the scalar march's steps, whichever lane it runs in.
     /// Each ray's march end, and whether it entered the bound.

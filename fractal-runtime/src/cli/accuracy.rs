@@ -65,6 +65,7 @@ pub fn accuracy(args: &AccuracyArgs, library: &SceneLibrary) -> Result<(), CliEr
     for name in &names {
         let mut loaded = LoadedScene::load(name, library)?;
         args.camera.apply(&mut loaded.scene.camera);
+        loaded.set_samples(args.samples)?;
         let section = study(&loaded, args, backend, &budget)?;
         report += &section;
     }

@@ -87,6 +87,9 @@ pub struct RenderOptions {
     /// Set a scene parameter (repeatable)
     #[arg(long = "param", value_name = "NAME=VALUE", value_parser = parse_param)]
     pub params: Vec<(String, f64)>,
+    /// The most rays a pixel may take, 1..=256 (1: one ray through its centre) [default: the scene's `samples`]
+    #[arg(long, value_name = "N", value_parser = parse_samples)]
+    pub samples: Option<u32>,
 }
 
 #[derive(Debug, Args)]
@@ -247,6 +250,10 @@ pub struct AccuracyArgs {
     /// Measure the scene's own setting only, no sweep (the truths, the default's figures and its verdict)
     #[arg(long)]
     pub default_only: bool,
+    /// The most rays a pixel may take, 1..=256 (1: one ray through its centre) [default: the scene's `samples`]
+    #[arg(long, value_name = "N", value_parser = parse_samples)]
+    pub samples: Option<u32>,
+
     /// Scene time in seconds the sweep is measured at (the camera path's pose and every animated value then); a
     /// camera path's other keys are checked after it
     #[arg(long, allow_negative_numbers = true, value_name = "SECONDS", default_value_t = 0.0, value_parser = parse_time)]
@@ -370,6 +377,9 @@ pub struct GalleryArgs {
     /// Images per row of the contact sheet
     #[arg(long, value_name = "N", default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..=64))]
     pub columns: u32,
+    /// The most rays a pixel may take, 1..=256 (1: one ray through its centre) [default: the scene's `samples`]
+    #[arg(long, value_name = "N", value_parser = parse_samples)]
+    pub samples: Option<u32>,
 }
 
 #[derive(Debug, Args)]
@@ -404,6 +414,9 @@ pub struct ViewArgs {
     /// Mouse sensitivity in radians per pixel
     #[arg(long, allow_negative_numbers = true, value_name = "RADIANS", default_value_t = 0.003, value_parser = parse_positive)]
     pub mouse_sensitivity: f64,
+    /// The most rays a pixel may take, 1..=256 (1: one ray through its centre) [default: the scene's `samples`]
+    #[arg(long, value_name = "N", value_parser = parse_samples)]
+    pub samples: Option<u32>,
 }
 
 /// `WIDTHxHEIGHT`, each side within the renderers' limits.
@@ -414,6 +427,15 @@ pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
     let (w, h) = (side(w)?, side(h)?);
     check_image_size(w, h).map_err(|e| e.to_string())?;
     Ok((w, h))
+}
+
+/// A sample count within the scene language's limits.
+pub fn parse_samples(text: &str) -> Result<u32, String> {
+    let max = fractal_dsl::validate::MAX_SAMPLES;
+    match text.parse::<u32>() {
+        Ok(n) if (1..=max).contains(&n) => Ok(n),
+        _ => Err(format!("samples per pixel must be a whole number in 1..={max}, got `{text}`")),
+    }
 }
 
 pub fn parse_backend(text: &str) -> Result<BackendChoice, String> {

@@ -20,7 +20,8 @@ pub const BASELINE_SCENE: &str = "mandelbulb_bench";
 pub const DEFAULT_FRAMES: u32 = 10;
 
 pub fn bench(args: &BenchArgs, library: &SceneLibrary) -> Result<(), CliError> {
-    let loaded = LoadedScene::load(args.scene.as_deref().unwrap_or(BASELINE_SCENE), library)?;
+    let mut loaded = LoadedScene::load(args.scene.as_deref().unwrap_or(BASELINE_SCENE), library)?;
+    loaded.set_samples(args.render.samples)?;
     let params = loaded.params(&args.render.params)?;
     for path in args.csv.iter().chain(&args.json) {
         prepare_output(path)?;

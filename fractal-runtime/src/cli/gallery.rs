@@ -19,11 +19,12 @@ pub const SHEET: &str = "gallery.png";
 pub fn gallery(args: &GalleryArgs, library: &SceneLibrary) -> Result<(), CliError> {
     let sheet_path = args.output.join(SHEET);
     prepare_output(&sheet_path)?;
-    let options = RenderOptions { size: args.size, device: args.device, params: vec![] };
+    let options = RenderOptions { size: args.size, device: args.device, params: vec![], samples: args.samples };
     let mut renderer = open_renderer(&options)?;
     let mut tiles: Vec<(&str, Image)> = Vec::new();
     for &(name, _) in library.scenes {
-        let loaded = LoadedScene::load(name, library)?;
+        let mut loaded = LoadedScene::load(name, library)?;
+        loaded.set_samples(args.samples)?;
         let params = ParamValues::defaults(&loaded.scene);
         let start = Instant::now();
         let image = render_frame(renderer.as_mut(), &loaded, &params, args.time, args.size)?;

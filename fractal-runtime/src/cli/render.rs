@@ -189,6 +189,7 @@ pub(super) fn render_frame(
 pub fn render(args: &RenderArgs, library: &SceneLibrary) -> Result<(), CliError> {
     let mut loaded = LoadedScene::load(&args.scene, library)?;
     args.camera.apply(&mut loaded.scene.camera);
+    loaded.set_samples(args.render.samples)?;
     let params = loaded.params(&args.render.params)?;
     let size = args.render.size;
     check_frames(args, &loaded, &params)?;

@@ -36,8 +36,16 @@ pub enum SceneOrigin {
 }
 
 enum Forms<'a> {
-    BuiltIn { compiled: &'a CompiledScene, native: NativeFns },
-    File { kernels: Box<Kernels>, interpreter: Box<Interpreter> },
+    /// A built-in; `kernels` where a command-line setting made the build-time kernels stale.
+    BuiltIn {
+        compiled: &'a CompiledScene,
+        native: NativeFns,
+        kernels: Option<Box<Kernels>>,
+    },
+    File {
+        kernels: Box<Kernels>,
+        interpreter: Box<Interpreter>,
+    },
 }
 
 /// A scene ready to render: its IR, kernels and CPU evaluator.
@@ -56,7 +64,7 @@ impl<'a> LoadedScene<'a> {
                 name: name.to_string(),
                 origin: SceneOrigin::BuiltIn,
                 scene: compiled.scene().clone(),
-                forms: Forms::BuiltIn { compiled, native: compiled.native() },
+                forms: Forms::BuiltIn { compiled, native: compiled.native(), kernels: None },
             });
         }
         let path = Path::new(arg);
@@ -87,19 +95,37 @@ impl<'a> LoadedScene<'a> {
     /// Every form of the scene a renderer may run.
     pub fn sources(&self) -> KernelSources<'_> {
         match &self.forms {
-            Forms::BuiltIn { compiled, .. } => KernelSources::default()
+            Forms::BuiltIn { compiled, kernels: None, .. } => KernelSources::default()
                 .with_wgsl(compiled.wgsl())
                 .with_opencl(compiled.opencl())
                 .with_cpu(self.evaluator(), &self.scene),
-            Forms::File { kernels, .. } => KernelSources::compiled(kernels).with_cpu(self.evaluator(), &self.scene),
+            Forms::BuiltIn { kernels: Some(kernels), .. } | Forms::File { kernels, .. } => {
+                KernelSources::compiled(kernels).with_cpu(self.evaluator(), &self.scene)
+            }
         }
+    }
+
+    /// The scene with at most `samples` rays per pixel (`--samples`; `None` keeps the scene's own). A built-in's
+    /// kernels are compiled again; its native evaluator does not depend on it.
+    pub fn set_samples(&mut self, samples: Option<u32>) -> Result<(), CliError> {
+        let Some(n) = samples.filter(|&n| n != self.scene.settings.samples) else { return Ok(()) };
+        self.scene.settings.samples = n;
+        let fresh = Box::new(fractal_dsl::compile(&self.scene).map_err(RenderError::from)?);
+        match &mut self.forms {
+            Forms::BuiltIn { kernels, .. } => *kernels = Some(fresh),
+            Forms::File { kernels, .. } => *kernels = fresh,
+        }
+        Ok(())
     }
 
     /// The scene's trace kernels ([`Kernels::tracing`]), which a render with depth and normal images runs: a
     /// built-in's are compiled here, as only those renders need them.
     pub fn tracing(&self) -> Result<Kernels, CliError> {
         match &self.forms {
-            Forms::BuiltIn { .. } => Ok(fractal_dsl::compile(&self.scene).map_err(RenderError::from)?.tracing()),
+            Forms::BuiltIn { kernels: None, .. } => {
+                Ok(fractal_dsl::compile(&self.scene).map_err(RenderError::from)?.tracing())
+            }
+            Forms::BuiltIn { kernels: Some(kernels), .. } => Ok(kernels.tracing()),
             Forms::File { kernels, .. } => Ok(kernels.tracing()),
         }
     }
@@ -115,7 +141,8 @@ impl<'a> LoadedScene<'a> {
     /// The render kernel for another engine.
     pub fn export(&self, target: Target) -> Result<Exported, ExportError> {
         match &self.forms {
-            Forms::BuiltIn { compiled, .. } => export_compiled(compiled, target),
+            Forms::BuiltIn { compiled, kernels: None, .. } => export_compiled(compiled, target),
+            Forms::BuiltIn { kernels: Some(kernels), .. } => export(kernels, target),
             Forms::File { kernels, .. } => export(kernels, target),
         }
     }

@@ -32,6 +32,7 @@ pub fn view(args: &ViewArgs, library: &SceneLibrary) -> Result<(), CliError> {
         move_speed: args.move_speed,
         mouse_sensitivity: args.mouse_sensitivity,
         params: args.params.clone(),
+        samples: args.samples,
         ..ViewerOptions::default()
     };
     match run(scene, options) {

@@ -45,7 +45,8 @@ const PIXELS_PER_LINE: f64 = 40.0;
 const DEFAULT_TIME_SPAN: f64 = 60.0;
 
 pub fn run(scene: ViewerScene, options: ViewerOptions) -> Result<ViewerSummary, ViewerError> {
-    let live = LiveScene::load(&scene).map_err(ViewerError::Scene)?;
+    let overrides = EffectOverrides::default().with_samples(options.samples);
+    let live = LiveScene::load(&scene).and_then(|l| l.with_overrides(&overrides)).map_err(ViewerError::Scene)?;
     let path_file =
         options.camera_path.as_deref().map(load_camera_path).transpose().map_err(ViewerError::CameraPath)?;
     let event_loop = build_event_loop()?;
@@ -191,7 +192,7 @@ impl App {
             source,
             params,
             last_good: None,
-            overrides: EffectOverrides::default(),
+            overrides: EffectOverrides::default().with_samples(options.samples),
             watch,
             path_file,
             fly: None,

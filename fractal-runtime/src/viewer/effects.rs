@@ -22,6 +22,7 @@ pub struct EffectOverrides {
     fog: Option<Option<Fog>>,
     max_steps: Option<u32>,
     epsilon: Option<HitEpsilon>,
+    samples: Option<u32>,
 }
 
 impl EffectOverrides {
@@ -46,7 +47,16 @@ impl EffectOverrides {
         if let Some(epsilon) = self.epsilon {
             s.epsilon = epsilon;
         }
+        if let Some(samples) = self.samples {
+            s.samples = samples;
+        }
         s
+    }
+
+    /// At most `samples` rays per pixel (`None` keeps the scene's own).
+    pub fn with_samples(mut self, samples: Option<u32>) -> EffectOverrides {
+        self.samples = samples;
+        self
     }
 
     /// The step budget times `factor`, within 8..=4096.

@@ -95,6 +95,8 @@ pub struct ViewerOptions {
     pub script: Option<Vec<ScriptedStep>>,
     /// Print the controls at start-up.
     pub print_help: bool,
+    /// The most rays a pixel may take (`None`: the scene's `samples`).
+    pub samples: Option<u32>,
 }
 
 impl Default for ViewerOptions {
@@ -117,6 +119,7 @@ impl Default for ViewerOptions {
             watch: true,
             script: None,
             print_help: true,
+            samples: None,
         }
     }
 }

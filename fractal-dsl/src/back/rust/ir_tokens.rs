@@ -332,7 +332,7 @@ impl Writer<'_> {
 
     fn camera(&self, c: &Camera) -> TokenStream {
         let k = self.k;
-        let Camera { placement, fov_degrees } = c;
+        let Camera { placement, fov_degrees, aperture, focus } = c;
         let placement = match placement {
             CameraPlacement::LookAt { position, target } => {
                 let (position, target) = (self.vec3(position), self.vec3(target));
@@ -357,8 +357,9 @@ impl Writer<'_> {
                 }
             }
         };
-        let fov_degrees = f64_lit(*fov_degrees);
-        quote!(#k::Camera { placement: #placement, fov_degrees: #fov_degrees })
+        let (fov_degrees, aperture) = (f64_lit(*fov_degrees), f64_lit(*aperture));
+        let focus = self.option(focus, |&d| f64_lit(d));
+        quote!(#k::Camera { placement: #placement, fov_degrees: #fov_degrees, aperture: #aperture, focus: #focus })
     }
 
     fn settings(&self, s: &RenderSettings) -> TokenStream {
@@ -376,6 +377,8 @@ impl Writer<'_> {
             fog,
             background,
             gamma,
+            samples,
+            sample_threshold,
         } = s;
         let max_steps = u32_lit(*max_steps);
         let max_distance = f64_lit(*max_distance);
@@ -408,6 +411,7 @@ impl Writer<'_> {
         });
         let background = f64_array(background);
         let gamma = f64_lit(*gamma);
+        let (samples, sample_threshold) = (u32_lit(*samples), f64_lit(*sample_threshold));
         quote! {
             #k::RenderSettings {
                 max_steps: #max_steps,
@@ -422,6 +426,8 @@ impl Writer<'_> {
                 fog: #fog,
                 background: #background,
                 gamma: #gamma,
+                samples: #samples,
+                sample_threshold: #sample_threshold,
             }
         }
     }

@@ -1,0 +1,343 @@
+//! Step 1 over a pixel's area, and step 7's mean: where a pixel's samples go in the pixel and on the lens, how
+//! their colours add up, when an adaptive pixel takes more, and the pixel's value. Every renderer draws a pixel
+//! with [`pixel`] (or, scheduling its rays otherwise, with these same steps in the same order), so the CPU and the
+//! kernels take the same samples and stop at the same count.
+//!
+//! **Value.** A pixel's value is the box-filtered mean over its square of the linear colour clamped to [0, 1], then
+//! displayed (step 7). Sample 0 is the ray through the pixel's centre (and the lens's): with one sample a render is
+//! the one-ray render, and the march of sample 0 is the pixel's trace (depth, normal, steps).
+//!
+//! **Positions.** Sample 0 is the centre; samples 1–4 the rotated grid (one in each quarter of the pixel, no two in
+//! a row or column of a 4×4 grid), so the first batch sees a feature in any quarter; then the points of Roberts'
+//! R2 sequence, fract(½ + j·α) for j = 1, 2, … (R4 with a lens: two more dimensions for the lens, fract(k·α₃,₄) for
+//! every sample). Every prefix of it is spread evenly, so a pixel that stops early has still sampled its whole
+//! square. The lens point is mapped to the disc by r = a·√u, θ = 2πv.
+//!
+//! **Adaptivity.** A first batch of [`FIRST`] samples, then batches of [`BATCH`]; after each, a pixel goes on while
+//! the standard error of its mean display luma (√ of the clamped colour's luma) is above the scene's threshold, up
+//! to its most samples.
+
+use super::march;
+use super::rules::{Rules, View};
+use super::scene::SceneFns;
+use super::shade::{self, Shaded};
+use crate::ir::{Camera, CameraPlacement};
+use crate::number::math::{length, normalize, v3, V3};
+use crate::number::Num;
+
+/// Samples in a pixel's first batch: the centre and the rotated grid (one in each quarter of the pixel).
+pub const FIRST: u32 = 5;
+/// Samples between a pixel's later decisions to take more.
+pub const BATCH: u32 = 4;
+/// The rotated grid's points in the pixel, samples 1–4.
+const ROTATED_GRID: [[f64; 2]; 4] = [[0.375, 0.125], [0.875, 0.375], [0.625, 0.875], [0.125, 0.625]];
+/// The plastic number, R2's generator: the real root of x³ = x + 1.
+const PLASTIC: f64 = 1.324_717_957_244_746;
+/// R4's generator: the real root of x⁵ = x + 1.
+const R4_ROOT: f64 = 1.167_303_978_261_418_7;
+/// Rec. 709 luma weights, for the adaptive test.
+const LUMA: [f64; 3] = [0.2126, 0.7152, 0.0722];
+
+/// How many samples a pixel may take and when it stops: the scene's `samples` and `sample_threshold`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sampling {
+    /// The most samples (1: the centre ray alone).
+    pub samples: u32,
+    /// The standard error of the mean display luma under which a pixel stops.
+    pub threshold: f64,
+}
+
+/// A thin lens: its radius and the distance along the view direction it holds in focus.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Lens {
+    pub aperture: f64,
+    pub focus: f64,
+}
+
+impl Lens {
+    /// The lens of `camera`, if it has an aperture. Its default focus is the distance from the camera to its target at
+    /// time 0 (the first key's, on a path), with every parameter at its default.
+    pub fn of(camera: &Camera) -> Option<Lens> {
+        if camera.aperture <= 0.0 {
+            return None;
+        }
+        let focus = camera.focus.unwrap_or_else(|| {
+            let (from, to) = match &camera.placement {
+                CameraPlacement::LookAt { position, target } => {
+                    let at = |v: &crate::ir::Vec3Expr| v.eval(0.0, &|p| p.default);
+                    (at(position), at(target))
+                }
+                CameraPlacement::Path { keys, .. } => {
+                    keys.first().map_or(([0.0; 3], [1.0; 3]), |k| (k.position, k.target))
+                }
+            };
+            (0..3).map(|i| (to[i] - from[i]) * (to[i] - from[i])).sum::<f64>().sqrt()
+        });
+        Some(Lens { aperture: camera.aperture, focus })
+    }
+}
+
+/// Sample `k`'s point in the pixel (from its top left corner, in [0, 1)²) and on the lens (in [0, 1)², (0, 0) at
+/// sample 0: the lens's centre). Samples 1–4 are the rotated grid, each in its own quarter of the pixel; later ones
+/// follow the R2 sequence (R4 with a lens) from its first point on.
+#[inline(always)]
+pub fn sample_point<N: Num>(k: N, lens: bool) -> ([N; 2], [N; 2]) {
+    let fract = |x: N| x - N::floor(x);
+    let half = N::lit(0.5);
+    // The rotated grid: (−1/8, −3/8) from the centre, turned by a quarter turn per sample.
+    let grid = |i: usize| {
+        let pick = |v: [f64; 4]| {
+            let at = |j: usize| N::lit(v[j]);
+            N::select(
+                N::lt(k, N::lit(1.5)),
+                at(0),
+                N::select(N::lt(k, N::lit(2.5)), at(1), N::select(N::lt(k, N::lit(3.5)), at(2), at(3))),
+            )
+        };
+        pick(ROTATED_GRID.map(|p| p[i]))
+    };
+    let in_grid = N::lt(k, N::lit(f64::from(FIRST) - 0.5));
+    let after = k - N::lit(f64::from(FIRST - 1));
+    let (sequence, on_lens) = if lens {
+        let a = |i: i32| N::lit(R4_ROOT.powi(-i));
+        ([fract(half + after * a(1)), fract(half + after * a(2))], [fract(k * a(3)), fract(k * a(4))])
+    } else {
+        let a = [1.0 / PLASTIC, 1.0 / (PLASTIC * PLASTIC)].map(N::lit);
+        ([fract(half + after * a[0]), fract(half + after * a[1])], [N::lit(0.0); 2])
+    };
+    let centre = N::lt(k, half);
+    let at = |i: usize| N::select(centre, half, N::select(in_grid, grid(i), sequence[i]));
+    ([at(0), at(1)], on_lens)
+}
+
+/// Step 1 for a sample: the ray through the image point (px, py) and, with a lens, from the lens point `on_lens` (in
+/// [0, 1)²) through the point the pinhole ray meets the plane of focus.
+#[inline(always)]
+pub fn camera_ray<N: Num>(rules: &Rules, view: &View<N>, px: N, py: N, on_lens: [N; 2]) -> (V3<N>, V3<N>) {
+    let Some(lens) = rules.lens else { return view.ray(px, py) };
+    let two = N::lit(2.0);
+    let u = (two * px - view.width) / view.height;
+    let v = -(two * py - view.height) / view.height;
+    // The direction with unit forward component reaches the plane of focus at t = focus along it.
+    let through = view.forward + view.right * u + view.up * v;
+    let focal = view.origin + through * N::lit(lens.focus);
+    let r = N::lit(lens.aperture) * N::sqrt(on_lens[0]);
+    let angle = N::lit(std::f64::consts::TAU) * on_lens[1];
+    let (right, up) = (view.right / length(view.right), view.up / length(view.up));
+    let origin = view.origin + right * (r * N::cos(angle)) + up * (r * N::sin(angle));
+    (origin, normalize(focal - origin))
+}
+
+/// A pixel's samples so far: the sums of their clamped colours, of their display luma and its square, and their
+/// count.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Accumulated<N> {
+    pub colour: V3<N>,
+    pub luma: N,
+    pub luma_squared: N,
+    pub count: N,
+}
+
+impl<N: Num> Accumulated<N> {
+    /// No samples.
+    pub fn empty() -> Accumulated<N> {
+        let zero = N::lit(0.0);
+        Accumulated { colour: V3::splat(zero), luma: zero, luma_squared: zero, count: zero }
+    }
+
+    /// With one more sample of linear colour `colour` (clamped to [0, 1]; a NaN stays NaN, so a broken sample shows).
+    #[inline(always)]
+    pub fn with(self, colour: V3<N>) -> Accumulated<N> {
+        let (zero, one) = (N::lit(0.0), N::lit(1.0));
+        let c = colour.map(|c| N::select(N::lt(c, zero), zero, N::select(N::lt(one, c), one, c)));
+        let y = N::sqrt(c.x * N::lit(LUMA[0]) + c.y * N::lit(LUMA[1]) + c.z * N::lit(LUMA[2]));
+        Accumulated {
+            colour: self.colour + c,
+            luma: self.luma + y,
+            luma_squared: self.luma_squared + y * y,
+            count: self.count + one,
+        }
+    }
+
+    /// The pixel's value before display: the mean of its samples.
+    #[inline(always)]
+    pub fn mean(&self) -> V3<N> {
+        self.colour / self.count
+    }
+
+    /// Whether a pixel with these samples (at least one) takes another: within a batch always (the first is
+    /// [`FIRST`] samples, then [`BATCH`]), at a batch's end while the standard error of the mean luma is above the threshold (var/n > threshold², with the unbiased
+    /// variance). The caller bounds the count.
+    #[inline(always)]
+    pub fn wants_more(&self, rules: &Rules) -> N::Mask {
+        let n = self.count;
+        let (first, batch) = (N::lit(f64::from(FIRST)), N::lit(f64::from(BATCH)));
+        let later = n - first;
+        let within_batch = N::lt(n, first) | N::lt(N::lit(0.0), later - batch * N::floor(later / batch));
+        let mean = self.luma / n;
+        let variance = (self.luma_squared - self.luma * mean) / (n - N::lit(1.0));
+        let limit = N::lit(rules.sampling.threshold * rules.sampling.threshold) * n;
+        within_batch | N::lt(limit, variance)
+    }
+}
+
+impl<N: Num> crate::number::Carry<N> for Accumulated<N> {
+    #[inline(always)]
+    fn map_nums(self, f: &mut impl FnMut(N) -> N) -> Self {
+        Accumulated {
+            colour: v3(f(self.colour.x), f(self.colour.y), f(self.colour.z)),
+            luma: f(self.luma),
+            luma_squared: f(self.luma_squared),
+            count: f(self.count),
+        }
+    }
+    #[inline(always)]
+    fn zip_nums(self, o: Self, f: &mut impl FnMut(N, N) -> N) -> Self {
+        Accumulated {
+            colour: v3(f(self.colour.x, o.colour.x), f(self.colour.y, o.colour.y), f(self.colour.z, o.colour.z)),
+            luma: f(self.luma, o.luma),
+            luma_squared: f(self.luma_squared, o.luma_squared),
+            count: f(self.count, o.count),
+        }
+    }
+}
+
+/// A drawn pixel: its centre ray's march and shading (the trace), and its value before display (the centre's
+/// linear colour with one sample, else the mean of its clamped samples).
+#[derive(Clone, Copy, Debug)]
+pub struct Drawn<N: Num> {
+    pub centre: march::March<N>,
+    /// Whether the centre ray entered the scene's bound.
+    pub enters: N::Mask,
+    pub shaded: Shaded<N>,
+    pub colour: V3<N>,
+    /// Samples taken.
+    pub samples: N,
+}
+
+/// Steps 1–6 for sample `k` of the pixel whose top left corner is (x, y): its ray, march and shading.
+#[inline(always)]
+pub fn sample<N: Num, S: SceneFns<N>>(
+    rules: &Rules,
+    view: &View<N>,
+    scene: &S,
+    (x, y): (N, N),
+    k: N,
+) -> (march::March<N>, N::Mask, Shaded<N>) {
+    let ([dx, dy], on_lens) = sample_point(k, rules.lens.is_some());
+    trace_ray(rules, view, scene, camera_ray(rules, view, x + dx, y + dy, on_lens))
+}
+
+/// Steps 1–6 for sample 0, the ray through the pixel's centre (and the lens's: the pinhole's ray).
+#[inline(always)]
+pub fn centre<N: Num, S: SceneFns<N>>(
+    rules: &Rules,
+    view: &View<N>,
+    scene: &S,
+    (x, y): (N, N),
+) -> (march::March<N>, N::Mask, Shaded<N>) {
+    let half = N::lit(0.5);
+    trace_ray(rules, view, scene, view.ray(x + half, y + half))
+}
+
+/// Steps 2–6 along the unit ray (ro, rd): the march, whether the ray entered the bound, and the shading (which a
+/// ray outside the bound, taking no step, shades as the background).
+#[inline(always)]
+fn trace_ray<N: Num, S: SceneFns<N>>(
+    rules: &Rules,
+    view: &View<N>,
+    scene: &S,
+    (ro, rd): (V3<N>, V3<N>),
+) -> (march::March<N>, N::Mask, Shaded<N>) {
+    let (m, enters) = march::march(rules, view, scene, ro, rd);
+    (m, enters, shade::shade(rules, view, scene, (ro, rd), &m))
+}
+
+/// The pixel whose top left corner is (x, y): sample 0, then, where the scene takes more, further samples while the
+/// pixel [`Accumulated::wants_more`] them, up to its most.
+#[inline(always)]
+pub fn pixel<N: Num, S: SceneFns<N>>(rules: &Rules, view: &View<N>, scene: &S, x: N, y: N) -> Drawn<N> {
+    let (centre, enters, shaded) = centre(rules, view, scene, (x, y));
+    if rules.sampling.samples <= 1 {
+        return Drawn { centre, enters, shaded, colour: shaded.colour, samples: N::lit(1.0) };
+    }
+    let first = Accumulated::empty().with(shaded.colour);
+    let all = N::iterate(
+        N::count(rules.sampling.samples - 1),
+        first,
+        |acc| acc.wants_more(rules),
+        |acc| acc.with(sample(rules, view, scene, (x, y), acc.count).2.colour),
+    );
+    Drawn { centre, enters, shaded, colour: all.mean(), samples: all.count }
+}
+
+/// The rounds of sample indices after sample 0 for a renderer that schedules samples itself: the rest of the first
+/// batch ([`FIRST`]), then whole batches ([`BATCH`]), up to `samples`. After each round a pixel goes on only while it wants more (the check
+/// [`pixel`] makes before each sample is true within a batch).
+pub fn rounds(samples: u32) -> impl Iterator<Item = std::ops::Range<u32>> {
+    let mut start = 1;
+    std::iter::from_fn(move || {
+        if start >= samples {
+            return None;
+        }
+        let end = if start < FIRST { FIRST } else { start + BATCH }.min(samples);
+        let round = start..end;
+        start = end;
+        Some(round)
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sample_zero_is_the_centre_and_the_first_batch_spreads_over_the_pixel() {
+        let ([x, y], lens) = sample_point::<f64>(0.0, true);
+        assert_eq!((x, y, lens), (0.5, 0.5, [0.0, 0.0]));
+        let points: Vec<[f64; 2]> = (1..5).map(|k| sample_point::<f64>(k as f64, false).0).collect();
+        // One sample in each quarter of the pixel, and no two on one row or column of a 4×4 grid.
+        let mut quadrants: Vec<(bool, bool)> = points.iter().map(|p| (p[0] < 0.5, p[1] < 0.5)).collect();
+        quadrants.sort();
+        quadrants.dedup();
+        assert_eq!(quadrants.len(), 4, "{points:?}");
+        let mut columns: Vec<i64> = points.iter().map(|p| (p[0] * 4.0) as i64).collect();
+        columns.sort();
+        columns.dedup();
+        assert_eq!(columns.len(), 4, "{points:?}");
+        // Later samples fill the pixel: every cell of a 4×4 grid holds one of the first 32.
+        let cells: std::collections::BTreeSet<(i64, i64)> = (0..32)
+            .map(|k| sample_point::<f64>(k as f64, false).0)
+            .map(|p| ((p[0] * 4.0) as i64, (p[1] * 4.0) as i64))
+            .collect();
+        assert_eq!(cells.len(), 16);
+    }
+
+    #[test]
+    fn rounds_follow_the_batches() {
+        let r: Vec<_> = rounds(10).collect();
+        assert_eq!(r, vec![1..5, 5..9, 9..10]);
+        assert_eq!(rounds(1).count(), 0);
+    }
+
+    #[test]
+    fn a_pixel_whose_samples_agree_stops_after_the_first_batch() {
+        let rules = Rules { sampling: Sampling { samples: 16, threshold: 0.004 }, ..test_rules() };
+        let mut acc = Accumulated::<f64>::empty();
+        for _ in 0..FIRST {
+            acc = acc.with(v3(0.3, 0.4, 0.5));
+        }
+        assert!(!acc.wants_more(&rules));
+        let mut edge = Accumulated::<f64>::empty();
+        for k in 0..FIRST {
+            edge = edge.with(V3::splat(if k % 2 == 0 { 0.9 } else { 0.1 }));
+        }
+        assert!(edge.wants_more(&rules));
+        assert!(acc.with(V3::splat(0.3)).wants_more(&rules), "within the second batch");
+        assert!(Accumulated::<f64>::empty().with(V3::splat(0.5)).wants_more(&rules), "within the first batch");
+    }
+
+    fn test_rules() -> Rules {
+        Rules::of(&crate::builder::scene(crate::builder::sphere(1.0)))
+    }
+}
