@@ -29,7 +29,7 @@ pub fn shade<N: Num, S: SceneFns<N>>(
     let (colour, normal) = N::when(hit, (lit3(rules.background), V3::splat(N::lit(0.0))), |_| {
         let p = (ro + rd * t).map(|c| N::stand_in(hit, c));
         let n = scene.normal(p, normal_tap(rules, view, t, eps));
-        (surface(rules, view, scene, p, n, rd, t, eps, hit), n)
+        (surface(rules, view, scene, p, n, (ro, rd), t, eps, hit), n)
     });
     let colour = match rules.glow {
         Some(g) => colour + lit3::<N>(g) * N::min(m.glow / N::lit(GLOW_NORM), N::lit(1.0)),
@@ -48,9 +48,9 @@ pub fn normal_tap<N: Num>(rules: &Rules, view: &View<N>, t: N, eps: N) -> N {
     }
 }
 
-/// The colour of the surface at `p` (normal `n`, distance `t` along `rd`, hit epsilon `eps`): ambient light times
-/// occlusion, then per light its diffuse and specular terms times its shadow, then fog. `live`: the lanes whose
-/// surface this is (shadow rays march only for them).
+/// The colour of the surface at `p` (normal `n`, distance `t` along the ray (ro, rd), hit epsilon `eps`): ambient
+/// light times occlusion, then per light its diffuse and specular terms times its shadow, then fog. `live`: the
+/// lanes whose surface this is (shadow rays march only for them).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub fn surface<N: Num, S: SceneFns<N>>(
@@ -59,14 +59,16 @@ pub fn surface<N: Num, S: SceneFns<N>>(
     scene: &S,
     p: V3<N>,
     n: V3<N>,
-    rd: V3<N>,
+    (ro, rd): (V3<N>, V3<N>),
     t: N,
     eps: N,
     live: N::Mask,
 ) -> V3<N> {
     let (zero, one) = (N::lit(0.0), N::lit(1.0));
     let ao = if rules.ambient_occlusion.is_some() { scene.occlusion(rules, p, n) } else { one };
-    let m = scene.sample(p, rd * t);
+    // The point relative to the camera, to the precision of t: a ray from a lens point starts off the camera.
+    let offset = if rules.lens.is_some() { (ro - view.origin) + rd * t } else { rd * t };
+    let m = scene.sample(p, offset);
     let mut colour = m.albedo * (m.ambient * ao);
     for light in &view.lights {
         let (l, radiance, limit) = light_at(rules, light, p);

@@ -381,7 +381,8 @@ impl<F: Real> View<F> {
         }
     }
 
-    /// The colour of the surface at `p` with normal `n`, hit at distance `t` along `rd` with epsilon `eps`.
+    /// The colour of the surface at `p` with normal `n`, hit at distance `t` along `rd` from the camera with epsilon
+    /// `eps`.
     #[allow(clippy::too_many_arguments)]
     pub fn shade_hit<E: Evaluator<F> + ?Sized>(
         &self,
@@ -392,7 +393,7 @@ impl<F: Real> View<F> {
         t: F,
         eps: F,
     ) -> V3<F> {
-        shade::surface(&self.rules, &self.view, on, p, n, rd, t, eps, true)
+        shade::surface(&self.rules, &self.view, on, p, n, (self.view.origin, rd), t, eps, true)
     }
 }
 

@@ -30,7 +30,8 @@ pub fn display_available() -> Result<(), String> {
 
 /// Renders the first frame the viewer would show to `png` (no window); returns the device that drew it.
 pub fn render_png(scene: &ViewerScene, options: &ViewerOptions, png: &Path) -> Result<DeviceInfo, ViewerError> {
-    let live = LiveScene::load(scene).map_err(ViewerError::Scene)?;
+    let overrides = super::effects::EffectOverrides::default().with_samples(options.samples);
+    let live = LiveScene::load(scene).and_then(|l| l.with_overrides(&overrides)).map_err(ViewerError::Scene)?;
     let mut params = ParamValues::defaults(&live.scene);
     for (name, value) in &options.params {
         params.set(name, *value)?;
