@@ -295,6 +295,7 @@ pub struct AccuracyArgs {
     /// --image: a pixel's estimate has settled when the standard error of its sub-rays' mean display luma is at most
     /// this many 8-bit levels
     #[arg(long, value_name = "LEVELS", default_value_t = crate::truth::image::DEFAULT_SETTLE, requires = "image",
+          allow_negative_numbers = true,
           value_parser = parse_settle)]
     pub truth_settle: f64,
     /// --image: frames of the camera move the flicker is measured over (1: no flicker figure)
