@@ -187,7 +187,7 @@ pub fn luma(c: [f64; 3]) -> f64 {
 
 /// A linear colour clamped to [0, 1] per channel, NaN to 0 (as [`pack_linear`] clamps).
 fn clamp01(c: V3<f64>) -> [f64; 3] {
-    [c.x, c.y, c.z].map(|v| v.max(0.0).min(1.0))
+    [c.x, c.y, c.z].map(|v| if v.is_nan() { 0.0 } else { v.clamp(0.0, 1.0) })
 }
 
 impl Truth {
