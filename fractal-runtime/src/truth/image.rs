@@ -10,9 +10,9 @@
 //! (the reasons are at `shading_depth`). Glow is left out, as in [`Truth`].
 //!
 //! **Settled.** A pixel's estimate has settled when the standard error of the mean of its sub-rays' display luma
-//! (Rec. 601 weights, in 8-bit levels; the spread of the samples over √count, which overstates a stratified estimate's
-//! error) is at most [`ImageTruthSettings::settle`]; until then the lattice doubles per side, a fresh lattice each time,
-//! up to [`ImageTruthSettings::max_grid`]. Pixels an edge crosses end at the largest lattice.
+//! (Rec. 601 weights, in 8-bit levels; the spread of the samples over √count, which overstates a stratified
+//! estimate's error) is at most [`ImageTruthSettings::settle`]; until then the lattice doubles per side, a fresh
+//! lattice each time, up to [`ImageTruthSettings::max_grid`]. Pixels an edge crosses end at the largest lattice.
 //!
 //! **Pixel normal.** The normalised mean of the hit sub-rays' unit normals where at least [`COVERED`] of the pixel's
 //! sub-rays hit; none elsewhere (a pixel mostly of background has no one surface to judge a normal against).

@@ -73,7 +73,8 @@ pub fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend) -> Res
         if i == 0 {
             say(format!(
                 "  image truth: {g}x{g} sub-rays per pixel up to {m}x{m} until the standard error of the mean display \
-                 luma is at most {s} levels; {:.1} sub-rays per pixel on average, {:.2} % of pixels not settled; {took:.1} s",
+                 luma is at most {s} levels; {:.1} sub-rays per pixel on average, {:.2} % of pixels not settled; \
+                 {took:.1} s",
                 truth.mean_sub_rays(),
                 100.0 * truth.unsettled(),
                 g = settings.grid,
