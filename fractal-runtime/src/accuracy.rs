@@ -1,7 +1,8 @@
 //! Speed against true error: renders measured against the ground truth ([`crate::truth`]) — [`metrics`] — and sweeps
 //! of the quality settings ([`crate::quality`]) behind `fractal accuracy`, as tables ([`table`]) and time-against-error
-//! plots ([`plot`]).
+//! plots ([`plot`]); and images against the truth of the image ([`crate::truth::image`]) — [`image`].
 
+pub mod image;
 pub mod metrics;
 pub mod plot;
 pub mod sweep;

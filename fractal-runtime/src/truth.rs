@@ -38,6 +38,7 @@
 
 pub mod cone;
 pub mod estimate;
+pub mod image;
 pub mod member;
 mod ray;
 

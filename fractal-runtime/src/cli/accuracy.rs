@@ -1,6 +1,7 @@
 //! `fractal accuracy`: sweeps quality settings of a scene on one backend against the ground truth
 //! ([`crate::truth`]), prints the table and the fastest setting within the error budget, appends CSV rows, and with
-//! `--report` does it for every built-in scene and writes the Markdown report.
+//! `--report` does it for every built-in scene and writes the Markdown report; with `--image`, the scene default's
+//! image against the truth of the image instead ([`image`]).
 
 use std::fmt::Write as _;
 use std::io::Write as _;
@@ -20,6 +21,7 @@ use crate::output::png::prepare_output;
 use crate::quality::Quality;
 use crate::truth::{self, Truth, TruthSettings};
 
+pub mod image;
 mod keys;
 mod verdict;
 
@@ -40,6 +42,13 @@ pub fn accuracy(args: &AccuracyArgs, library: &SceneLibrary) -> Result<(), CliEr
             return Err(CliError::usage("accuracy needs one backend: --backend cpu, wgpu or opencl"))
         }
     };
+    if args.image {
+        let name = args.scene.as_deref().ok_or_else(|| CliError::usage("--image measures one scene: name it"))?;
+        let mut loaded = LoadedScene::load(name, library)?;
+        args.camera.apply(&mut loaded.scene.camera);
+        image::study(&loaded, args, backend)?;
+        return Ok(());
+    }
     if let Some(path) = &args.csv {
         prepare_output(path)?;
     }

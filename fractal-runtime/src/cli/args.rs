@@ -229,7 +229,11 @@ no ray out of steps, no NaN/Inf, interior depth p99 <= 1 footprint (pixel-cone c
 path is then judged from each of its other keys. --default-only measures the scene's own setting alone.
 --report does it for every built-in scene and writes the Markdown report (docs/accuracy.md); with --default-only,
 the defaults alone (to judge them at a size the sweep cannot afford). A normal p99 over fewer than 100 measured
-normals is not judged, and the verdict says so.")]
+normals is not judged, and the verdict says so.
+--image measures the scene default's image instead against the truth of the image: per pixel, the box-filtered mean
+of the scene's shading over a lattice of sub-rays (docs/image-truth.md): PSNR, SSIM, pixels off by more than 8/255,
+normals against the pixel-integrated true normal, and flicker along --flicker-frames frames of the camera path, 1/30 s
+apart (or an orbit of a pixel's angle per frame where the camera stands still).")]
 pub struct AccuracyArgs {
     /// Built-in scene name or .fractal file (every built-in scene with --report)
     #[arg(required_unless_present_any = ["report", "estimators"])]
@@ -283,8 +287,43 @@ pub struct AccuracyArgs {
     /// Points per family and region for the estimator study
     #[arg(long, value_name = "N", default_value_t = 300, value_parser = clap::value_parser!(u32).range(1..=100_000))]
     pub estimator_samples: u32,
+    /// Measure the scene default's image against the truth of the image instead of sweeping: PSNR, SSIM, pixels
+    /// off by more than 8/255, normals against the pixel-integrated true normal, and flicker along a slow camera move
+    #[arg(long, conflicts_with_all = ["report", "estimators", "default_only", "also_on", "csv", "plot"])]
+    pub image: bool,
+    /// --image: sub-rays per side of each pixel's first lattice
+    #[arg(long, value_name = "N", default_value_t = crate::truth::image::DEFAULT_GRID, requires = "image",
+          value_parser = clap::value_parser!(u32).range(2..=crate::truth::image::LARGEST_GRID as i64))]
+    pub truth_grid: u32,
+    /// --image: sub-rays per side of the finest lattice a pixel whose estimate has not settled refines to
+    #[arg(long, value_name = "N", default_value_t = crate::truth::image::DEFAULT_MAX_GRID, requires = "image",
+          value_parser = clap::value_parser!(u32).range(2..=crate::truth::image::LARGEST_GRID as i64))]
+    pub truth_max_grid: u32,
+    /// --image: a pixel's estimate has settled when the standard error of its sub-rays' mean display luma is at most
+    /// this many 8-bit levels
+    #[arg(long, value_name = "LEVELS", default_value_t = crate::truth::image::DEFAULT_SETTLE, requires = "image",
+          allow_negative_numbers = true,
+          value_parser = parse_settle)]
+    pub truth_settle: f64,
+    /// --image: frames of the camera move the flicker is measured over (1: no flicker figure)
+    #[arg(long, value_name = "N", default_value_t = 3, requires = "image",
+          value_parser = clap::value_parser!(u32).range(1..=64))]
+    pub flicker_frames: u32,
+    /// --image: also compute the image truth with both lattices doubled per side and print how far it moved
+    #[arg(long, requires = "image")]
+    pub truth_check: bool,
+    /// --image: write the first frame's truth and render here as PNG (SCENE.truth.png, SCENE.render.png)
+    #[arg(long, value_name = "DIR", requires = "image")]
+    pub image_out: Option<PathBuf>,
     #[command(flatten)]
     pub camera: CameraOverride,
+}
+
+fn parse_settle(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(v) if v.is_finite() && v >= 0.0 => Ok(v),
+        _ => Err(format!("the settle threshold is a number of 8-bit levels >= 0, got `{text}`")),
+    }
 }
 
 fn parse_truth_step(text: &str) -> Result<f64, String> {
