@@ -74,7 +74,10 @@ pub fn accuracy(args: &AccuracyArgs, library: &SceneLibrary) -> Result<(), CliEr
     for name in &names {
         let mut loaded = LoadedScene::load(name, library)?;
         args.camera.apply(&mut loaded.scene.camera);
-        loaded.set_samples(args.samples)?;
+        if args.samples.len() > 1 {
+            return Err(CliError::usage("a list of --samples is for --image; the sweep takes one count"));
+        }
+        loaded.set_samples(args.samples.first().copied())?;
         let section = study(&loaded, args, backend, &budget)?;
         report += &section;
     }

@@ -254,9 +254,10 @@ pub struct AccuracyArgs {
     /// Measure the scene's own setting only, no sweep (the truths, the default's figures and its verdict)
     #[arg(long)]
     pub default_only: bool,
-    /// The most rays a pixel may take, 1..=256 (1: one ray through its centre) [default: the scene's `samples`]
-    #[arg(long, value_name = "N", value_parser = parse_samples)]
-    pub samples: Option<u32>,
+    /// The most rays a pixel may take, 1..=256 [default: the scene's `samples`]; with --image a list (1,5,16), each
+    /// measured against the same truth
+    #[arg(long, value_name = "N[,N..]", value_delimiter = ',', value_parser = parse_samples)]
+    pub samples: Vec<u32>,
 
     /// Scene time in seconds the sweep is measured at (the camera path's pose and every animated value then); a
     /// camera path's other keys are checked after it

@@ -40,7 +40,8 @@ pub fn settings(args: &AccuracyArgs) -> Result<ImageTruthSettings, CliError> {
     Ok(settings)
 }
 
-/// Measures one scene's default image; prints the figures and returns them as Markdown lines.
+/// Measures one scene's default image (or its image at each of `--samples`' counts, and at one sample for the
+/// ratios) against the image truth of each frame of the flight; prints the figures and returns them as Markdown.
 pub fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend) -> Result<String, CliError> {
     let settings = settings(args)?;
     // Glow is a sum along the renderer's march, which the truth does not define: both go without it.
@@ -62,14 +63,15 @@ pub fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend) -> Res
     };
     let glow = if glow { ", its glow left out" } else { "" };
     say(format!("image accuracy of {}{at} at {w}x{h} on {backend} (the scene default{glow})", loaded.name));
-    let mut frames: Vec<(Image, Image)> = Vec::new();
+    let mut frames = Vec::new();
+    let mut truths: Vec<Image> = Vec::new();
+    let mut first_truth = None;
     for (i, (time, pose)) in poses.iter().enumerate() {
         let frame = Frame::new(scene, pose, *time, w, h, &params).map_err(|e| CliError::failure(e.to_string()))?;
         let start = Instant::now();
         let truth = ImageTruth::compute(scene, &frame, settings).map_err(truth_error)?;
         let took = start.elapsed().as_secs_f64();
-        let truth_image = truth.image();
-        let (image, traces, ms) = render(scene, &frame, backend, renderer.as_mut())?;
+        truths.push(truth.image());
         if i == 0 {
             say(format!(
                 "  image truth: {g}x{g} sub-rays per pixel up to {m}x{m} until the standard error of the mean display \
@@ -81,20 +83,6 @@ pub fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend) -> Res
                 m = settings.max_grid,
                 s = settings.settle,
             ));
-            say(format!("  render: {ms:.1} ms (median of {TIMING_RUNS})"));
-            if let Some(dir) = &args.image_out {
-                for (what, picture) in [("truth", &truth_image), ("render", &image)] {
-                    let path = dir.join(format!("{}.{what}.png", loaded.name));
-                    prepare_output(&path)?;
-                    write_png(&path, picture)?;
-                    say(format!("  wrote {}", path.display()));
-                }
-            }
-            say(format!("  image: {}", image_error(&truth_image, &image).describe()));
-            match traces {
-                Some(traces) => say(format!("  {}", normal_error(&truth, &traces).describe())),
-                None => say("  normals: not read on this backend".to_string()),
-            }
             if args.truth_check {
                 let finer = ImageTruthSettings { grid: 2 * settings.grid, max_grid: 2 * settings.max_grid, ..settings };
                 finer.check().map_err(CliError::usage)?;
@@ -106,30 +94,77 @@ pub fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend) -> Res
                     finer.grid,
                     finer.max_grid,
                     finer.max_grid,
-                    image_error(&check.image(), &truth_image).describe(),
+                    image_error(&check.image(), &truths[0]).describe(),
                     start.elapsed().as_secs_f64()
                 ));
             }
+            first_truth = Some(truth);
         } else {
             say(format!("  frame {i} (t = {time:.3} s): image truth {took:.1} s"));
         }
-        frames.push((image, truth_image));
+        frames.push(frame);
     }
+    let first_truth = first_truth.expect("a flight has a first frame");
     if frames.len() > 1 {
-        let renders: Vec<Image> = frames.iter().map(|(r, _)| r.clone()).collect();
-        let truths: Vec<Image> = frames.iter().map(|(_, t)| t.clone()).collect();
         let moved = if poses.iter().all(|(t, _)| *t == args.time) {
             "an orbit of a pixel's angle per frame".to_string()
         } else {
             format!("the camera path, {FLICKER_STEP:.4} s apart")
         };
         say(format!(
-            "  flicker over {} frames of {moved}: {:.2} levels RMS (the render moved {:.2}, the truth {:.2})",
+            "  flicker over {} frames of {moved}; the truth moved {:.2} levels RMS",
             frames.len(),
-            flicker(&frames),
-            motion(&renders),
             motion(&truths)
         ));
+    }
+    // One sample first: the time and flicker ratios are against it.
+    let own = scene.settings.samples;
+    let mut counts: Vec<u32> = if args.samples.is_empty() { vec![own] } else { args.samples.clone() };
+    if !counts.contains(&1) {
+        counts.insert(0, 1);
+    }
+    let mut single: Option<(f64, f64)> = None;
+    for n in counts {
+        let mut sampled = scene.clone();
+        sampled.settings.samples = n;
+        let mut images = Vec::new();
+        let (mut ms, mut traces) = (0.0, None);
+        for (i, frame) in frames.iter().enumerate() {
+            let (image, t, took) = render(&sampled, frame, backend, renderer.as_mut(), i == 0)?;
+            if i == 0 {
+                (ms, traces) = (took, t);
+                if let Some(dir) = &args.image_out {
+                    let own = if n == scene.settings.samples { String::new() } else { format!(".{n}") };
+                    for (what, picture) in [("truth", &truths[0]), ("render", &image)] {
+                        let path = dir.join(format!("{}{own}.{what}.png", loaded.name));
+                        prepare_output(&path)?;
+                        write_png(&path, picture)?;
+                    }
+                }
+            }
+            images.push(image);
+        }
+        let error = image_error(&truths[0], &images[0]);
+        let paired: Vec<(Image, Image)> = images.iter().cloned().zip(truths.iter().cloned()).collect();
+        let shimmer = (paired.len() > 1).then(|| flicker(&paired));
+        let (base_ms, base_flicker) = *single.get_or_insert((ms, shimmer.unwrap_or(f64::NAN)));
+        let per_pixel = traces.as_ref().map_or(f64::NAN, |t: &Vec<PixelTrace>| {
+            t.iter().map(|p| f64::from(p.samples)).sum::<f64>() / t.len() as f64
+        });
+        let shimmer =
+            shimmer.map_or(String::new(), |f| format!(", flicker {f:.2} levels RMS ({:.2}x)", f / base_flicker));
+        say(format!(
+            "  samples {n} (threshold {}): {per_pixel:.2} per pixel, {ms:.1} ms ({:.2}x), {}{shimmer}",
+            scene.settings.sample_threshold,
+            ms / base_ms,
+            error.describe(),
+        ));
+        if n == own {
+            match &traces {
+                Some(traces) => say(format!("    {}", normal_error(&first_truth, traces).describe())),
+                None => say("    normals: not read on this backend".to_string()),
+            }
+        }
     }
     Ok(md)
 }
@@ -141,36 +176,41 @@ fn truth_error(e: ImageTruthError) -> CliError {
     }
 }
 
-/// The scene default's render on `backend`: its image, its per-pixel traces where the backend keeps them, and the
-/// median time of [`TIMING_RUNS`] renders in milliseconds.
+/// The scene's render on `backend`: its image, its per-pixel traces where the backend keeps them, and the median
+/// time of [`TIMING_RUNS`] renders in milliseconds (where `timed`; else one render, untimed, and no traces).
 fn render(
     scene: &Scene,
     frame: &Frame,
     backend: Backend,
     renderer: Option<&mut Box<dyn Renderer>>,
+    timed: bool,
 ) -> Result<(Image, Option<Vec<PixelTrace>>, f64), CliError> {
+    let runs = if timed { TIMING_RUNS } else { 1 };
     let mut times = Vec::new();
     let (image, traces) = match (backend, renderer) {
         (Backend::Cpu, _) | (_, None) => {
             let interpreter = Interpreter::new(scene).map_err(|e| CliError::failure(e.to_string()))?;
             let mut image = None;
-            for _ in 0..TIMING_RUNS {
+            for _ in 0..runs {
                 let start = Instant::now();
                 image = Some(render_scene::<f32, _>(&interpreter, scene, frame)?);
                 times.push(start.elapsed().as_secs_f64() * 1e3);
             }
-            let traces = trace_scene::<f32, _>(&interpreter, scene, frame)?;
-            (image.expect("timed at least once"), Some(traces))
+            let traces = if timed { Some(trace_scene::<f32, _>(&interpreter, scene, frame)?) } else { None };
+            (image.expect("rendered at least once"), traces)
         }
         (_, Some(renderer)) => {
             let kernels = fractal_dsl::compile(scene).map_err(|e| CliError::failure(e.to_string()))?;
             let job = RenderJob::new(KernelSources::compiled(&kernels), frame);
             // The first render builds the kernel; it is not timed.
             let mut image = renderer.render(&job)?;
-            for _ in 0..TIMING_RUNS {
+            for _ in 0..runs {
                 let start = Instant::now();
                 image = renderer.render(&job)?;
                 times.push(start.elapsed().as_secs_f64() * 1e3);
+            }
+            if !timed {
+                return Ok((image, None, f64::NAN));
             }
             let tracing = kernels.tracing();
             let traced = renderer.trace(&RenderJob::new(KernelSources::compiled(&tracing), frame))?;
