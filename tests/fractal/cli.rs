@@ -170,6 +170,28 @@ fn view_without_a_display_says_how_to_render_instead() {
     assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
 }
 
+/// `--samples` draws a built-in with more rays a pixel on a backend that runs its kernels (compiled again for it)
+/// and on the CPU alike: the silhouette's pixels change, little else does.
+#[test]
+fn samples_from_the_command_line_smooth_the_edges_on_every_backend() {
+    let dir = scratch("samples");
+    let args = |backend: &'static str, samples: &'static str, name: &'static str| {
+        ["render", "hello_world", "--size", "48x32", "--backend", backend, "--samples", samples, "-o", name]
+    };
+    assert_ok(&run_in(&dir, &args("cpu", "1", "one.png")));
+    assert_ok(&run_in(&dir, &args("cpu", "16", "cpu.png")));
+    let (one, cpu) = (read_png(&dir.join("one.png")).unwrap(), read_png(&dir.join("cpu.png")).unwrap());
+    let changed = fraction_unlike(&one, &cpu, 8);
+    assert!(changed > 0.005 && changed < 0.2, "{:.1} % of pixels changed by more than 8 levels", changed * 100.0);
+    let gpu = run_in(&dir, &args("wgpu", "16", "gpu.png"));
+    if gpu.status.success() {
+        let unlike = fraction_unlike(&read_png(&dir.join("gpu.png")).unwrap(), &cpu, 3);
+        assert!(unlike < 0.02, "{:.1} % of pixels differ by more than 3 levels", unlike * 100.0);
+    } else {
+        assert!(!backends_required(), "wgpu is required but failed:\n{}", stderr(&gpu));
+    }
+}
+
 #[test]
 fn wgpu_renders_what_the_cpu_renders() {
     let dir = scratch("wgpu");
