@@ -313,6 +313,31 @@ impl Frame {
         let first = self.layout.params_slot();
         (0..self.layout.params).map(|j| self.slots[first + j / 4][j % 4]).collect()
     }
+    /// This frame with each pixel's one ray through the point (dx, dy) of the pixel (from its top left corner; the
+    /// centre is (½, ½)) and, with `lens` (an offset along the image's right and up axes in scene units, and the
+    /// distance in focus), from that point of a thin lens towards the plane of focus: the ray sample (dx, dy, lens) of
+    /// the pixel program ([`fractal_dsl::ray::pixel::camera_ray`]) takes. The camera moves to the lens point and its
+    /// forward axis turns so that the pixel's centre ray is that ray; a perturbation orbit stays the camera's.
+    pub fn jittered(&self, dx: f64, dy: f64, lens: Option<([f64; 2], f64)>) -> Frame {
+        let d = |s: [f32; 4]| DVec3::new(f64::from(s[0]), f64::from(s[1]), f64::from(s[2]));
+        let (origin, right, up, forward) = (d(self.slots[0]), d(self.slots[1]), d(self.slots[2]), d(self.slots[3]));
+        let h = f64::from(self.height);
+        // The image point moves by (dx − ½, dy − ½) pixels: u by 2(dx − ½)/h, v by −2(dy − ½)/h.
+        let mut forward = forward + right * (2.0 * (dx - 0.5) / h) - up * (2.0 * (dy - 0.5) / h);
+        let mut origin = origin;
+        if let Some(([x, y], focus)) = lens {
+            let offset = right.normalize_or_zero() * x + up.normalize_or_zero() * y;
+            origin += offset;
+            // Towards the same point of the plane of focus: focus·(forward + …) − offset.
+            forward -= offset / focus;
+        }
+        let mut slots = self.slots.clone();
+        let set = |slot: &mut [f32; 4], v: DVec3| (slot[0], slot[1], slot[2]) = (v.x as f32, v.y as f32, v.z as f32);
+        set(&mut slots[0], origin);
+        set(&mut slots[3], forward);
+        Frame { slots, ..self.clone() }
+    }
+
     /// The perturbation reference orbit up to its last entry, as the kernels read it (empty without one).
     pub fn reference_orbit(&self) -> Vec<[f32; 2]> {
         if self.layout.orbit == 0 {

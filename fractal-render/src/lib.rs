@@ -47,6 +47,7 @@ pub mod error;
 pub mod frame;
 pub mod image;
 pub mod limits;
+pub mod progressive;
 pub mod renderer;
 pub mod select;
 

@@ -183,6 +183,12 @@ fn samples_from_the_command_line_smooth_the_edges_on_every_backend() {
     let (one, cpu) = (read_png(&dir.join("one.png")).unwrap(), read_png(&dir.join("cpu.png")).unwrap());
     let changed = fraction_unlike(&one, &cpu, 8);
     assert!(changed > 0.005 && changed < 0.2, "{:.1} % of pixels changed by more than 8 levels", changed * 100.0);
+    // A progressive still: passes of one ray a pixel for a fifth of a second, at least one.
+    let out = run_in(&dir, &["render", "hello_world", "--size", "48x32", "--backend", "cpu", "--progressive", "0.2"]);
+    assert_ok(&out);
+    assert!(stderr(&out).contains(" passes, "), "{}", stderr(&out));
+    let refined = read_png(&dir.join("hello_world.png")).unwrap();
+    assert!(fraction_unlike(&refined, &cpu, 16) < 0.05, "the progressive still is not the supersampled one");
     let gpu = run_in(&dir, &args("wgpu", "16", "gpu.png"));
     if gpu.status.success() {
         let unlike = fraction_unlike(&read_png(&dir.join("gpu.png")).unwrap(), &cpu, 3);

@@ -121,11 +121,19 @@ pub fn camera_ray<N: Num>(rules: &Rules, view: &View<N>, px: N, py: N, on_lens: 
     // The direction with unit forward component reaches the plane of focus at t = focus along it.
     let through = view.forward + view.right * u + view.up * v;
     let focal = view.origin + through * N::lit(lens.focus);
+    let [x, y] = lens_point(&lens, on_lens);
+    let (right, up) = (view.right / length(view.right), view.up / length(view.up));
+    let origin = view.origin + right * x + up * y;
+    (origin, normalize(focal - origin))
+}
+
+/// The point of the lens for `on_lens` in [0, 1)²: its offset from the camera along the image's right and up axes, in
+/// scene units (r = aperture·√u, θ = 2πv).
+#[inline(always)]
+pub fn lens_point<N: Num>(lens: &Lens, on_lens: [N; 2]) -> [N; 2] {
     let r = N::lit(lens.aperture) * N::sqrt(on_lens[0]);
     let angle = N::lit(std::f64::consts::TAU) * on_lens[1];
-    let (right, up) = (view.right / length(view.right), view.up / length(view.up));
-    let origin = view.origin + right * (r * N::cos(angle)) + up * (r * N::sin(angle));
-    (origin, normalize(focal - origin))
+    [r * N::cos(angle), r * N::sin(angle)]
 }
 
 /// A pixel's samples so far: the sums of their clamped colours, of their display luma and its square, and their

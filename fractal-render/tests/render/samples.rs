@@ -161,3 +161,33 @@ fn a_lens_blurs_what_is_out_of_focus() {
     let single = cpu(&lens(30.0).samples(1), &frame);
     assert_eq!(single.pixels, cpu(&base.clone().samples(1), &frame).pixels, "one sample is the pinhole's ray");
 }
+
+/// A progressive render's passes are the pixel program's samples, drawn by moving the camera: nine passes of the
+/// one-sample program draw what nine samples a pixel (no adaptive stop) draw, through a lens too, on the CPU and on
+/// wgpu.
+#[test]
+fn progressive_passes_take_the_pixel_programs_samples() {
+    use fractal_render::progressive::Progressive;
+    let lens = ball_and_box().camera(camera([0.0, 0.6, -3.0], [0.0, 0.0, 0.0]).fov(45.0).aperture(0.3));
+    for (name, s) in [("pinhole", ball_and_box()), ("lens", lens)] {
+        let frame = Frame::default_view(&s, 0.0, 40, 30).unwrap();
+        let direct = cpu(&s.clone().samples(9).sample_threshold(0.0), &frame);
+        let one = s.clone().samples(1);
+        let interp = Interpreter::new(&one).unwrap();
+        let kernels = fractal_dsl::compile(&one).unwrap().tracing();
+        let mut renderers: Vec<(&str, Box<dyn Renderer>, KernelSources)> =
+            vec![("CPU", Box::new(CpuRenderer::new()), KernelSources::default().with_cpu(&interp, &one))];
+        if let Some(gpu) = available("wgpu", WgpuRenderer::new()) {
+            renderers.push(("wgpu", Box::new(gpu), KernelSources::compiled(&kernels)));
+        }
+        for (backend, mut renderer, sources) in renderers {
+            let mut passes = Progressive::new(&one, &frame);
+            for _ in 0..9 {
+                passes.draw(renderer.as_mut(), &RenderJob::new(sources, &frame)).unwrap();
+            }
+            let alike = psnr(&passes.image(), &direct);
+            // The moved camera is rounded to f32 and the kernels' arithmetic is not the CPU's: not bit-equal.
+            assert!(alike > 40.0, "{name} on {backend}: nine passes are {alike:.1} dB from nine samples");
+        }
+    }
+}

@@ -115,6 +115,11 @@ pub struct RenderArgs {
     /// [default: SCENE.png, or SCENE/%05d.png with --frames]
     #[arg(short, long, value_name = "PATH")]
     pub output: Option<PathBuf>,
+    /// Refine the still for this many seconds: pass after pass of one ray a pixel at the pixel program's next sample
+    /// (and lens point), averaged
+    #[arg(long, value_name = "SECONDS", allow_negative_numbers = true, conflicts_with_all = ["frames", "aov", "samples"],
+          value_parser = parse_progressive)]
+    pub progressive: Option<f64>,
     /// Render an animation: frames START..END (end exclusive) or START..=END; frame f is at time f / fps
     #[arg(long, value_name = "START..END", value_parser = parse_frames)]
     pub frames: Option<FrameRange>,
@@ -467,6 +472,14 @@ pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
     let (w, h) = (side(w)?, side(h)?);
     check_image_size(w, h).map_err(|e| e.to_string())?;
     Ok((w, h))
+}
+
+/// Seconds of progressive refinement: positive, at most a day.
+pub fn parse_progressive(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(v) if v > 0.0 && v <= 86_400.0 => Ok(v),
+        _ => Err(format!("--progressive takes seconds in (0, 86400], got `{text}`")),
+    }
 }
 
 /// A sample count within the scene language's limits.

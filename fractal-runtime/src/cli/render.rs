@@ -21,6 +21,7 @@ use crate::output::aov::write_aov;
 use crate::output::png::{prepare_output, write_png};
 use crate::output::sequence::{plan, FramePattern, Shard};
 use crate::output::video::{Container, VideoWriter};
+use fractal_render::progressive::Progressive;
 
 /// What `-o` and `--frames` ask for.
 enum Output {
@@ -154,6 +155,30 @@ fn trace_frame(
     with_notes(renderer, traced)
 }
 
+/// A still refined for `seconds` ([`Progressive`]): passes of the scene's one-sample trace kernels, at least one;
+/// the image and the passes drawn.
+fn progressive(
+    renderer: &mut dyn Renderer,
+    loaded: &mut LoadedScene,
+    params: &ParamValues,
+    time: f64,
+    size: (u32, u32),
+    seconds: f64,
+) -> Result<(Image, u32), CliError> {
+    loaded.set_samples(Some(1))?;
+    let frame = frame_at(loaded, params, time, size)?;
+    let tracing = loaded.tracing()?;
+    let sources = KernelSources::compiled(&tracing).with_cpu(loaded.evaluator(), &loaded.scene);
+    let job = RenderJob::new(sources, &frame);
+    let mut passes = Progressive::new(&loaded.scene, &frame);
+    let start = Instant::now();
+    while passes.passes() == 0 || start.elapsed().as_secs_f64() < seconds {
+        let drawn = passes.draw(renderer, &job);
+        with_notes(renderer, drawn)?;
+    }
+    Ok((passes.image(), passes.passes()))
+}
+
 /// `drawn`, after printing what the renderer noted while drawing it (a fallback to another backend).
 fn with_notes<T>(renderer: &mut dyn Renderer, drawn: Result<T, RenderError>) -> Result<T, CliError> {
     for n in renderer.take_notes() {
@@ -198,6 +223,20 @@ pub fn render(args: &RenderArgs, library: &SceneLibrary) -> Result<(), CliError>
             prepare_output(&path)?;
             let mut renderer = open_renderer(&args.render)?;
             let start = Instant::now();
+            if let Some(seconds) = args.progressive {
+                let image = progressive(renderer.as_mut(), &mut loaded, &params, args.time, size, seconds)?;
+                write_png(&path, &image.0)?;
+                let elapsed = start.elapsed().as_secs_f64();
+                eprintln!(
+                    "wrote {} ({}x{}, t = {}, {} passes, {elapsed:.2} s)",
+                    path.display(),
+                    size.0,
+                    size.1,
+                    args.time,
+                    image.1
+                );
+                return Ok(());
+            }
             let traced = if args.aov.is_empty() {
                 None
             } else {

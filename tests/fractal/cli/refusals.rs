@@ -31,6 +31,7 @@ fn bad_input_is_one_clear_line_and_the_right_exit_status() {
         (vec!["render", "hello_world", "--samples", "0"], 2, "whole number in 1..=256".into()),
         (vec!["view", "hello_world", "--samples", "257"], 2, "got `257`".into()),
         (vec!["accuracy", "hello_world", "--samples", "1,4"], 2, "a list of --samples is for --image".into()),
+        (vec!["render", "hello_world", "--progressive", "-1"], 2, "--progressive takes seconds".into()),
         (vec!["bench", "hello_world", "--frames", "0"], 2, "invalid value '0'".into()),
         (vec!["export", "hello_world", "--target", "dxil"], 2, "unknown export target `dxil`".into()),
         (vec!["export", "mandelbrot_zoom", "--camera-path", "--fps", "1e9"], 2, "lower --fps".into()),
