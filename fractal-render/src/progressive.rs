@@ -4,7 +4,8 @@
 //! passes' clamped linear colours is the pixel program's box-filtered value, to as many samples as there were passes.
 
 use fractal_dsl::number::math::v3;
-use fractal_dsl::ray::pixel::{lens_point, sample_point, Lens};
+use fractal_dsl::ray::pixel::{lens_point, sample_point};
+use fractal_dsl::ray::Lens;
 use fractal_dsl::Scene;
 
 use crate::error::RenderError;

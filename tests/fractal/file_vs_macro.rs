@@ -15,6 +15,8 @@ fn macro_file_and_runtime_load_write_identical_kernels() {
             // At the default 128 steps one ray grazing the silhouette runs out of steps before it leaves (`fractal
             // accuracy hello_world`); 256 cost nothing measurable.
             .max_steps(256)
+            // Up to 16 rays a pixel, where its first five disagree (`docs/settings.md`, “Samples per pixel”).
+            .samples(16)
     };
     let from_file = &scenes::HELLO_WORLD;
     let loaded = compile(&parse_str(scenes::source_file("hello_world").unwrap()).unwrap()).unwrap();

@@ -73,7 +73,7 @@ pub struct Program {
     pub reference: Option<crate::analyse::ReferenceSpec>,
     pub settings: RenderSettings,
     /// The camera's thin lens, if it has one (its samples spread over it).
-    pub lens: Option<crate::ray::pixel::Lens>,
+    pub lens: Option<crate::ray::Lens>,
 }
 
 /// The name of the sample function's second argument where the scene has a perturbation reference: the point minus
@@ -152,7 +152,7 @@ fn lower_with(scene: &Scene, perturb: bool) -> Program {
         refine: analyse::sign_refinement(&folded.root, &folded.settings),
         reference: plan.reference,
         settings: folded.settings.clone(),
-        lens: crate::ray::pixel::Lens::of(&folded.camera),
+        lens: crate::ray::Lens::of(&folded.camera),
         distance,
         distance_result,
         sample,

@@ -18,10 +18,9 @@
 //! to its most samples.
 
 use super::march;
-use super::rules::{Rules, View};
+use super::rules::{Lens, Rules, View};
 use super::scene::SceneFns;
 use super::shade::{self, Shaded};
-use crate::ir::{Camera, CameraPlacement};
 use crate::number::math::{length, normalize, v3, V3};
 use crate::number::Num;
 
@@ -37,45 +36,6 @@ const PLASTIC: f64 = 1.324_717_957_244_746;
 const R4_ROOT: f64 = 1.167_303_978_261_418_7;
 /// Rec. 709 luma weights, for the adaptive test.
 const LUMA: [f64; 3] = [0.2126, 0.7152, 0.0722];
-
-/// How many samples a pixel may take and when it stops: the scene's `samples` and `sample_threshold`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Sampling {
-    /// The most samples (1: the centre ray alone).
-    pub samples: u32,
-    /// The standard error of the mean display luma under which a pixel stops.
-    pub threshold: f64,
-}
-
-/// A thin lens: its radius and the distance along the view direction it holds in focus.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Lens {
-    pub aperture: f64,
-    pub focus: f64,
-}
-
-impl Lens {
-    /// The lens of `camera`, if it has an aperture. Its default focus is the distance from the camera to its target at
-    /// time 0 (the first key's, on a path), with every parameter at its default.
-    pub fn of(camera: &Camera) -> Option<Lens> {
-        if camera.aperture <= 0.0 {
-            return None;
-        }
-        let focus = camera.focus.unwrap_or_else(|| {
-            let (from, to) = match &camera.placement {
-                CameraPlacement::LookAt { position, target } => {
-                    let at = |v: &crate::ir::Vec3Expr| v.eval(0.0, &|p| p.default);
-                    (at(position), at(target))
-                }
-                CameraPlacement::Path { keys, .. } => {
-                    keys.first().map_or(([0.0; 3], [1.0; 3]), |k| (k.position, k.target))
-                }
-            };
-            (0..3).map(|i| (to[i] - from[i]) * (to[i] - from[i])).sum::<f64>().sqrt()
-        });
-        Some(Lens { aperture: camera.aperture, focus })
-    }
-}
 
 /// Sample `k`'s point in the pixel (from its top left corner, in [0, 1)²) and on the lens (in [0, 1)², (0, 0) at
 /// sample 0: the lens's centre). Samples 1–4 are the rotated grid, each in its own quarter of the pixel; later ones
@@ -298,6 +258,7 @@ pub fn rounds(samples: u32) -> impl Iterator<Item = std::ops::Range<u32>> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::ray::rules::Sampling;
 
     #[test]
     fn sample_zero_is_the_centre_and_the_first_batch_spreads_over_the_pixel() {

@@ -1,8 +1,8 @@
 //! What the ray program reads besides the scene: its constants, the scene's settings as [`Rules`] and a frame's camera
 //! and lights as a [`View`] (with step 1, the camera ray).
 
-use super::pixel::{Lens, Sampling};
 use crate::analyse::{self, fold::fold_node, Aabb, SignRefinement};
+use crate::ir::{Camera, CameraPlacement};
 use crate::number::math::{normalize, V3};
 use crate::number::Num;
 use crate::{HitEpsilon, RenderSettings, Scene, Shadows};
@@ -156,4 +156,43 @@ impl<N: Num> View<N> {
 #[inline(always)]
 pub(crate) fn lit3<N: Num>(c: [f64; 3]) -> V3<N> {
     V3 { x: N::lit(c[0]), y: N::lit(c[1]), z: N::lit(c[2]) }
+}
+
+/// How many samples a pixel may take and when it stops: the scene's `samples` and `sample_threshold`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sampling {
+    /// The most samples (1: the centre ray alone).
+    pub samples: u32,
+    /// The standard error of the mean display luma under which a pixel stops.
+    pub threshold: f64,
+}
+
+/// A thin lens: its radius and the distance along the view direction it holds in focus.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Lens {
+    pub aperture: f64,
+    pub focus: f64,
+}
+
+impl Lens {
+    /// The lens of `camera`, if it has an aperture. Its default focus is the distance from the camera to its target at
+    /// time 0 (the first key's, on a path), with every parameter at its default.
+    pub fn of(camera: &Camera) -> Option<Lens> {
+        if camera.aperture <= 0.0 {
+            return None;
+        }
+        let focus = camera.focus.unwrap_or_else(|| {
+            let (from, to) = match &camera.placement {
+                CameraPlacement::LookAt { position, target } => {
+                    let at = |v: &crate::ir::Vec3Expr| v.eval(0.0, &|p| p.default);
+                    (at(position), at(target))
+                }
+                CameraPlacement::Path { keys, .. } => {
+                    keys.first().map_or(([0.0; 3], [1.0; 3]), |k| (k.position, k.target))
+                }
+            };
+            (0..3).map(|i| (to[i] - from[i]) * (to[i] - from[i])).sum::<f64>().sqrt()
+        });
+        Some(Lens { aperture: camera.aperture, focus })
+    }
 }

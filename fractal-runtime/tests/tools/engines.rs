@@ -430,7 +430,8 @@ fn the_wgsl_library_renders_the_kernels_image_on_wgpu() {
              }}\n"
         );
         let frame = Frame::default_view(scene, 0.0, 96, 54).expect("frame");
-        let kernels = fractal_dsl::compile(scene).expect("compile");
+        // A library marches one ray a pixel (the engine's fragment): against the kernel's one-sample image.
+        let kernels = fractal_dsl::compile(&scene.clone().samples(1)).expect("compile");
         let job = |wgsl| RenderJob::new(KernelSources { wgsl: Some(wgsl), opencl: None, cpu: None }, &frame);
         let got = gpu.render(&job(&render)).unwrap_or_else(|e| panic!("{name}: the library: {e}"));
         let want = gpu.render(&job(&kernels.wgsl)).expect("the render kernel");
