@@ -118,39 +118,29 @@ pub fn ssim(a: &Image, b: &Image) -> f64 {
 /// render's frame-to-frame change minus the truth's, in 8-bit levels. 0 for fewer than two frames. `frames` pairs
 /// each render with the truth of its frame, all of one size.
 pub fn flicker(frames: &[(Image, Image)]) -> f64 {
-    let (mut sum, mut count) = (0.0, 0usize);
-    for pair in frames.windows(2) {
-        let [(render_a, truth_a), (render_b, truth_b)] = pair else { continue };
+    rms(frames.windows(2).flat_map(|pair| {
+        let [(render_a, truth_a), (render_b, truth_b)] = pair else { unreachable!("windows of two") };
         let all = render_a.pixels.iter().zip(&render_b.pixels).zip(truth_a.pixels.iter().zip(&truth_b.pixels));
-        for ((&ra, &rb), (&ta, &tb)) in all {
+        all.flat_map(|((&ra, &rb), (&ta, &tb))| {
             let (ra, rb, ta, tb) = (unpack_rgba8(ra), unpack_rgba8(rb), unpack_rgba8(ta), unpack_rgba8(tb));
-            for i in 0..3 {
-                let d = (rb[i] as f64 - ra[i] as f64) - (tb[i] as f64 - ta[i] as f64);
-                sum += d * d;
-                count += 1;
-            }
-        }
-    }
-    if count == 0 {
-        0.0
-    } else {
-        (sum / count as f64).sqrt()
-    }
+            (0..3).map(move |i| (rb[i] as f64 - ra[i] as f64) - (tb[i] as f64 - ta[i] as f64))
+        })
+    }))
 }
 
 /// The RMS frame-to-frame change of a sequence of images, in 8-bit levels: how much the picture moves.
 pub fn motion(frames: &[Image]) -> f64 {
-    let (mut sum, mut count) = (0.0, 0usize);
-    for pair in frames.windows(2) {
-        for (&a, &b) in pair[0].pixels.iter().zip(&pair[1].pixels) {
+    rms(frames.windows(2).flat_map(|pair| {
+        pair[0].pixels.iter().zip(&pair[1].pixels).flat_map(|(&a, &b)| {
             let (a, b) = (unpack_rgba8(a), unpack_rgba8(b));
-            for i in 0..3 {
-                let d = b[i] as f64 - a[i] as f64;
-                sum += d * d;
-                count += 1;
-            }
-        }
-    }
+            (0..3).map(move |i| b[i] as f64 - a[i] as f64)
+        })
+    }))
+}
+
+/// The root mean square of `values` (0 for none).
+fn rms(values: impl Iterator<Item = f64>) -> f64 {
+    let (sum, count) = values.fold((0.0, 0usize), |(sum, count), d| (sum + d * d, count + 1));
     if count == 0 {
         0.0
     } else {
