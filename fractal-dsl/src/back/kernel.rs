@@ -9,7 +9,7 @@
 use std::fmt::Write;
 
 use super::syntax::{self, Prec, Spelling, Syntax};
-use super::{f32_literal, Entry, FrameLayout, Level};
+use super::{f32_literal, Entry, FrameLayout, Level, REFINE_MARK};
 use crate::ir::HitEpsilon;
 use crate::lower::code::{Body, FrameField, MathFn, SceneFn, Ty, Val};
 use crate::lower::ray;
@@ -106,14 +106,22 @@ pub trait Dialect {
 
 /// What a language's compute kernels spell their own way ([`write()`]): resources, entry points and pixel output.
 pub trait KernelDialect: Dialect {
-    /// Type definitions and resource bindings, written before the helpers.
-    fn declarations(&self, out: &mut String, layout: FrameLayout, entry: Entry);
+    /// Type definitions and resource bindings, written before the helpers; `refine` where the kernel has the
+    /// second pass ([`super::Pass::Refine`]).
+    fn declarations(&self, out: &mut String, layout: FrameLayout, entry: Entry, refine: bool);
     /// Writes the `render` or `trace` entry point's first lines, through its `{` and the statements naming the
     /// invocation's pixel; returns the pixel's x and y, whose type is [`Self::pixel_index_type`].
     fn render_open(&self, out: &mut String, entry: Entry) -> [&'static str; 2];
     fn pixel_index_type(&self) -> &'static str;
     /// The statements that pack `col` into RGBA8 and store it at the pixel.
     fn pack_pixel(&self) -> &'static [&'static str];
+    /// Writes the `refine` entry point's first lines ([`super::Pass::Refine`] of a `render` or `trace` kernel), as
+    /// [`Self::render_open`] does.
+    fn refine_open(&self, out: &mut String, entry: Entry) -> [&'static str; 2];
+    /// The pixel index `i` moved by `step` (−1 or 1) and kept within 0..`size`.
+    fn clamp_index(&self, i: &str, step: i32, size: &str) -> String;
+    /// The first pass's displayed colour at pixel index `index` of the refine pass's input, as a 3-vector in [0, 1].
+    fn first_shown(&self, index: &str) -> String;
     /// Writes the `probe` entry point's first lines, through its `{` and the statement declaring the point index
     /// `i`; returns the expression for the number of points.
     fn probe_open(&self, out: &mut String) -> &'static str;
@@ -252,13 +260,17 @@ pub fn write<D: KernelDialect>(program: &Program, entry: Entry, dialect: &D) -> 
         "// fractal: {} {what}, generated from a scene description. Edit the scene, not this file.\n",
         dialect.language()
     );
-    dialect.declarations(&mut k.out, program.layout(), entry);
+    let refine = entry != Entry::Probe && program.settings.samples > 1;
+    dialect.declarations(&mut k.out, program.layout(), entry, refine);
     k.leaf_functions();
     k.scene_functions();
     match entry {
         Entry::Render | Entry::Trace => {
             k.ray_functions();
-            k.render(dialect, entry)
+            k.render(dialect, entry);
+            if refine {
+                k.refine(dialect, entry);
+            }
         }
         Entry::Probe => k.probe(dialect),
     }
@@ -514,6 +526,60 @@ impl<'a, D: Dialect> Kernel<'a, D> {
                 let at = if k == 0 { "pixel".to_string() } else { format!("pixel + {}", d.index_lit(k as u32)) };
                 self.line(l1, &format!("{TRACES}[{at}] = {};", d.construct(vec4, row)));
             }
+        }
+        self.line(l1, &self.constant("col", self.vec3(), &spelling.value(vals.display)));
+        for statement in kernel.pack_pixel() {
+            self.line(l1, statement);
+        }
+        self.out.push_str("}\n");
+    }
+
+    /// The `refine` entry point ([`super::Pass::Refine`]): the ray program's second pass ([`crate::lower::ray::refine`]) from
+    /// the first pass's pixels around this one, then what it writes where the pixel took more samples.
+    fn refine<K: KernelDialect>(&mut self, kernel: &K, entry: Entry) {
+        let d = self.d;
+        let float = self.float();
+        let (l1, l2) = (Level(1), Level(2));
+        let _ = writeln!(self.out, "\n{REFINE_MARK}");
+        let [px, py] = kernel.refine_open(&mut self.out, entry);
+        let index = kernel.pixel_index_type();
+        self.line(l1, &self.constant("w", index, &d.cast(index, &d.frame_field("right.w"))));
+        self.line(l1, &self.constant("h", index, &d.cast(index, &d.frame_field("up.w"))));
+        self.line(l1, &format!("if ({px} >= w || {py} >= h) {{"));
+        self.line(l2, "return;");
+        self.line(l1, "}");
+        for (name, i) in ray::PIXEL_ARGS.into_iter().zip([px, py]) {
+            self.line(l1, &self.constant(name, float, &d.cast(float, i)));
+        }
+        let rows = [kernel.clamp_index(py, -1, "h"), py.to_string(), kernel.clamp_index(py, 1, "h")];
+        let columns = [kernel.clamp_index(px, -1, "w"), px.to_string(), kernel.clamp_index(px, 1, "w")];
+        for (name, value) in ["y0", "y2"].into_iter().zip([&rows[0], &rows[2]]) {
+            self.line(l1, &self.constant(name, index, value));
+        }
+        for (name, value) in ["x0", "x2"].into_iter().zip([&columns[0], &columns[2]]) {
+            self.line(l1, &self.constant(name, index, value));
+        }
+        let (ys, xs) = (["y0", py, "y2"], ["x0", px, "x2"]);
+        let around = ys.iter().flat_map(|y| xs.iter().map(move |x| (*y, *x)));
+        let (centre, neighbours): (Vec<_>, Vec<_>) = around.enumerate().partition(|(i, _)| *i == 4);
+        for (name, (_, (y, x))) in ray::SHOWN_ARGS.into_iter().zip(centre.into_iter().chain(neighbours)) {
+            self.line(l1, &self.constant(name, self.vec3(), &kernel.first_shown(&format!("{y} * w + {x}"))));
+        }
+        let (body, vals) = ray::refine(self.p);
+        let written = [vals.refined, vals.display, vals.colour, vals.samples];
+        let body = body.pruned(if self.traced { &written } else { &written[..2] });
+        let syn = self.syntax();
+        let spelling = Spelling::new(&body, &syn, &written);
+        spelling.write(&mut self.out, l1);
+        if self.traced {
+            let v = |x| spelling.value(x);
+            self.line(l1, &self.constant("pixel", index, &format!("{} * ({py} * w + {px})", d.index_lit(3))));
+            self.line(l1, &format!("if ({} > {}) {{", v(vals.refined), self.lit(0.5)));
+            let one = d.index_lit(1);
+            self.line(l2, &format!("{TRACES}[pixel + {one}].w = {};", v(vals.samples)));
+            let colour = d.construct(d.vec4_type(), &format!("{}, {}", v(vals.colour), self.lit(0.0)));
+            self.line(l2, &format!("{TRACES}[pixel + {}] = {colour};", d.index_lit(2)));
+            self.line(l1, "}");
         }
         self.line(l1, &self.constant("col", self.vec3(), &spelling.value(vals.display)));
         for statement in kernel.pack_pixel() {

@@ -132,7 +132,35 @@ pub enum Entry {
     Trace,
 }
 
+/// The passes of a `render` or `trace` kernel. A scene that takes one sample a pixel draws in the first; one that
+/// takes more has a second entry point, `refine`, which reads the first pass's pixels (binding 3 in WGSL, a
+/// `__global const uint* first` argument after the others in OpenCL), adds samples where a pixel needs them
+/// ([`crate::ray::pixel::refine`]) and writes every pixel's final value to the entry's own outputs (binding 0 or
+/// `out`; a trace kernel also the samples and colour words of the pixels it refined).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Pass {
+    First,
+    Refine,
+}
+
+/// The line a kernel writes before its `refine` entry point ([`has_refine`]).
+pub const REFINE_MARK: &str = "// The second pass: more samples where the first pass's neighbours differ.";
+
+/// Whether a `render` or `trace` kernel has the second pass ([`Pass::Refine`]), i.e. its scene takes more than one
+/// sample a pixel.
+pub fn has_refine(source: &str) -> bool {
+    source.contains(REFINE_MARK)
+}
+
 impl Entry {
+    /// The name of the entry point of `pass` in a kernel for this entry, in both GPU languages.
+    pub fn entry_point(self, pass: Pass) -> &'static str {
+        match pass {
+            Pass::First => self.name(),
+            Pass::Refine => "refine",
+        }
+    }
+
     /// The entry point's name in both GPU languages.
     pub fn name(self) -> &'static str {
         match self {

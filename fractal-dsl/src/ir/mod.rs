@@ -255,11 +255,12 @@ pub struct RenderSettings {
     pub fog: Option<Fog>,
     pub background: [f64; 3],
     pub gamma: f64,
-    /// The most rays a pixel may take (1: one ray through its centre). Beyond the first batch a pixel takes more
-    /// only while its samples disagree ([`crate::ray::pixel`]).
+    /// The most rays a pixel may take (1: one ray through its centre). A pixel takes more only where its centre's
+    /// colour differs from a neighbour's, and then while its samples disagree ([`crate::ray::pixel`]).
     pub samples: u32,
     /// The adaptive threshold: a pixel stops taking samples once the standard error of its mean display luma is
-    /// below this (in display units, 1 = full scale).
+    /// below this (in display units, 1 = full scale); it refines at all where its display luma differs from a
+    /// neighbour's by more than [`crate::ray::pixel::CONTRAST`] times this.
     pub sample_threshold: f64,
 }
 

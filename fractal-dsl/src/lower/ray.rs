@@ -9,7 +9,7 @@ use super::Program;
 use crate::eval::Sample;
 use crate::number::math::{v3, V3};
 use crate::number::{Mask, Num};
-use crate::ray::{march, shade, Light, Rules, SceneFns, View};
+use crate::ray::{march, pixel, shade, Light, Rules, SceneFns, View};
 
 /// The scene as the traced program reads it: calls of the kernel's scene functions.
 struct Calls {
@@ -135,50 +135,98 @@ impl PixelVals {
 /// The argument names of [`pixel`]'s body: the pixel's column and row (whole numbers, as F).
 pub const PIXEL_ARGS: [&str; 2] = ["fx", "fy"];
 
-/// The render kernel's per-pixel body: steps 1–7 of the ray program for pixel ([`PIXEL_ARGS`]) of the frame, with
-/// its samples ([`crate::ray::pixel::pixel`]). The body computes every value of [`PixelVals`] (the march values are
-/// sample 0's): prune it to those the kernel writes.
+/// The frame's view as the traced program reads it: the frame uniform's camera and lights.
+fn frame_view(program: &Program) -> View<Sym> {
+    let frame = |f: FrameField| Sym::components(Sym::frame(f));
+    let scalar = |f: FrameField| Sym(Sym::frame(f));
+    let lights = (0..program.lights.len())
+        .map(|i| {
+            let (position, radiance) = (frame(FrameField::LightPosition(i)), frame(FrameField::LightRadiance(i)));
+            match program.lights[i] {
+                super::LightShape::Directional => Light::Directional { direction: position, radiance },
+                super::LightShape::Point => Light::Point { position, radiance },
+            }
+        })
+        .collect();
+    View {
+        origin: frame(FrameField::Origin),
+        right: frame(FrameField::Right),
+        up: frame(FrameField::Up),
+        forward: frame(FrameField::Forward),
+        width: scalar(FrameField::Width),
+        height: scalar(FrameField::Height),
+        footprint: scalar(FrameField::Footprint),
+        lights,
+    }
+}
+
+fn flag(m: SymMask) -> Sym {
+    Sym::select(m, Sym::lit(1.0), Sym::lit(0.0))
+}
+
+/// The render kernel's per-pixel body: steps 1–7 of the ray program's first pass for pixel ([`PIXEL_ARGS`]) of the
+/// frame ([`crate::ray::pixel::first_pass`]). The body computes every value of [`PixelVals`]: prune it to those the
+/// kernel writes.
 pub fn pixel(program: &Program) -> (Body, PixelVals) {
     let rules = program.rules();
     let (body, vals) = trace(|| {
-        let frame = |f: FrameField| Sym::components(Sym::frame(f));
-        let scalar = |f: FrameField| Sym(Sym::frame(f));
-        let lights = (0..program.lights.len())
-            .map(|i| {
-                let (position, radiance) = (frame(FrameField::LightPosition(i)), frame(FrameField::LightRadiance(i)));
-                match program.lights[i] {
-                    super::LightShape::Directional => Light::Directional { direction: position, radiance },
-                    super::LightShape::Point => Light::Point { position, radiance },
-                }
-            })
-            .collect();
-        let view = View {
-            origin: frame(FrameField::Origin),
-            right: frame(FrameField::Right),
-            up: frame(FrameField::Up),
-            forward: frame(FrameField::Forward),
-            width: scalar(FrameField::Width),
-            height: scalar(FrameField::Height),
-            footprint: scalar(FrameField::Footprint),
-            lights,
-        };
+        let view = frame_view(program);
         let scene = program.calls();
         let (x, y) = (Sym::arg(PIXEL_ARGS[0]), Sym::arg(PIXEL_ARGS[1]));
-        let drawn = crate::ray::pixel::pixel(&rules, &view, &scene, x, y);
+        let drawn = crate::ray::pixel::first_pass(&rules, &view, &scene, x, y);
         let m = drawn.centre;
-        let flag = |m| Sym::select(m, Sym::lit(1.0), Sym::lit(0.0));
         PixelVals {
-            display: Sym::vector(shade::display(&rules, drawn.colour)),
-            colour: Sym::vector(drawn.colour),
+            display: Sym::vector(shade::display(&rules, drawn.shaded.colour)),
+            colour: Sym::vector(drawn.shaded.colour),
             normal: Sym::vector(drawn.shaded.normal),
             t: m.t.0,
             hit: m.hit.0,
             steps: m.steps.0,
             out_of_steps: flag(m.out_of_steps(rules.max_steps)).0,
-            samples: drawn.samples.0,
+            samples: Sym::lit(1.0).0,
         }
     });
     (body, vals)
+}
+
+/// What the refine kernel writes of a pixel, as values of [`refine`]'s body.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RefineVals {
+    /// 1 where the pixel took more samples, 0 where it keeps its first pass.
+    pub refined: Val,
+    /// The colour as displayed, V3.
+    pub display: Val,
+    /// The mean of the samples' clamped linear colours, V3.
+    pub colour: Val,
+    /// The samples the pixel took.
+    pub samples: Val,
+}
+
+/// The argument names of [`refine`]'s body beside [`PIXEL_ARGS`]: the first pass's displayed colours (V3, channels
+/// in [0, 1]) of the pixel and of its eight neighbours, row by row without the pixel itself (a neighbour outside the
+/// image is the nearest pixel inside it).
+pub const SHOWN_ARGS: [&str; 9] = ["shown", "n0", "n1", "n2", "n3", "n4", "n5", "n6", "n7"];
+
+/// The refine kernel's per-pixel body: the ray program's second pass for pixel ([`PIXEL_ARGS`]) from the first
+/// pass's colours around it ([`SHOWN_ARGS`]; [`crate::ray::pixel::refine`]).
+pub fn refine(program: &Program) -> (Body, RefineVals) {
+    let rules = program.rules();
+    trace(|| {
+        let view = frame_view(program);
+        let scene = program.calls();
+        let (x, y) = (Sym::arg(PIXEL_ARGS[0]), Sym::arg(PIXEL_ARGS[1]));
+        let shown = SHOWN_ARGS.map(|name| Sym::components(Sym::arg_of(name, Ty::V3)));
+        let [centre, neighbours @ ..] = shown.map(|c| pixel::shown_luma(&rules, c));
+        let refines = pixel::refines(&rules, centre, neighbours);
+        let all = pixel::refine(&rules, &view, &scene, (x, y), pixel::undisplay(&rules, shown[0]), refines);
+        let colour = all.mean();
+        RefineVals {
+            refined: flag(refines).0,
+            display: Sym::vector(shade::display(&rules, colour)),
+            colour: Sym::vector(colour),
+            samples: all.count.0,
+        }
+    })
 }
 
 /// The argument names of [`raymarch`]'s body: the ray's origin and unit direction (V3), the pixel's footprint per

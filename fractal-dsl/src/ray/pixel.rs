@@ -13,16 +13,22 @@
 //! every sample). Every prefix of it is spread evenly, so a pixel that stops early has still sampled its whole
 //! square. The lens point is mapped to the disc by r = a·√u, θ = 2πv.
 //!
-//! **Adaptivity.** A first batch of [`FIRST`] samples, then batches of [`BATCH`]; after each, a pixel goes on while
-//! the standard error of its mean display luma (√ of the clamped colour's luma) is above the scene's threshold, up
-//! to its most samples.
+//! **Two passes.** The first pass draws every pixel's centre ray ([`first_pass`]); with one sample that is the
+//! image. Where the scene takes more, a second pass ([`refine`]) reads the first pass's displayed colours of the pixel
+//! and its eight neighbours: a pixel whose display luma differs from a neighbour's by more than [`CONTRAST`] times the
+//! scene's threshold takes a first batch of [`FIRST`] samples (counting the centre), then batches of [`BATCH`] while
+//! the standard error of its mean display luma (√ of the clamped colour's luma) is above the threshold, up to its
+//! most samples. The others keep their one ray: a region the centres see as flat costs one ray a pixel. With a lens
+//! every pixel refines, since the first pass is the pinhole's sharp image and cannot show where the blur spreads. The
+//! centre's sample in the mean is the first pass's displayed colour decoded ([`undisplay`]), 8 bits deep, which is
+//! what every renderer keeps of it between the passes.
 
 use super::march;
 use super::rules::{Lens, Rules, View};
 use super::scene::SceneFns;
 use super::shade::{self, Shaded};
 use crate::number::math::{length, normalize, v3, V3};
-use crate::number::Num;
+use crate::number::{Mask, Num};
 
 /// Samples in a pixel's first batch: the centre and the rotated grid (one in each quarter of the pixel).
 pub const FIRST: u32 = 5;
@@ -34,8 +40,11 @@ const ROTATED_GRID: [[f64; 2]; 4] = [[0.375, 0.125], [0.875, 0.375], [0.625, 0.8
 const PLASTIC: f64 = 1.324_717_957_244_746;
 /// R4's generator: the real root of x⁵ = x + 1.
 const R4_ROOT: f64 = 1.167_303_978_261_418_7;
-/// Rec. 709 luma weights, for the adaptive test.
+/// Rec. 709 luma weights, for the adaptive tests.
 const LUMA: [f64; 3] = [0.2126, 0.7152, 0.0722];
+/// A pixel refines where its display luma and a neighbour's differ by more than this many times the scene's sample
+/// threshold (the difference a pixel straddling the two would show across its samples).
+pub const CONTRAST: f64 = 4.0;
 
 /// Sample `k`'s point in the pixel (from its top left corner, in [0, 1)²) and on the lens (in [0, 1)², (0, 0) at
 /// sample 0: the lens's centre). Samples 1–4 are the rotated grid, each in its own quarter of the pixel; later ones
@@ -116,14 +125,13 @@ impl<N: Num> Accumulated<N> {
     /// With one more sample of linear colour `colour` (clamped to [0, 1]; a NaN stays NaN, so a broken sample shows).
     #[inline(always)]
     pub fn with(self, colour: V3<N>) -> Accumulated<N> {
-        let (zero, one) = (N::lit(0.0), N::lit(1.0));
-        let c = colour.map(|c| N::select(N::lt(c, zero), zero, N::select(N::lt(one, c), one, c)));
-        let y = N::sqrt(c.x * N::lit(LUMA[0]) + c.y * N::lit(LUMA[1]) + c.z * N::lit(LUMA[2]));
+        let c = clamped(colour);
+        let y = luma(c);
         Accumulated {
             colour: self.colour + c,
             luma: self.luma + y,
             luma_squared: self.luma_squared + y * y,
-            count: self.count + one,
+            count: self.count + N::lit(1.0),
         }
     }
 
@@ -134,8 +142,8 @@ impl<N: Num> Accumulated<N> {
     }
 
     /// Whether a pixel with these samples (at least one) takes another: within a batch always (the first is
-    /// [`FIRST`] samples, then [`BATCH`]), at a batch's end while the standard error of the mean luma is above the threshold (var/n > threshold², with the unbiased
-    /// variance). The caller bounds the count.
+    /// [`FIRST`] samples, then [`BATCH`]), at a batch's end while the standard error of the mean luma is above the
+    /// threshold (var/n > threshold², with the unbiased variance). The caller bounds the count.
     #[inline(always)]
     pub fn wants_more(&self, rules: &Rules) -> N::Mask {
         let n = self.count;
@@ -170,17 +178,58 @@ impl<N: Num> crate::number::Carry<N> for Accumulated<N> {
     }
 }
 
-/// A drawn pixel: its centre ray's march and shading (the trace), and its value before display (the centre's
-/// linear colour with one sample, else the mean of its clamped samples).
+/// A pixel's first pass: its centre ray's march and shading (the pixel's trace, and with one sample its value).
 #[derive(Clone, Copy, Debug)]
 pub struct Drawn<N: Num> {
     pub centre: march::March<N>,
     /// Whether the centre ray entered the scene's bound.
     pub enters: N::Mask,
     pub shaded: Shaded<N>,
-    pub colour: V3<N>,
-    /// Samples taken.
-    pub samples: N,
+}
+
+/// A linear colour clamped to [0, 1] (a NaN stays NaN, so a broken sample shows).
+#[inline(always)]
+fn clamped<N: Num>(colour: V3<N>) -> V3<N> {
+    let (zero, one) = (N::lit(0.0), N::lit(1.0));
+    colour.map(|c| N::select(N::lt(c, zero), zero, N::select(N::lt(one, c), one, c)))
+}
+
+/// The display luma of a clamped linear colour: √ of its Rec. 709 luma.
+#[inline(always)]
+pub fn luma<N: Num>(c: V3<N>) -> N {
+    N::sqrt(c.x * N::lit(LUMA[0]) + c.y * N::lit(LUMA[1]) + c.z * N::lit(LUMA[2]))
+}
+
+/// A displayed colour (channels in [0, 1], as the first pass packed them) back in linear light: the inverse of
+/// [`shade::display`] on colours it has clamped.
+#[inline(always)]
+pub fn undisplay<N: Num>(rules: &Rules, shown: V3<N>) -> V3<N> {
+    if rules.gamma == 2.0 {
+        shown * shown
+    } else if rules.gamma == 1.0 {
+        shown
+    } else {
+        let e = N::lit(rules.gamma);
+        shown.map(|c| N::pow(c, e))
+    }
+}
+
+/// The display luma of a first pass's displayed colour (channels in [0, 1]): [`luma`] of its [`undisplay`].
+#[inline(always)]
+pub fn shown_luma<N: Num>(rules: &Rules, shown: V3<N>) -> N {
+    luma(undisplay(rules, shown))
+}
+
+/// Whether a pixel takes more samples in the second pass, from the display lumas ([`shown_luma`]) of the first
+/// pass's colours of the pixel and of its eight neighbours (a neighbour outside the image is the nearest pixel
+/// inside it).
+#[inline(always)]
+pub fn refines<N: Num>(rules: &Rules, centre: N, neighbours: [N; 8]) -> N::Mask {
+    if rules.lens.is_some() {
+        return N::Mask::splat(true);
+    }
+    let limit = N::lit(CONTRAST * rules.sampling.threshold);
+    neighbours.into_iter().fold(N::Mask::splat(false), |m, n| m | N::lt(limit, N::abs(n - centre)))
 }
 
 /// Steps 1–6 for sample `k` of the pixel whose top left corner is (x, y): its ray, march and shading.
@@ -221,27 +270,36 @@ fn trace_ray<N: Num, S: SceneFns<N>>(
     (m, enters, shade::shade(rules, view, scene, (ro, rd), &m))
 }
 
-/// The pixel whose top left corner is (x, y): sample 0, then, where the scene takes more, further samples while the
-/// pixel [`Accumulated::wants_more`] them, up to its most.
+/// The first pass of the pixel whose top left corner is (x, y): sample 0, the ray through its centre.
 #[inline(always)]
-pub fn pixel<N: Num, S: SceneFns<N>>(rules: &Rules, view: &View<N>, scene: &S, x: N, y: N) -> Drawn<N> {
+pub fn first_pass<N: Num, S: SceneFns<N>>(rules: &Rules, view: &View<N>, scene: &S, x: N, y: N) -> Drawn<N> {
     let (centre, enters, shaded) = centre(rules, view, scene, (x, y));
-    if rules.sampling.samples <= 1 {
-        return Drawn { centre, enters, shaded, colour: shaded.colour, samples: N::lit(1.0) };
-    }
-    let first = Accumulated::empty().with(shaded.colour);
-    let all = N::iterate(
-        N::count(rules.sampling.samples - 1),
-        first,
-        |acc| acc.wants_more(rules),
-        |acc| acc.with(sample(rules, view, scene, (x, y), acc.count).2.colour),
-    );
-    Drawn { centre, enters, shaded, colour: all.mean(), samples: all.count }
+    Drawn { centre, enters, shaded }
 }
 
-/// The rounds of sample indices after sample 0 for a renderer that schedules samples itself: the rest of the first
-/// batch ([`FIRST`]), then whole batches ([`BATCH`]), up to `samples`. After each round a pixel goes on only while it wants more (the check
-/// [`pixel`] makes before each sample is true within a batch).
+/// The second pass of the pixel whose top left corner is (x, y), for a scene that takes more than one sample: from
+/// its first pass's linear colour `first` ([`undisplay`]), the samples after the centre while the pixel
+/// [`refines`] and [`Accumulated::wants_more`] them, up to its most. Its value is the result's mean.
+#[inline(always)]
+pub fn refine<N: Num, S: SceneFns<N>>(
+    rules: &Rules,
+    view: &View<N>,
+    scene: &S,
+    (x, y): (N, N),
+    first: V3<N>,
+    refines: N::Mask,
+) -> Accumulated<N> {
+    N::iterate(
+        N::count(rules.sampling.samples.max(1) - 1),
+        Accumulated::empty().with(first),
+        |acc| refines & acc.wants_more(rules),
+        |acc| acc.with(sample(rules, view, scene, (x, y), acc.count).2.colour),
+    )
+}
+
+/// The rounds of sample indices after sample 0 for a renderer that schedules the second pass's samples itself: the
+/// rest of the first batch ([`FIRST`]), then whole batches ([`BATCH`]), up to `samples`. After each round a pixel
+/// goes on only while it wants more (the check [`refine`] makes before each sample is true within a batch).
 pub fn rounds(samples: u32) -> impl Iterator<Item = std::ops::Range<u32>> {
     let mut start = 1;
     std::iter::from_fn(move || {
@@ -304,6 +362,25 @@ mod tests {
         assert!(edge.wants_more(&rules));
         assert!(acc.with(V3::splat(0.3)).wants_more(&rules), "within the second batch");
         assert!(Accumulated::<f64>::empty().with(V3::splat(0.5)).wants_more(&rules), "within the first batch");
+    }
+
+    #[test]
+    fn a_pixel_refines_where_a_neighbour_differs_or_a_lens_blurs() {
+        let rules = Rules { sampling: Sampling { samples: 16, threshold: 0.004 }, ..test_rules() };
+        let shown = |v: f64| shown_luma(&rules, V3::splat(v));
+        let flat = [shown(0.5); 8];
+        assert!(!refines(&rules, shown(0.5), flat));
+        let mut edge = flat;
+        edge[5] = shown(0.52);
+        assert!(refines(&rules, shown(0.5), edge), "a step of 0.02 in display luma");
+        edge[5] = shown(0.51);
+        assert!(!refines(&rules, shown(0.5), edge), "a step under the contrast");
+        let lens = Rules { lens: Some(Lens { aperture: 0.1, focus: 3.0 }), ..rules };
+        assert!(refines(&lens, shown(0.5), flat));
+        for shown in [0.0f64, 0.2, 0.5, 1.0] {
+            let c = undisplay(&rules, V3::splat(shown));
+            assert!((crate::ray::shade::display(&rules, c).x - shown).abs() < 1e-12);
+        }
     }
 
     fn test_rules() -> Rules {

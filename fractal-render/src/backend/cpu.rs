@@ -113,7 +113,51 @@ fn render_with_bound<F: Real, E: Evaluator<F> + ?Sized>(
             *px = pack_linear(view.trace_pixel(&on, x as u32, y as u32).colour, view.rules.gamma);
         }
     });
+    if view.rules.sampling.samples > 1 {
+        let first = FirstPass::<F>::new(&view.rules, pixels.clone(), frame);
+        pixels.par_chunks_mut(width).enumerate().for_each(|(y, row)| {
+            let on = view.on(evaluator);
+            for (x, px) in row.iter_mut().enumerate() {
+                if let Some(all) = view.refine_pixel(&on, &first, (x, y)) {
+                    *px = pack_linear(all.mean(), view.rules.gamma);
+                }
+            }
+        });
+    }
     Ok(Image { width: frame.width(), height: frame.height(), pixels })
+}
+
+/// The first pass of an image as the second reads it: each pixel's displayed colour (packed) and display luma.
+struct FirstPass<F> {
+    shown: Vec<u32>,
+    lumas: Vec<F>,
+    size: (usize, usize),
+}
+
+impl<F: Real> FirstPass<F> {
+    fn new(rules: &Rules, shown: Vec<u32>, frame: &Frame) -> FirstPass<F> {
+        let lumas = shown.par_iter().map(|&p| pixel::shown_luma(rules, unpack::<F>(p))).collect();
+        FirstPass { shown, lumas, size: (frame.width() as usize, frame.height() as usize) }
+    }
+
+    /// Pixel (x, y)'s colour in linear light ([`pixel::undisplay`]), and whether it [`pixel::refines`]; the kernels
+    /// read the same words.
+    fn around(&self, rules: &Rules, (x, y): (usize, usize)) -> (V3<F>, bool) {
+        let (width, height) = self.size;
+        let luma = |x: usize, y: usize| self.lumas[y * width + x];
+        let (x0, x2) = (x.saturating_sub(1), (x + 1).min(width - 1));
+        let (y0, y2) = (y.saturating_sub(1), (y + 1).min(height - 1));
+        let ring = [(x0, y0), (x, y0), (x2, y0), (x0, y), (x2, y), (x0, y2), (x, y2), (x2, y2)];
+        let refines = pixel::refines(rules, luma(x, y), ring.map(|(x, y)| luma(x, y)));
+        (pixel::undisplay(rules, unpack(self.shown[y * width + x])), refines)
+    }
+}
+
+/// A packed pixel's colour channels in [0, 1].
+fn unpack<F: Real>(p: u32) -> V3<F> {
+    let [r, g, b, _] = p.to_le_bytes();
+    let channel = |c: u8| F::c(c as f64) / F::c(255.0);
+    v3(channel(r), channel(g), channel(b))
 }
 
 /// [`render_scene`] in f32 with eight neighbouring pixels of a row traced together by `packets`: the ray program on
@@ -130,18 +174,27 @@ pub fn render_packets(packets: &dyn PacketEvaluator, scene: &Scene, frame: &Fram
         let on = Packets { packets, env: Env::new(F32x8::splat(view.time), &params), orbit: &view.orbit };
         let (fy, half) = (y as f32, 0.5);
         let centres: Vec<(V3<f32>, V3<f32>)> = (0..width).map(|x| view.view.ray(x as f32 + half, fy + half)).collect();
-        let colours = view.shade_row(&view8, &on, &centres);
-        if sampling.samples <= 1 {
-            for (px, colour) in row.iter_mut().zip(colours) {
-                *px = pack_linear(colour, view.rules.gamma);
-            }
-            return;
+        for (px, colour) in row.iter_mut().zip(view.shade_row(&view8, &on, &centres)) {
+            *px = pack_linear(colour, view.rules.gamma);
         }
-        // The samples after the centre, in the rounds `pixel::pixel` decides at: each round's rays of every pixel
+    });
+    if sampling.samples <= 1 {
+        return Ok(Image { width: frame.width(), height: frame.height(), pixels });
+    }
+    let first = FirstPass::<f32>::new(&view.rules, pixels.clone(), frame);
+    pixels.par_chunks_mut(width).enumerate().for_each(|(y, row)| {
+        let on = Packets { packets, env: Env::new(F32x8::splat(view.time), &params), orbit: &view.orbit };
+        // The second pass's samples, in the rounds `pixel::refine` decides at: each round's rays of every pixel
         // that wants more, shaded together, then added to their pixels in sample order.
-        let mut sums: Vec<Accumulated<f32>> = colours.iter().map(|&c| Accumulated::empty().with(c)).collect();
+        let mut sums: Vec<Option<Accumulated<f32>>> = (0..width)
+            .map(|x| {
+                let (centre, refines) = first.around(&view.rules, (x, y));
+                refines.then(|| Accumulated::empty().with(centre))
+            })
+            .collect();
         for round in pixel::rounds(sampling.samples) {
-            let wanting: Vec<usize> = (0..width).filter(|&x| sums[x].wants_more(&view.rules)).collect();
+            let wanting: Vec<usize> =
+                (0..width).filter(|&x| sums[x].is_some_and(|sum| sum.wants_more(&view.rules))).collect();
             if wanting.is_empty() {
                 break;
             }
@@ -150,18 +203,22 @@ pub fn render_packets(packets: &dyn PacketEvaluator, scene: &Scene, frame: &Fram
                 .flat_map(|&x| round.clone().map(move |k| (x, k)))
                 .map(|(x, k)| {
                     let ([dx, dy], on_lens) = pixel::sample_point(k as f32, view.rules.lens.is_some());
-                    pixel::camera_ray(&view.rules, &view.view, x as f32 + dx, fy + dy, on_lens)
+                    pixel::camera_ray(&view.rules, &view.view, x as f32 + dx, y as f32 + dy, on_lens)
                 })
                 .collect();
             let shaded = view.shade_row(&view8, &on, &rays);
             for (&x, colours) in wanting.iter().zip(shaded.chunks(round.len())) {
-                for &c in colours {
-                    sums[x] = sums[x].with(c);
+                if let Some(sum) = sums[x].as_mut() {
+                    for &c in colours {
+                        *sum = sum.with(c);
+                    }
                 }
             }
         }
         for (px, sum) in row.iter_mut().zip(sums) {
-            *px = pack_linear(sum.mean(), view.rules.gamma);
+            if let Some(sum) = sum {
+                *px = pack_linear(sum.mean(), view.rules.gamma);
+            }
         }
     });
     Ok(Image { width: frame.width(), height: frame.height(), pixels })
@@ -193,15 +250,17 @@ pub fn trace_scene_with<F: Real, E: Evaluator<F> + ?Sized>(
     let view = View::<F>::new(scene, frame, levers.bound)?;
     let width = frame.width() as usize;
     let mut traces = vec![PixelTrace::default(); width * frame.height() as usize];
+    let mut first = vec![0u32; traces.len()];
     let counted = Counted(evaluator);
-    traces.par_chunks_mut(width).enumerate().for_each(|(y, row)| {
+    traces.par_chunks_mut(width).zip(first.par_chunks_mut(width)).enumerate().for_each(|(y, (row, shown))| {
         let on = view.on(&counted);
-        for (x, out) in row.iter_mut().enumerate() {
+        for (x, (out, shown)) in row.iter_mut().zip(shown).enumerate() {
             let before = EVALUATIONS.with(Cell::get);
             let pixel = view.trace_pixel(&on, x as u32, y as u32);
+            *shown = pack_linear(pixel.colour, view.rules.gamma);
             *out = PixelTrace {
                 colour: [pixel.colour.x.f64(), pixel.colour.y.f64(), pixel.colour.z.f64()],
-                samples: pixel.samples,
+                samples: 1,
                 hit: pixel.hit,
                 t: pixel.t.f64(),
                 steps: pixel.steps,
@@ -211,6 +270,21 @@ pub fn trace_scene_with<F: Real, E: Evaluator<F> + ?Sized>(
             };
         }
     });
+    if view.rules.sampling.samples > 1 {
+        let first = FirstPass::<F>::new(&view.rules, first, frame);
+        traces.par_chunks_mut(width).enumerate().for_each(|(y, row)| {
+            let on = view.on(&counted);
+            for (x, out) in row.iter_mut().enumerate() {
+                let before = EVALUATIONS.with(Cell::get);
+                if let Some(all) = view.refine_pixel(&on, &first, (x, y)) {
+                    let mean = all.mean();
+                    out.colour = [mean.x.f64(), mean.y.f64(), mean.z.f64()];
+                    out.samples = all.count.f64() as u32;
+                    out.evaluations = out.evaluations.map(|e| e + EVALUATIONS.with(Cell::get) - before);
+                }
+            }
+        });
+    }
     Ok(traces)
 }
 
@@ -273,7 +347,6 @@ impl SceneFns<F32x8> for Packets<'_> {
 /// One pixel in the renderer's precision.
 struct Pixel<F> {
     colour: V3<F>,
-    samples: u32,
     hit: bool,
     t: F,
     steps: u32,
@@ -361,24 +434,36 @@ impl<F: Real> View<F> {
         march::hit_epsilon(&self.rules, &self.view, t)
     }
 
-    /// The ray program for pixel (x, y) ([`pixel::pixel`]): the value before display, and how its centre ray found it.
+    /// The first pass for pixel (x, y) ([`pixel::first_pass`]): its centre ray's colour and what it found.
     fn trace_pixel<E: Evaluator<F> + ?Sized>(&self, on: &Scalar<'_, F, E>, x: u32, y: u32) -> Pixel<F> {
-        let drawn = pixel::pixel(&self.rules, &self.view, on, F::c(x as f64), F::c(y as f64));
-        let (m, samples) = (drawn.centre, drawn.samples.f64() as u32);
+        let drawn = pixel::first_pass(&self.rules, &self.view, on, F::c(x as f64), F::c(y as f64));
+        let m = drawn.centre;
         if !drawn.enters {
-            let colour = if samples > 1 { drawn.colour } else { self.background() };
-            return Pixel { colour, samples, hit: false, t: F::nan(), steps: 0, out_of_steps: false, normal: None };
+            let colour = self.background();
+            return Pixel { colour, hit: false, t: F::nan(), steps: 0, out_of_steps: false, normal: None };
         }
         let hit = m.hit();
         Pixel {
-            colour: drawn.colour,
-            samples,
+            colour: drawn.shaded.colour,
             hit,
             t: m.t,
             steps: m.steps.f64() as u32,
             out_of_steps: m.out_of_steps(self.rules.max_steps),
             normal: hit.then_some(drawn.shaded.normal),
         }
+    }
+
+    /// The second pass for pixel (x, y) from the `first` pass ([`pixel::refine`]): its
+    /// samples, where it [`pixel::refines`]; `None` where it keeps its first pass.
+    fn refine_pixel<E: Evaluator<F> + ?Sized>(
+        &self,
+        on: &Scalar<'_, F, E>,
+        first: &FirstPass<F>,
+        (x, y): (usize, usize),
+    ) -> Option<Accumulated<F>> {
+        let (centre, refines) = first.around(&self.rules, (x, y));
+        let at = (F::c(x as f64), F::c(y as f64));
+        refines.then(|| pixel::refine(&self.rules, &self.view, on, at, centre, true))
     }
 
     /// The colour of the surface at `p` with normal `n`, hit at distance `t` along `rd` from the camera with epsilon

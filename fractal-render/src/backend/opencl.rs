@@ -7,7 +7,7 @@
 
 use std::sync::Mutex;
 
-use fractal_dsl::back::Entry;
+use fractal_dsl::back::{has_refine, Entry, Pass};
 use ocl::enums::{DeviceInfo as ClDeviceInfo, DeviceInfoResult};
 use ocl::flags::DeviceType;
 use ocl::{flags, Buffer, Context, Device, Kernel, Platform, Program, Queue};
@@ -234,6 +234,41 @@ impl OpenClRenderer {
         Ok(floats.chunks_exact(8).map(|c| std::array::from_fn(|i| c[i])).collect())
     }
 
+    /// The kernels of `entry`'s passes in `source` ([`fractal_dsl::back::Pass`]) over a `size` image, in the order
+    /// they run: the image into `out` (and a trace kernel's traces into `traces`), with the frame from `frame`. With a
+    /// refine pass the first pass writes a buffer of its own, which the refine pass reads.
+    pub fn pixel_kernels(
+        &mut self,
+        entry: Entry,
+        source: &str,
+        (width, height): (u32, u32),
+        (out, frame, traces): (&Buffer<u32>, &Buffer<f32>, Option<&Buffer<f32>>),
+    ) -> Result<Vec<Kernel>, RenderError> {
+        let program = self.program(source)?;
+        let first = has_refine(source).then(|| image_buffer(&self.queue, width, height)).transpose()?;
+        let kernel = |pass: Pass, target: &Buffer<u32>| {
+            let mut builder = Kernel::builder();
+            builder
+                .program(&program)
+                .name(entry.entry_point(pass))
+                .queue(self.queue.clone())
+                .global_work_size((width as usize, height as usize))
+                .arg(target)
+                .arg(frame);
+            if let Some(traces) = traces {
+                builder.arg(traces);
+            }
+            if let (Pass::Refine, Some(first)) = (pass, &first) {
+                builder.arg(first);
+            }
+            builder.build().map_err(rejected)
+        };
+        match &first {
+            None => Ok(vec![kernel(Pass::First, out)?]),
+            Some(first) => Ok(vec![kernel(Pass::First, first)?, kernel(Pass::Refine, out)?]),
+        }
+    }
+
     /// Runs the job's `entry` kernel (`render` or `trace`) over the frame's pixels: the image, and the trace
     /// kernel's [`PixelTrace::KERNEL_WORDS`] words per pixel.
     fn run_pixels(&mut self, job: &RenderJob, entry: Entry) -> Result<(Image, Vec<f32>), RenderError> {
@@ -241,7 +276,6 @@ impl OpenClRenderer {
             job.kernels.opencl.ok_or(RenderError::MissingKernel { backend: Backend::OpenCl, what: "OpenCL kernel" })?;
         let (width, height) = (job.width(), job.height());
         let count = width as usize * height as usize;
-        let program = self.program(source)?;
         let out = image_buffer(&self.queue, width, height)?;
         let frame_buffer = self.frame_buffer(job.frame)?;
         let words = if entry == Entry::Trace { count * PixelTrace::KERNEL_WORDS } else { 0 };
@@ -253,21 +287,12 @@ impl OpenClRenderer {
                 what: format!("the trace buffer of a {width}x{height} image"),
                 detail: brief(&e),
             })?;
-        let mut builder = Kernel::builder();
-        builder
-            .program(&program)
-            .name(entry.name())
-            .queue(self.queue.clone())
-            .global_work_size((width as usize, height as usize))
-            .arg(&out)
-            .arg(&frame_buffer);
-        if let Some(traces) = &traces {
-            builder.arg(traces);
+        let passes = self.pixel_kernels(entry, source, (width, height), (&out, &frame_buffer, traces.as_ref()))?;
+        for kernel in passes {
+            // Safety: `out` and `first` hold one u32 per pixel, `traces` (the trace kernel's) twelve floats per
+            // pixel, and the kernels write only pixels inside the frame's size.
+            unsafe { kernel.enq() }.map_err(device_error)?;
         }
-        let kernel = builder.build().map_err(rejected)?;
-        // Safety: `out` holds one u32 per pixel, `traces` (the trace kernel's) twelve floats per pixel, and the
-        // kernel writes only pixels inside the frame's size.
-        unsafe { kernel.enq() }.map_err(device_error)?;
         let mut pixels = vec![0u32; count];
         out.read(&mut pixels).enq().map_err(device_error)?;
         let mut floats = vec![0.0f32; words];

@@ -2,14 +2,15 @@
 //!
 //! Bindings follow [`fractal_dsl::back::Entry`]: `render` writes packed pixels to binding 0 and reads the frame
 //! uniform at binding 1, in 8×8 workgroups; `probe` writes two vec4 per point to binding 0, reads the frame at 1 and
-//! the points at 2, in workgroups of 64; `trace` is `render` that also writes each pixel's march to binding 2. Every
+//! the points at 2, in workgroups of 64; `trace` is `render` that also writes each pixel's march to binding 2; a
+//! kernel with a second pass ([`fractal_dsl::back::Pass`]) has its `refine` read the first pass's pixels at 3. Every
 //! wgpu call that can fail runs inside error scopes, so a kernel the driver refuses, or a device that cannot
 //! allocate, is a [`RenderError`] and never a panic. Pipelines are cached
 //! per source text; output buffers are reused while the image size stays the same.
 
 use std::sync::{mpsc, Arc, Mutex};
 
-use fractal_dsl::back::Entry;
+use fractal_dsl::back::{has_refine, Entry, Pass};
 use wgpu::util::DeviceExt;
 
 use crate::device::{Backend, DeviceInfo};
@@ -32,14 +33,19 @@ pub struct WgpuRenderer {
     device: wgpu::Device,
     queue: wgpu::Queue,
     info: wgpu::AdapterInfo,
-    render_layout: (wgpu::BindGroupLayout, wgpu::PipelineLayout),
-    probe_layout: (wgpu::BindGroupLayout, wgpu::PipelineLayout),
-    trace_layout: (wgpu::BindGroupLayout, wgpu::PipelineLayout),
-    pipelines: Vec<(Entry, String, wgpu::ComputePipeline)>,
+    /// The bind group and pipeline layouts of each entry point.
+    layouts: Vec<(EntryPoint, Layouts)>,
+    pipelines: Vec<(EntryPoint, String, wgpu::ComputePipeline)>,
     targets: Option<Targets>,
+    /// The first pass's pixels, which a refine pass reads; kept while the image size stays the same.
+    first: Option<(u64, wgpu::Buffer)>,
     /// Errors raised outside any error scope (wgpu would otherwise panic on them).
     uncaptured: Arc<Mutex<Vec<String>>>,
 }
+
+/// An entry point of a kernel: its entry and pass.
+type EntryPoint = (Entry, Pass);
+type Layouts = (wgpu::BindGroupLayout, wgpu::PipelineLayout);
 
 /// Output and read-back buffers of one size.
 struct Targets {
@@ -97,20 +103,18 @@ impl WgpuRenderer {
                 errors.push(e.to_string());
             }
         }));
-        let render_layout = pipeline_layout(&device, Entry::Render);
-        let probe_layout = pipeline_layout(&device, Entry::Probe);
-        let trace_layout = pipeline_layout(&device, Entry::Trace);
+        let points = [Entry::Render, Entry::Trace].into_iter().flat_map(|e| [(e, Pass::First), (e, Pass::Refine)]);
+        let layouts = points.chain([(Entry::Probe, Pass::First)]).map(|p| (p, pipeline_layout(&device, p))).collect();
         Ok(WgpuRenderer {
             instance,
             adapter,
             device,
             queue,
             info,
-            render_layout,
-            probe_layout,
-            trace_layout,
+            layouts,
             pipelines: Vec::new(),
             targets: None,
+            first: None,
             uncaptured,
         })
     }
@@ -132,34 +136,35 @@ impl WgpuRenderer {
         &self.info
     }
 
-    /// The bind group and pipeline layouts of `entry`.
-    fn layouts(&self, entry: Entry) -> &(wgpu::BindGroupLayout, wgpu::PipelineLayout) {
-        match entry {
-            Entry::Render => &self.render_layout,
-            Entry::Probe => &self.probe_layout,
-            Entry::Trace => &self.trace_layout,
+    /// The bind group and pipeline layouts of entry point `point`.
+    fn layouts(&self, point: EntryPoint) -> &Layouts {
+        match self.layouts.iter().find(|(p, _)| *p == point) {
+            Some((_, layouts)) => layouts,
+            // Every entry point has its layouts from `with_features` on.
+            None => &self.layouts[0].1,
         }
     }
 
-    /// Compiles (or finds in the cache) the pipeline of `entry` in `source`.
-    pub fn pipeline(&mut self, entry: Entry, source: &str) -> Result<wgpu::ComputePipeline, RenderError> {
-        if let Some(i) = self.pipelines.iter().position(|(e, s, _)| *e == entry && s == source) {
+    /// Compiles (or finds in the cache) the pipeline of `entry`'s `pass` in `source`.
+    pub fn pipeline(&mut self, (entry, pass): EntryPoint, source: &str) -> Result<wgpu::ComputePipeline, RenderError> {
+        let point = (entry, pass);
+        if let Some(i) = self.pipelines.iter().position(|(p, s, _)| *p == point && s == source) {
             let hit = self.pipelines.remove(i);
             let pipeline = hit.2.clone();
             self.pipelines.push(hit);
             return Ok(pipeline);
         }
-        let layout = &self.layouts(entry).1;
+        let layout = &self.layouts(point).1;
         let ((module, pipeline), error) = capture(&self.device, || {
             let module = self.device.create_shader_module(wgpu::ShaderModuleDescriptor {
                 label: Some("fractal kernel"),
                 source: wgpu::ShaderSource::Wgsl(source.into()),
             });
             let pipeline = self.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some(entry.name()),
+                label: Some(entry.entry_point(pass)),
                 layout: Some(layout),
                 module: &module,
-                entry_point: Some(entry.name()),
+                entry_point: Some(entry.entry_point(pass)),
                 compilation_options: Default::default(),
                 cache: None,
             });
@@ -182,7 +187,7 @@ impl WgpuRenderer {
         if self.pipelines.len() >= PIPELINE_CACHE {
             self.pipelines.remove(0);
         }
-        self.pipelines.push((entry, source.to_string(), pipeline.clone()));
+        self.pipelines.push((point, source.to_string(), pipeline.clone()));
         Ok(pipeline)
     }
 
@@ -203,7 +208,7 @@ impl WgpuRenderer {
                 detail: format!("at most {} workgroups of 64", limits.max_compute_workgroups_per_dimension),
             });
         }
-        let pipeline = self.pipeline(Entry::Probe, source)?;
+        let pipeline = self.pipeline((Entry::Probe, Pass::First), source)?;
         let (buffers, error) = capture(&self.device, || {
             let uniform = self.uniform_buffer(frame);
             let input = self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -215,14 +220,16 @@ impl WgpuRenderer {
             let readback = self.readback_buffer(out_bytes);
             let bind_group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("probe"),
-                layout: &self.layouts(Entry::Probe).0,
+                layout: &self.layouts((Entry::Probe, Pass::First)).0,
                 entries: &[
                     wgpu::BindGroupEntry { binding: 0, resource: out.as_entire_binding() },
                     wgpu::BindGroupEntry { binding: 1, resource: uniform.as_entire_binding() },
                     wgpu::BindGroupEntry { binding: 2, resource: input.as_entire_binding() },
                 ],
             });
-            self.dispatch(&pipeline, &bind_group, (groups as u32, 1));
+            let mut encoder = self.encoder();
+            record(&mut encoder, (&pipeline, &bind_group), (groups as u32, 1), None);
+            self.queue.submit([encoder.finish()]);
             (out, readback)
         });
         self.check(error)?;
@@ -256,18 +263,8 @@ impl WgpuRenderer {
         })
     }
 
-    /// Records and submits one dispatch.
-    fn dispatch(&self, pipeline: &wgpu::ComputePipeline, bind_group: &wgpu::BindGroup, groups: (u32, u32)) {
-        let mut encoder =
-            self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("fractal") });
-        {
-            let mut pass = encoder
-                .begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("fractal"), timestamp_writes: None });
-            pass.set_pipeline(pipeline);
-            pass.set_bind_group(0, bind_group, &[]);
-            pass.dispatch_workgroups(groups.0, groups.1, 1);
-        }
-        self.queue.submit([encoder.finish()]);
+    fn encoder(&self) -> wgpu::CommandEncoder {
+        self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("fractal") })
     }
 
     /// Copies `bytes` of `out` into `readback`, waits for the GPU and returns them as u32 words.
@@ -333,7 +330,21 @@ pub fn capture<T>(device: &wgpu::Device, f: impl FnOnce() -> T) -> (T, Option<wg
     (value, errors.into_iter().flatten().next())
 }
 
-fn pipeline_layout(device: &wgpu::Device, entry: Entry) -> (wgpu::BindGroupLayout, wgpu::PipelineLayout) {
+/// Records one dispatch of `pipeline` with `bind_group` over `groups` workgroups.
+fn record(
+    encoder: &mut wgpu::CommandEncoder,
+    (pipeline, bind_group): (&wgpu::ComputePipeline, &wgpu::BindGroup),
+    groups: (u32, u32),
+    timestamp_writes: Option<wgpu::ComputePassTimestampWrites>,
+) {
+    let mut pass =
+        encoder.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("fractal"), timestamp_writes });
+    pass.set_pipeline(pipeline);
+    pass.set_bind_group(0, bind_group, &[]);
+    pass.dispatch_workgroups(groups.0, groups.1, 1);
+}
+
+fn pipeline_layout(device: &wgpu::Device, (entry, pass): EntryPoint) -> Layouts {
     let buffer = |binding, ty| wgpu::BindGroupLayoutEntry {
         binding,
         visibility: wgpu::ShaderStages::COMPUTE,
@@ -342,22 +353,110 @@ fn pipeline_layout(device: &wgpu::Device, entry: Entry) -> (wgpu::BindGroupLayou
     };
     let out = buffer(0, wgpu::BufferBindingType::Storage { read_only: false });
     let frame = buffer(1, wgpu::BufferBindingType::Uniform);
-    let entries = match entry {
+    let mut entries = match entry {
         Entry::Render => vec![out, frame],
         Entry::Probe => vec![out, frame, buffer(2, wgpu::BufferBindingType::Storage { read_only: true })],
         Entry::Trace => vec![out, frame, buffer(2, wgpu::BufferBindingType::Storage { read_only: false })],
     };
-    let bind_group_layout = device
-        .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(entry.name()), entries: &entries });
+    if pass == Pass::Refine {
+        entries.push(buffer(3, wgpu::BufferBindingType::Storage { read_only: true }));
+    }
+    let label = Some(entry.entry_point(pass));
+    let bind_group_layout =
+        device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label, entries: &entries });
     let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some(entry.name()),
+        label,
         bind_group_layouts: &[Some(&bind_group_layout)],
         immediate_size: 0,
     });
     (bind_group_layout, layout)
 }
 
+/// The compute passes that draw a frame's pixels with one kernel ([`fractal_dsl::back::Pass`]): the first pass,
+/// and where the kernel has one the refine pass, which reads the first pass's pixels from a buffer the renderer keeps.
+pub struct PixelPasses {
+    first: (wgpu::ComputePipeline, wgpu::BindGroupLayout),
+    /// The refine pass's pipeline and layout, and the buffer the first pass writes for it.
+    refine: Option<(wgpu::ComputePipeline, wgpu::BindGroupLayout, wgpu::Buffer)>,
+    groups: (u32, u32),
+}
+
+impl PixelPasses {
+    /// Records the passes: the image into `out` and, with a trace kernel, the traces into `traces`, reading the frame
+    /// from `uniform`.
+    pub fn record(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        uniform: &wgpu::Buffer,
+        out: &wgpu::Buffer,
+        traces: Option<&wgpu::Buffer>,
+    ) {
+        self.record_timed(device, encoder, (uniform, out, traces), None);
+    }
+
+    /// [`PixelPasses::record`], writing timestamps 0 and 1 of `timestamps` where the passes begin and end.
+    pub fn record_timed(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        (uniform, out, traces): (&wgpu::Buffer, &wgpu::Buffer, Option<&wgpu::Buffer>),
+        timestamps: Option<&wgpu::QuerySet>,
+    ) {
+        let stamp = |begin: bool, end: bool| {
+            timestamps.map(|query_set| wgpu::ComputePassTimestampWrites {
+                query_set,
+                beginning_of_pass_write_index: begin.then_some(0),
+                end_of_pass_write_index: end.then_some(1),
+            })
+        };
+        let bind = |layout: &wgpu::BindGroupLayout, target: &wgpu::Buffer, input: Option<&wgpu::Buffer>| {
+            let mut entries = vec![
+                wgpu::BindGroupEntry { binding: 0, resource: target.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 1, resource: uniform.as_entire_binding() },
+            ];
+            let extra = [(2, traces), (3, input)];
+            for (binding, buffer) in extra.into_iter().filter_map(|(b, buffer)| buffer.map(|buffer| (b, buffer))) {
+                entries.push(wgpu::BindGroupEntry { binding, resource: buffer.as_entire_binding() });
+            }
+            device.create_bind_group(&wgpu::BindGroupDescriptor { label: Some("pixels"), layout, entries: &entries })
+        };
+        let (pipeline, layout) = &self.first;
+        match &self.refine {
+            None => record(encoder, (pipeline, &bind(layout, out, None)), self.groups, stamp(true, true)),
+            Some((refine, refine_layout, first)) => {
+                record(encoder, (pipeline, &bind(layout, first, None)), self.groups, stamp(true, false));
+                let group = bind(refine_layout, out, Some(first));
+                record(encoder, (refine, &group), self.groups, stamp(false, true));
+            }
+        }
+    }
+}
+
 impl WgpuRenderer {
+    /// The passes of `entry`'s kernel `source` (`render` or `trace`) for an image of `size`: their pipelines
+    /// compiled and, for a refine pass, its input buffer made.
+    pub fn pixel_passes(&mut self, entry: Entry, source: &str, size: (u32, u32)) -> Result<PixelPasses, RenderError> {
+        let first = (self.pipeline((entry, Pass::First), source)?, self.layouts((entry, Pass::First)).0.clone());
+        let groups = (size.0.div_ceil(RENDER_WORKGROUP), size.1.div_ceil(RENDER_WORKGROUP));
+        if !has_refine(source) {
+            return Ok(PixelPasses { first, refine: None, groups });
+        }
+        let pipeline = self.pipeline((entry, Pass::Refine), source)?;
+        let bytes = size.0 as u64 * size.1 as u64 * 4;
+        if self.first.as_ref().is_none_or(|(b, _)| *b != bytes) {
+            self.first = None;
+            let (buffer, error) = capture(&self.device, || self.storage_buffer("first pass", bytes));
+            self.check(error)?;
+            self.first = Some((bytes, buffer));
+        }
+        let Some((_, buffer)) = self.first.as_ref() else {
+            return Err(device_error("the first pass's buffer was not created"));
+        };
+        let layout = self.layouts((entry, Pass::Refine)).0.clone();
+        Ok(PixelPasses { first, refine: Some((pipeline, layout, buffer.clone())), groups })
+    }
+
     /// Runs the job's `entry` kernel (`render` or `trace`) over the frame's pixels: the image, and the trace
     /// kernel's [`PixelTrace::KERNEL_WORDS`] words per pixel.
     fn run_pixels(&mut self, job: &RenderJob, entry: Entry) -> Result<(Image, Vec<f32>), RenderError> {
@@ -381,7 +480,7 @@ impl WgpuRenderer {
                 detail: format!("storage buffers up to {max_bytes} bytes, {max_groups} workgroups per dimension"),
             });
         }
-        let pipeline = self.pipeline(entry, source)?;
+        let passes = self.pixel_passes(entry, source, (width, height))?;
         if self.targets.as_ref().is_none_or(|t| t.bytes != bytes) {
             self.targets = None;
             let (targets, error) = capture(&self.device, || Targets {
@@ -400,19 +499,9 @@ impl WgpuRenderer {
             let uniform = self.uniform_buffer(job.frame);
             let traces = (trace_bytes > 0)
                 .then(|| (self.storage_buffer("traces", trace_bytes), self.readback_buffer(trace_bytes)));
-            let mut entries = vec![
-                wgpu::BindGroupEntry { binding: 0, resource: targets.out.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 1, resource: uniform.as_entire_binding() },
-            ];
-            if let Some((buffer, _)) = &traces {
-                entries.push(wgpu::BindGroupEntry { binding: 2, resource: buffer.as_entire_binding() });
-            }
-            let bind_group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some(entry.name()),
-                layout: &self.layouts(entry).0,
-                entries: &entries,
-            });
-            self.dispatch(&pipeline, &bind_group, groups);
+            let mut encoder = self.encoder();
+            passes.record(&self.device, &mut encoder, &uniform, &targets.out, traces.as_ref().map(|t| &t.0));
+            self.queue.submit([encoder.finish()]);
             traces
         });
         self.check(error)?;

@@ -260,7 +260,6 @@ impl GpuPresenter {
             self.config.height = window.1;
             self.configure(renderer)?;
         }
-        let pipeline = renderer.pipeline(Entry::Render, wgsl).map_err(GpuFrameError::Render)?;
         let (width, height) = (frame.width(), frame.height());
         let bytes = width as u64 * height as u64 * 4;
         let device = renderer.wgpu_device().clone();
@@ -277,6 +276,7 @@ impl GpuPresenter {
                 detail: "larger than the device's storage buffers or workgroup grid".to_string(),
             }));
         }
+        let passes = renderer.pixel_passes(Entry::Render, wgsl, (width, height)).map_err(GpuFrameError::Render)?;
         if self.pixels.as_ref().is_none_or(|p| p.size != (width, height)) {
             self.pixels = None;
             let (buffer, error) = capture(&device, || {
@@ -334,14 +334,6 @@ impl GpuPresenter {
                 contents: bytemuck::cast_slice(words),
                 usage: wgpu::BufferUsages::STORAGE,
             });
-            let compute_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("render"),
-                layout: &pipeline.get_bind_group_layout(0),
-                entries: &[
-                    wgpu::BindGroupEntry { binding: 0, resource: pixels.buffer.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 1, resource: uniform.as_entire_binding() },
-                ],
-            });
             let blit_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("blit"),
                 layout: &self.blit.get_bind_group_layout(0),
@@ -353,13 +345,7 @@ impl GpuPresenter {
             });
             let view = texture.texture.create_view(&wgpu::TextureViewDescriptor::default());
             let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("viewer") });
-            {
-                let mut pass = encoder
-                    .begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("render"), timestamp_writes: None });
-                pass.set_pipeline(&pipeline);
-                pass.set_bind_group(0, &compute_group, &[]);
-                pass.dispatch_workgroups(groups.0, groups.1, 1);
-            }
+            passes.record(&device, &mut encoder, &uniform, &pixels.buffer, None);
             {
                 let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                     label: Some("blit"),

@@ -6,7 +6,7 @@ use std::fmt::Write;
 
 use crate::back::kernel::{self, Dialect, KernelDialect};
 use crate::back::syntax::common_math_name;
-use crate::back::{f32_literal, Entry, FrameLayout, Level};
+use crate::back::{f32_literal, Entry, FrameLayout, Level, Pass};
 use crate::lower::code::{MathFn, Ty};
 use crate::lower::trace::Function;
 use crate::lower::Program;
@@ -83,7 +83,7 @@ impl Dialect for OpenCl {
 }
 
 impl KernelDialect for OpenCl {
-    fn declarations(&self, out: &mut String, layout: FrameLayout, _entry: Entry) {
+    fn declarations(&self, out: &mut String, layout: FrameLayout, _entry: Entry, _refine: bool) {
         out.push_str("typedef struct {\n    float4 origin;\n    float4 right;\n    float4 up;\n    float4 forward;\n");
         let _ = writeln!(out, "    float4 lights[{}];", 2 * layout.lights);
         if layout.params > 0 {
@@ -110,6 +110,29 @@ impl KernelDialect for OpenCl {
     }
     fn pixel_index_type(&self) -> &'static str {
         "int"
+    }
+    fn refine_open(&self, out: &mut String, entry: Entry) -> [&'static str; 2] {
+        let traces = if entry == Entry::Trace { ", __global float4* traces" } else { "" };
+        let _ = writeln!(
+            out,
+            "__kernel void {}(__global uint* out, __constant const Frame* frame{traces}, __global const uint* first) {{",
+            entry.entry_point(Pass::Refine)
+        );
+        for (axis, name) in ["x", "y"].into_iter().enumerate() {
+            let _ = writeln!(out, "{}const int {name} = (int)get_global_id({axis});", Level(1));
+        }
+        ["x", "y"]
+    }
+    fn clamp_index(&self, i: &str, step: i32, size: &str) -> String {
+        if step < 0 {
+            format!("max({i} - 1, 0)")
+        } else {
+            format!("min({i} + 1, {size} - 1)")
+        }
+    }
+    fn first_shown(&self, index: &str) -> String {
+        let word = format!("first[{index}]");
+        format!("convert_float3((uint3)({word} & 255u, ({word} >> 8) & 255u, ({word} >> 16) & 255u)) / 255.0f")
     }
     fn pack_pixel(&self) -> &'static [&'static str] {
         &[

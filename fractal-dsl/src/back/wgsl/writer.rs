@@ -6,7 +6,7 @@ use std::fmt::Write;
 
 use crate::back::kernel::{self, Dialect, KernelDialect};
 use crate::back::syntax::{common_math_name, Prec};
-use crate::back::{Entry, FrameLayout, Level};
+use crate::back::{Entry, FrameLayout, Level, Pass};
 use crate::lower::code::{MathFn, Ty};
 use crate::lower::trace::Function;
 use crate::lower::Program;
@@ -98,7 +98,7 @@ impl Dialect for Wgsl {
 }
 
 impl KernelDialect for Wgsl {
-    fn declarations(&self, out: &mut String, layout: FrameLayout, entry: Entry) {
+    fn declarations(&self, out: &mut String, layout: FrameLayout, entry: Entry, refine: bool) {
         out.push_str(
             "struct Frame {\n    origin: vec4<f32>,\n    right: vec4<f32>,\n    up: vec4<f32>,\n    forward: vec4<f32>,\n",
         );
@@ -128,6 +128,10 @@ impl KernelDialect for Wgsl {
                 out.push_str("@group(0) @binding(2) var<storage, read> points: array<vec4<f32>>;\n\n");
             }
         }
+        if refine {
+            out.push_str("// The first pass's pixels, which the second pass reads.\n");
+            out.push_str("@group(0) @binding(3) var<storage, read> first_px: array<u32>;\n\n");
+        }
     }
     fn render_open(&self, out: &mut String, entry: Entry) -> [&'static str; 2] {
         out.push_str("@compute @workgroup_size(8, 8, 1)\n");
@@ -136,6 +140,22 @@ impl KernelDialect for Wgsl {
     }
     fn pixel_index_type(&self) -> &'static str {
         "u32"
+    }
+    fn refine_open(&self, out: &mut String, entry: Entry) -> [&'static str; 2] {
+        out.push_str("@compute @workgroup_size(8, 8, 1)\n");
+        let _ =
+            writeln!(out, "fn {}(@builtin(global_invocation_id) gid: vec3<u32>) {{", entry.entry_point(Pass::Refine));
+        ["gid.x", "gid.y"]
+    }
+    fn clamp_index(&self, i: &str, step: i32, size: &str) -> String {
+        if step < 0 {
+            format!("max({i}, 1u) - 1u")
+        } else {
+            format!("min({i} + 1u, {size} - 1u)")
+        }
+    }
+    fn first_shown(&self, index: &str) -> String {
+        format!("unpack4x8unorm(first_px[{index}]).xyz")
     }
     fn pack_pixel(&self) -> &'static [&'static str] {
         &[

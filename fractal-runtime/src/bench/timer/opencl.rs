@@ -1,10 +1,11 @@
 //! The OpenCL dispatcher (cargo feature `opencl`): runs on the device and profiling queue of a
 //! [`fractal_render::OpenClRenderer`], builds programs through the renderer's cache with its options
 //! (`-cl-fast-relaxed-math` unless precise; the baseline gets the same options as the generated kernel), and reads each
-//! kernel's time from its profiling event.
+//! kernel's time from its profiling events (with a refine pass, from the first pass's start to the refine's end).
 
 use std::time::Instant;
 
+use fractal_dsl::back::Entry;
 use fractal_render::backend::opencl::{device_error, image_buffer, rejected, OpenClRenderer};
 use fractal_render::device::{Backend, DeviceInfo};
 use fractal_render::error::RenderError;
@@ -65,30 +66,41 @@ impl Timer for OpenClTimer {
                 .ok_or(RenderError::MissingKernel { backend: Backend::OpenCl, what: "OpenCL kernel" })?,
             Work::Baseline { .. } => BASELINE_OPENCL,
         };
-        let program = self.renderer.program(source)?;
         let count = width as usize * height as usize;
         let out = self.out(count, width, height)?;
 
         let start = Instant::now();
-        let frame_buffer = match work {
-            Work::Generated(job) => Some(self.renderer.frame_buffer(job.frame)?),
-            Work::Baseline { .. } => None,
+        let kernels = match work {
+            Work::Generated(job) => {
+                let frame = self.renderer.frame_buffer(job.frame)?;
+                self.renderer.pixel_kernels(Entry::Render, source, (width, height), (&out, &frame, None))?
+            }
+            Work::Baseline { .. } => {
+                let program = self.renderer.program(source)?;
+                let mut builder = Kernel::builder();
+                builder.program(&program).name("render").queue(self.renderer.queue().clone());
+                builder.global_work_size((width, height)).arg(&out).arg(width as i32).arg(height as i32);
+                vec![builder.build().map_err(rejected)?]
+            }
         };
-        let mut builder = Kernel::builder();
-        builder.program(&program).name("render").queue(self.renderer.queue().clone()).global_work_size((width, height));
-        match &frame_buffer {
-            Some(frame) => builder.arg(&out).arg(frame),
-            None => builder.arg(&out).arg(width as i32).arg(height as i32),
-        };
-        let kernel = builder.build().map_err(rejected)?;
-        let mut event = Event::empty();
-        // Safety: `out` holds one u32 per pixel; both kernels write only pixels inside (width, height).
-        unsafe { kernel.cmd().enew(&mut event).enq() }.map_err(device_error)?;
-        event.wait_for().map_err(|e| device_error(e.into()))?;
+        let mut events = Vec::new();
+        for kernel in &kernels {
+            let mut event = Event::empty();
+            // Safety: `out` (and a refine pass's input) holds one u32 per pixel; the kernels write only pixels inside
+            // (width, height).
+            unsafe { kernel.cmd().enew(&mut event).enq() }.map_err(device_error)?;
+            events.push(event);
+        }
+        for event in &events {
+            event.wait_for().map_err(|e| device_error(e.into()))?;
+        }
         let mut pixels = vec![0u32; count];
         out.read(&mut pixels).enq().map_err(device_error)?;
         let frame_ms = millis(start.elapsed());
-        let kernel_ns = nanos(&event, ProfilingInfo::End)?.saturating_sub(nanos(&event, ProfilingInfo::Start)?);
+        let (Some(first), Some(last)) = (events.first(), events.last()) else {
+            return Err(device_error(ocl::Error::from("no kernel ran")));
+        };
+        let kernel_ns = nanos(last, ProfilingInfo::End)?.saturating_sub(nanos(first, ProfilingInfo::Start)?);
         Ok(Timed { image: Image { width, height, pixels }, kernel_ms: kernel_ns as f64 / 1e6, frame_ms })
     }
 }
@@ -114,11 +126,16 @@ mod tests {
             }
         };
         let s = scene(mandelbulb(8));
-        let kernels = fractal_dsl::compile(&s).unwrap();
         let frame = Frame::default_view(&s, 0.0, 24, 16).unwrap();
+        // With a second pass too: the time spans both passes and the image is the refined one.
+        for kernels in [fractal_dsl::compile(&s).unwrap(), fractal_dsl::compile(&s.clone().samples(8)).unwrap()] {
+            let job = RenderJob::new(KernelSources::compiled(&kernels), &frame);
+            let timed = timer.run(&Work::Generated(job)).unwrap();
+            assert_eq!(timed.image, renderer.render(&job).unwrap());
+        }
+        let kernels = fractal_dsl::compile(&s).unwrap();
         let job = RenderJob::new(KernelSources::compiled(&kernels), &frame);
         let timed = timer.run(&Work::Generated(job)).unwrap();
-        assert_eq!(timed.image, renderer.render(&job).unwrap());
         assert!(timed.kernel_ms > 0.0 && timed.kernel_ms <= timed.frame_ms, "{} {}", timed.kernel_ms, timed.frame_ms);
         let baseline = timer.run(&Work::Baseline { width: 24, height: 16 }).unwrap();
         assert!(!baseline.image.is_uniform());

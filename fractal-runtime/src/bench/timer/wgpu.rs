@@ -1,11 +1,12 @@
 //! The wgpu dispatcher: runs on the device of a [`fractal_render::WgpuRenderer`] opened with timestamp queries when the
 //! adapter has them, and runs a WGSL compute kernel the way the renderer does (uniform upload, 8×8 workgroups, copy to
-//! a read-back buffer, map). Both the generated kernel (`render`, binding 1 = frame uniforms) and the baseline (`main`,
-//! binding 1 = `{w, h}`) write packed pixels to binding 0, so one path serves both; bind group layouts come from the
-//! shaders themselves.
+//! a read-back buffer, map). The generated kernel's passes are the renderer's own
+//! ([`fractal_render::backend::wgpu::PixelPasses`]; with a refine pass the time spans both); the baseline (`main`,
+//! binding 1 = `{w, h}`) writes packed pixels to binding 0 as they do, its bind group layout from the shader.
 
 use std::time::Instant;
 
+use fractal_dsl::back::Entry;
 use fractal_render::backend::wgpu::{capture, read_back, WgpuRenderer};
 use fractal_render::device::{Backend, DeviceInfo};
 use fractal_render::error::RenderError;
@@ -168,7 +169,12 @@ impl Timer for WgpuTimer {
                 (BASELINE_WGSL, "main", bytemuck::cast_slice(&words).to_vec(), *width, *height)
             }
         };
-        let pipeline = self.pipeline(source, entry)?;
+        // The generated kernel's passes are the renderer's; the baseline is one pipeline of its own.
+        let passes = match work {
+            Work::Generated(_) => Some(self.renderer.pixel_passes(Entry::Render, source, (width, height))?),
+            Work::Baseline { .. } => None,
+        };
+        let pipeline = if passes.is_none() { Some(self.pipeline(source, entry)?) } else { None };
         self.targets(width, height)?;
         let (Some(targets), ts) = (self.targets.as_ref(), self.timestamps.as_ref()) else {
             return Err(device_error("output buffers were not created"));
@@ -184,16 +190,19 @@ impl Timer for WgpuTimer {
                 contents: &uniform,
                 usage: wgpu::BufferUsages::UNIFORM,
             });
-            let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some(entry),
-                layout: &pipeline.get_bind_group_layout(0),
-                entries: &[
-                    wgpu::BindGroupEntry { binding: 0, resource: targets.out.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 1, resource: uniform.as_entire_binding() },
-                ],
-            });
             let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(entry) });
-            {
+            if let Some(passes) = &passes {
+                passes.record_timed(device, &mut encoder, (&uniform, &targets.out, None), ts.map(|t| &t.set));
+            }
+            if let Some(pipeline) = &pipeline {
+                let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some(entry),
+                    layout: &pipeline.get_bind_group_layout(0),
+                    entries: &[
+                        wgpu::BindGroupEntry { binding: 0, resource: targets.out.as_entire_binding() },
+                        wgpu::BindGroupEntry { binding: 1, resource: uniform.as_entire_binding() },
+                    ],
+                });
                 let timestamp_writes = ts.map(|t| wgpu::ComputePassTimestampWrites {
                     query_set: &t.set,
                     beginning_of_pass_write_index: Some(0),
@@ -201,7 +210,7 @@ impl Timer for WgpuTimer {
                 });
                 let mut pass =
                     encoder.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some(entry), timestamp_writes });
-                pass.set_pipeline(&pipeline);
+                pass.set_pipeline(pipeline);
                 pass.set_bind_group(0, &bind_group, &[]);
                 pass.dispatch_workgroups(width.div_ceil(WORKGROUP), height.div_ceil(WORKGROUP), 1);
             }
@@ -263,11 +272,16 @@ mod tests {
         };
         let (mut timer, mut renderer) = (timer, renderer);
         let s = scene(union(mandelbulb(8), sphere(0.5).translate(vec3(1.2, 0.0, 0.0))));
-        let kernels = fractal_dsl::compile(&s).unwrap();
         let frame = Frame::default_view(&s, 0.0, 40, 24).unwrap();
+        // With a second pass too: the time spans both passes and the image is the refined one.
+        for kernels in [fractal_dsl::compile(&s).unwrap(), fractal_dsl::compile(&s.clone().samples(8)).unwrap()] {
+            let job = RenderJob::new(KernelSources::compiled(&kernels), &frame);
+            let timed = timer.run(&Work::Generated(job)).unwrap();
+            assert_eq!(timed.image, renderer.render(&job).unwrap());
+        }
+        let kernels = fractal_dsl::compile(&s).unwrap();
         let job = RenderJob::new(KernelSources::compiled(&kernels), &frame);
         let timed = timer.run(&Work::Generated(job)).unwrap();
-        assert_eq!(timed.image, renderer.render(&job).unwrap());
         assert!(!timed.image.is_uniform());
         assert!(
             timed.kernel_ms > 0.0 && timed.frame_ms >= timed.kernel_ms * 0.5,
