@@ -24,7 +24,8 @@
 //! absolute colour difference in 8-bit levels over all pixels and RGB channels. That is the *precision* (f32 rounding
 //! alone). The same image is also measured against the ground truth ([`crate::truth`], which trusts no distance
 //! estimate): the *true error* of the setting timed, from the same backend's trace kernel (the render kernel that
-//! also keeps each pixel's depth, normal and steps), or from the image alone where no trace kernel runs.
+//! also keeps each pixel's depth, normal and steps), or from the image alone where no trace kernel runs. Asked for, the
+//! image is measured against the truth of the image too ([`crate::truth::image`]): the error of the pixel's value.
 
 mod baseline;
 pub mod precision;
@@ -46,7 +47,9 @@ use fractal_render::renderer::{KernelSources, RenderJob};
 use fractal_render::select::{BackendChoice, RendererOptions};
 use glam::{DQuat, DVec3};
 
+use crate::accuracy::image::{image_error, ImageError};
 use crate::accuracy::{measure, Observed, TrueError};
+use crate::truth::image::{ImageTruth, ImageTruthError, ImageTruthSettings};
 use crate::truth::{Truth, TruthSettings};
 
 pub use baseline::{BASELINE_OPENCL, BASELINE_WGSL};
@@ -90,6 +93,8 @@ pub struct BenchSpec<'a> {
     pub options: RendererOptions,
     /// Also run the hand-written baseline.
     pub baseline: bool,
+    /// Also measure the first frame's image against the truth of the image ([`crate::truth::image`]).
+    pub image_error: bool,
     /// Whether the scene draws what the baseline draws (the built-in `mandelbulb`), so the baseline's hit mask can be
     /// checked against the scene's f64 reference.
     pub baseline_comparable: bool,
@@ -185,6 +190,29 @@ fn traced_error(spec: &BenchSpec, backend: Backend, frame: &Frame, truth: &Truth
     Ok(measure(spec.scene, truth, Observed::Traced(&traced.pixels)))
 }
 
+/// The first frame's `image` at the error size against the truth of the image, at the bench's truth step; `None`
+/// with a note where the truth does not define the image (glow).
+fn image_error_of(
+    spec: &BenchSpec,
+    small: &Frame,
+    image: &fractal_render::image::Image,
+    notes: &mut Vec<String>,
+) -> Result<Option<ImageError>, RenderError> {
+    if spec.scene.settings.glow.is_some() {
+        notes.push("no image error: the truth of the image does not define glow".to_string());
+        return Ok(None);
+    }
+    let truth = TruthSettings { step_footprints: TRUTH_STEP, iteration_factor: 1 };
+    match ImageTruth::compute(spec.scene, small, ImageTruthSettings { truth, ..ImageTruthSettings::default() }) {
+        Ok(truth) => Ok(Some(image_error(&truth.image(), image))),
+        Err(ImageTruthError::Render(e)) => Err(e),
+        Err(ImageTruthError::Settings(why)) => {
+            notes.push(format!("no image error: {why}"));
+            Ok(None)
+        }
+    }
+}
+
 /// Runs the benchmark. `progress` is called after every timed frame with (frames done, elapsed seconds).
 pub fn run(spec: &BenchSpec, progress: &mut dyn FnMut(u64, f64)) -> Result<BenchReport, RenderError> {
     let motion = motion_for(spec);
@@ -240,6 +268,7 @@ pub fn run(spec: &BenchSpec, progress: &mut dyn FnMut(u64, f64)) -> Result<Bench
             measure(spec.scene, &truth, Observed::Image(&image))
         }
     };
+    let image_error = if spec.image_error { image_error_of(spec, &small, &image, &mut notes)? } else { None };
     let baseline = match baseline {
         Some(timings) => {
             let accuracy = if spec.baseline_comparable {
@@ -268,6 +297,7 @@ pub fn run(spec: &BenchSpec, progress: &mut dyn FnMut(u64, f64)) -> Result<Bench
         generated,
         accuracy,
         true_error,
+        image_error,
         baseline,
         notes,
     })
@@ -301,6 +331,15 @@ impl BenchReport {
             (1.0 / TRUTH_STEP).round(),
             self.true_error.describe()
         )?;
+        if let Some(e) = &self.image_error {
+            writeln!(
+                out,
+                "  image error (vs the truth of the image at {}x{}, the box-filtered pixel: docs/image-truth.md): {}",
+                self.true_error.width,
+                self.true_error.height,
+                e.describe()
+            )?;
+        }
         if let Some(b) = &self.baseline {
             stats_row(out, "baseline kernel", b.timings.kernel(), "")?;
             stats_row(out, "baseline frame", b.timings.frame(), &format!("{:.2} FPS", b.timings.fps()))?;

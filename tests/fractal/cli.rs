@@ -286,6 +286,7 @@ fn bench_appends_a_csv_row_and_a_json_line() {
         "b.csv",
         "--json",
         "b.json",
+        "--image-error",
     ];
     for _ in 0..2 {
         let out = run_in(&dir, &args);
@@ -298,6 +299,7 @@ fn bench_appends_a_csv_row_and_a_json_line() {
             "hit/miss differs",
             "true error (vs ground truth",
             "depth error",
+            "image error (vs the truth of the image",
         ] {
             assert!(report.contains(word), "no `{word}` in the report:\n{report}");
         }
@@ -314,6 +316,9 @@ fn bench_appends_a_csv_row_and_a_json_line() {
         assert_eq!(cells[column("scene")], "hello_world");
         assert_eq!(cells[column("width")], "32");
         assert_eq!(cells[column("backend")], "cpu");
+        // Columns after the device's are counted from the end.
+        let psnr: f64 = cells[cells.len() - (header.len() - column("image_psnr_db"))].parse().expect("a PSNR");
+        assert!(psnr > 20.0, "{psnr} dB");
     }
     let json = fs::read_to_string(dir.join("b.json")).unwrap();
     let lines: Vec<&str> = json.lines().collect();
@@ -327,6 +332,7 @@ fn bench_appends_a_csv_row_and_a_json_line() {
             "\"max_steps\":",
             "\"hit_mismatch\":",
             "\"false_hits\":",
+            "\"image_error\":{\"psnr\":",
         ] {
             assert!(line.contains(field), "no {field} in {line}");
         }

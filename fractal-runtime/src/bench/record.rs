@@ -2,6 +2,7 @@
 //! (JSON Lines) per run, with the scene, size, device, settings, build options, timings and error figures. The time
 //! stamp is the system clock in UTC; nothing is read from version control.
 
+use crate::accuracy::image::ImageError;
 use crate::accuracy::TrueError;
 use std::fs::OpenOptions;
 use std::io::{self, Write};
@@ -149,6 +150,8 @@ pub struct BenchRecord {
     pub error: Deviation,
     /// Error against the ground truth.
     pub true_error: TrueError,
+    /// Error against the truth of the image, where measured (`--image-error`).
+    pub image_error: Option<ImageError>,
     pub baseline: Option<BaselineRecord>,
 }
 
@@ -181,6 +184,7 @@ impl BenchRecord {
             generated: TimingRecord::new(&report.generated),
             error: report.accuracy.clone(),
             true_error: report.true_error.clone(),
+            image_error: report.image_error,
             baseline,
         }
     }
@@ -241,6 +245,9 @@ impl BenchRecord {
             ("true_false_hits_cone", self.true_error.false_hits_cone.to_string()),
             ("true_false_misses", self.true_error.false_misses.to_string()),
             ("true_psnr_db", format!("{:.2}", self.true_error.psnr)),
+            ("image_psnr_db", self.image_error.map(|e| format!("{:.2}", e.psnr)).unwrap_or_default()),
+            ("image_ssim", self.image_error.map(|e| format!("{:.4}", e.ssim)).unwrap_or_default()),
+            ("image_off", opt(self.image_error.map(|e| e.off))),
         ]
     }
 }

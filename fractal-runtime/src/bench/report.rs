@@ -6,6 +6,7 @@ use fractal_render::select::RendererOptions;
 
 use super::precision::Deviation;
 use super::timer::KernelClock;
+use crate::accuracy::image::ImageError;
 use crate::accuracy::TrueError;
 
 /// Where the camera goes during the bench.
@@ -104,6 +105,8 @@ pub struct BenchReport {
     pub accuracy: Deviation,
     /// Against the ground truth ([`crate::truth`]) at the scene's iteration count.
     pub true_error: TrueError,
+    /// Against the truth of the image ([`crate::truth::image`]), where asked for.
+    pub image_error: Option<ImageError>,
     pub baseline: Option<BaselineFigures>,
     /// Backends skipped by `auto`, and other remarks.
     pub notes: Vec<String>,

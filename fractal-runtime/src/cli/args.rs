@@ -220,6 +220,11 @@ pub struct BenchArgs {
     /// Also time the hand-written baseline Mandelbulb kernel on the same device and print generated/baseline
     #[arg(long)]
     pub baseline: bool,
+    /// Also measure the timed backend's image of the first frame against the truth of the image at the error size
+    /// (docs/image-truth.md): PSNR, SSIM, pixels off by more than 8/255. Slow on fractals, whose truth takes many
+    /// sub-rays a pixel; not for scenes with glow, which the truth does not define
+    #[arg(long)]
+    pub image_error: bool,
 }
 
 #[derive(Debug, Args)]

@@ -43,6 +43,7 @@ pub fn bench(args: &BenchArgs, library: &SceneLibrary) -> Result<(), CliError> {
         backend: args.render.device.backend,
         options: RendererOptions { precise: args.render.device.precise },
         baseline: args.baseline,
+        image_error: args.image_error,
         baseline_comparable: loaded.origin == SceneOrigin::BuiltIn && loaded.name == BASELINE_SCENE,
     };
     let bar = if std::io::stderr().is_terminal() {
