@@ -490,14 +490,10 @@ impl<'a, D: Dialect> Kernel<'a, D> {
         }
     }
 
-    /// The `render` or `trace` entry point: the pixel's ray program ([`crate::lower::ray::pixel`]), then what the
-    /// entry writes of it.
-    fn render<K: KernelDialect>(&mut self, kernel: &K, entry: Entry) {
-        let d = self.d;
-        let float = self.float();
-        let (l1, l2) = (Level(1), Level(2));
-
-        let [px, py] = kernel.render_open(&mut self.out, entry);
+    /// The statements after a pixel entry point's opening: the image size `w` and `h`, the bounds check, and the
+    /// pixel's column and row as floats ([`ray::PIXEL_ARGS`]). Returns the pixel index type.
+    fn pixel_preamble<K: KernelDialect>(&mut self, kernel: &K, [px, py]: [&str; 2]) -> &'static str {
+        let (d, float, (l1, l2)) = (self.d, self.float(), (Level(1), Level(2)));
         let index = kernel.pixel_index_type();
         self.line(l1, &self.constant("w", index, &d.cast(index, &d.frame_field("right.w"))));
         self.line(l1, &self.constant("h", index, &d.cast(index, &d.frame_field("up.w"))));
@@ -507,6 +503,16 @@ impl<'a, D: Dialect> Kernel<'a, D> {
         for (name, i) in ray::PIXEL_ARGS.into_iter().zip([px, py]) {
             self.line(l1, &self.constant(name, float, &d.cast(float, i)));
         }
+        index
+    }
+
+    /// The `render` or `trace` entry point: the pixel's ray program ([`crate::lower::ray::pixel`]), then what the
+    /// entry writes of it.
+    fn render<K: KernelDialect>(&mut self, kernel: &K, entry: Entry) {
+        let d = self.d;
+        let l1 = Level(1);
+        let [px, py] = kernel.render_open(&mut self.out, entry);
+        let index = self.pixel_preamble(kernel, [px, py]);
         let (body, vals) = ray::pixel(self.p);
         let (all, shown) = (vals.all(), [vals.display]);
         let body = body.pruned(if self.traced { &all } else { &shown });
@@ -538,19 +544,10 @@ impl<'a, D: Dialect> Kernel<'a, D> {
     /// the first pass's pixels around this one, then what it writes where the pixel took more samples.
     fn refine<K: KernelDialect>(&mut self, kernel: &K, entry: Entry) {
         let d = self.d;
-        let float = self.float();
         let (l1, l2) = (Level(1), Level(2));
         let _ = writeln!(self.out, "\n{REFINE_MARK}");
         let [px, py] = kernel.refine_open(&mut self.out, entry);
-        let index = kernel.pixel_index_type();
-        self.line(l1, &self.constant("w", index, &d.cast(index, &d.frame_field("right.w"))));
-        self.line(l1, &self.constant("h", index, &d.cast(index, &d.frame_field("up.w"))));
-        self.line(l1, &format!("if ({px} >= w || {py} >= h) {{"));
-        self.line(l2, "return;");
-        self.line(l1, "}");
-        for (name, i) in ray::PIXEL_ARGS.into_iter().zip([px, py]) {
-            self.line(l1, &self.constant(name, float, &d.cast(float, i)));
-        }
+        let index = self.pixel_preamble(kernel, [px, py]);
         let rows = [kernel.clamp_index(py, -1, "h"), py.to_string(), kernel.clamp_index(py, 1, "h")];
         let columns = [kernel.clamp_index(px, -1, "w"), px.to_string(), kernel.clamp_index(px, 1, "w")];
         for (name, value) in ["y0", "y2"].into_iter().zip([&rows[0], &rows[2]]) {
