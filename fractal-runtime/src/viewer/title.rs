@@ -1,5 +1,6 @@
 //! The window title as the viewer's overlay: frame time and FPS, render size, device, time and effects, the
-//! selected parameter, and the passes while the view stands still. Frame times are averaged over short windows so the numbers are readable.
+//! selected parameter, and the passes while the view stands still. Frame times are averaged over short windows so
+//! the numbers are readable.
 
 use std::time::{Duration, Instant};
 
