@@ -286,6 +286,14 @@ impl Frame {
     pub fn time(&self) -> f32 {
         self.slots[0][3]
     }
+    /// This frame with the kernels' time set to `time` and nothing else changed (the camera, lights and parameters
+    /// stay as they were packed): two frames of a scene whose distance tree and materials do not read `t` draw the
+    /// same image when they are equal at one time.
+    pub fn with_time(&self, time: f32) -> Frame {
+        let mut frame = self.clone();
+        frame.slots[0][3] = time;
+        frame
+    }
     /// Camera position, right·tan(fov/2), up·tan(fov/2) and forward, as the kernels read them.
     pub fn camera(&self) -> [[f32; 3]; 4] {
         [0, 1, 2, 3].map(|i| [self.slots[i][0], self.slots[i][1], self.slots[i][2]])

@@ -8,11 +8,17 @@
 //!   surface on lavapipe), and the CPU backend through softbuffer.
 //! - Hot reload: the viewer shows a `.fractal` file; a broken save is reported as `file:line:column` and leaves the
 //!   last good picture on screen, a fixed save replaces it (and matches its offline render).
+//! - Standing still: with time paused the viewer shows the mean of progressive passes, one more each frame; a
+//!   screenshot must equal the same number of passes drawn offline (and be within 40 dB of as many samples a pixel
+//!   drawn at once, closer than the one-sample frame), and a turn of the camera must show the usual frame again. On
+//!   the default backend (wgpu on lavapipe, through its surface) and on the CPU through softbuffer.
 //! - Without a display, an example binary says so in one line and writes its PNG instead.
 //!
 //! Each viewer run is a child process (this test binary, re-run with [`CHILD_ENV`] set), because a process may create
 //! only one window-system event loop. Without Xvfb the window test is skipped with a note, or fails when
 //! `FRACTAL_REQUIRE_GPU_BACKENDS=1`.
+
+mod still;
 
 use fractal_render::device::backends_required;
 use std::ffi::OsString;
@@ -160,21 +166,9 @@ fn the_window_shows_the_offline_render_of_the_scripted_pose() {
     if xwd.is_none() {
         eprintln!("note: not comparing the X server's copy of the window (needs our own Xvfb and xwd)");
     }
-    // The child test by its full name in this binary (`viewer::viewer_child_process`), so `--exact` finds it.
-    let child_test = format!("{}::viewer_child_process", module_path!().split_once("::").map_or("", |(_, m)| m));
-    for mode in ["auto", "cpu-softbuffer", "hot-reload", "animated"] {
+    for mode in ["auto", "cpu-softbuffer", "hot-reload", "animated", "still-auto", "still-cpu"] {
         let dir = scratch_dir(mode);
-        let exe = std::env::current_exe().expect("the test binary's path");
-        let mut child = Command::new(exe)
-            .args(["--exact", &child_test, "--ignored", "--nocapture", "--test-threads=1"])
-            .env(CHILD_ENV, &dir)
-            .env(MODE_ENV, mode)
-            .env("DISPLAY", &display)
-            .env_remove("WAYLAND_DISPLAY")
-            .stdout(Stdio::piped())
-            .stderr(Stdio::piped())
-            .spawn()
-            .expect("start the viewer child process");
+        let mut child = spawn_child(mode, &dir, &display);
         let last_shot = dir.join(LAST_SHOT);
         let root = dir.join("root.xwd");
         let deadline = Instant::now() + Duration::from_secs(300);
@@ -219,6 +213,10 @@ fn the_window_shows_the_offline_render_of_the_scripted_pose() {
             let _ = std::fs::remove_dir_all(&dir);
             continue;
         }
+        if mode.starts_with("still") {
+            let _ = std::fs::remove_dir_all(&dir);
+            continue;
+        }
         assert!(stdout.contains(&format!("saved screenshot {}", last_shot.display())), "{stdout}");
         if xwd.is_some() {
             assert!(captured, "the last screenshot never appeared while the viewer ran");
@@ -236,6 +234,23 @@ fn the_window_shows_the_offline_render_of_the_scripted_pose() {
     drop(xvfb);
 }
 
+/// Starts [`viewer_child_process`] in a new process of this test binary, in `mode`, with its files in `dir`.
+fn spawn_child(mode: &str, dir: &Path, display: &str) -> Child {
+    // The child test by its full name in this binary (`viewer::viewer_child_process`), so `--exact` finds it.
+    let child_test = format!("{}::viewer_child_process", module_path!().split_once("::").map_or("", |(_, m)| m));
+    let exe = std::env::current_exe().expect("the test binary's path");
+    Command::new(exe)
+        .args(["--exact", &child_test, "--ignored", "--nocapture", "--test-threads=1"])
+        .env(CHILD_ENV, dir)
+        .env(MODE_ENV, mode)
+        .env("DISPLAY", display)
+        .env_remove("WAYLAND_DISPLAY")
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("start the viewer child process")
+}
+
 /// The viewer run itself, in a child process started by the test above.
 #[test]
 #[ignore = "run by the_window_shows_the_offline_render_of_the_scripted_pose in its own process"]
@@ -247,6 +262,9 @@ fn viewer_child_process() {
     match mode.as_str() {
         "hot-reload" => return hot_reload_child(&dir),
         "animated" => return animated_child(&dir),
+        "still-auto" => return still::still_child(&dir, false),
+        "still-cpu" => return still::still_child(&dir, true),
+        "still-figures" => return still::figures_child(&dir),
         _ => {}
     }
     let (backend, present) = match mode.as_str() {
@@ -284,6 +302,8 @@ fn viewer_child_process() {
         screenshot_dir: dir.clone(),
         script: Some(script),
         print_help: false,
+        // These runs compare frames drawn as usual; `still_child` tests the passes.
+        accumulate: false,
         ..ViewerOptions::default()
     };
     let summary = fractal_runtime::viewer::run(ViewerScene::compiled("sphere_box", &scenes::SPHERE_BOX), options)
@@ -394,6 +414,8 @@ fn hot_reload_child(dir: &Path) {
         screenshot_dir: dir.to_path_buf(),
         script: Some(script),
         print_help: false,
+        // These runs compare frames drawn as usual; `still_child` tests the passes.
+        accumulate: false,
         ..ViewerOptions::default()
     };
     let summary = fractal_runtime::viewer::run(ViewerScene::file(&file), options).expect("the viewer runs");
@@ -437,6 +459,8 @@ fn animated_child(dir: &Path) {
         screenshot_dir: dir.to_path_buf(),
         script: Some(script),
         print_help: false,
+        // These runs compare frames drawn as usual; `still_child` tests the passes.
+        accumulate: false,
         ..ViewerOptions::default()
     };
     let summary =

@@ -437,7 +437,8 @@ pub struct GalleryArgs {
 Controls: click to capture the mouse (Esc releases it), W A S D to move, Q / E down / up, Shift faster, P prints the
 camera pose, 1-4 toggle shadows / ambient occlusion / glow / fog, 0/9 and 8/7 change steps and epsilon, Space pauses
 time, Tab and the arrow keys change parameters, O shows or hides the panel (drag its sliders for time and parameters),
-F12 or K saves a screenshot, H prints all controls. A .fractal file is reloaded whenever it is saved.")]
+F12 or K saves a screenshot, H prints all controls. A .fractal file is reloaded whenever it is saved. While the view
+stands still (nothing that changes the picture changes), it refines pass by pass; --no-accumulate turns that off.")]
 pub struct ViewArgs {
     /// Built-in scene name or .fractal file
     pub scene: String,
@@ -467,6 +468,10 @@ pub struct ViewArgs {
     /// The most rays a pixel may take, 1..=256 (1: one ray through its centre) [default: the scene's `samples`]
     #[arg(long, value_name = "N", value_parser = parse_samples)]
     pub samples: Option<u32>,
+    /// Do not refine the picture while the view stands still (by default each frame adds a progressive pass, up to
+    /// 256, while nothing that changes the picture changes)
+    #[arg(long)]
+    pub no_accumulate: bool,
 }
 
 /// `WIDTHxHEIGHT`, each side within the renderers' limits.

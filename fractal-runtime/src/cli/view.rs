@@ -33,6 +33,7 @@ pub fn view(args: &ViewArgs, library: &SceneLibrary) -> Result<(), CliError> {
         mouse_sensitivity: args.mouse_sensitivity,
         params: args.params.clone(),
         samples: args.samples,
+        accumulate: !args.no_accumulate,
         ..ViewerOptions::default()
     };
     match run(scene, options) {

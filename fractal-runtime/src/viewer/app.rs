@@ -6,7 +6,7 @@
 use std::collections::HashSet;
 use std::path::PathBuf;
 use std::sync::Arc;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use fractal_render::camera::Pose;
 use fractal_render::error::RenderError;
@@ -21,6 +21,7 @@ use winit::keyboard::PhysicalKey;
 use winit::window::{Window, WindowId};
 
 mod input;
+mod passes;
 
 use super::camera_control::{FlyCamera, SPRINT_FACTOR};
 use super::controls::{Move, HELP};
@@ -35,6 +36,7 @@ use super::scale::ScaleController;
 use super::screenshot::write_png;
 use super::script::ScriptPlayer;
 use super::session::{PresentMode, ScreenshotInfo, ViewerError, ViewerOptions, ViewerScene, ViewerSummary};
+use super::still::{Accumulator, Plan, StillKey};
 use super::title::{title, FrameClock, TitleFacts};
 
 /// Longest time step of one frame: after a stall (a slow recompile, a dragged window) the camera does not jump.
@@ -43,6 +45,9 @@ const MAX_DT: f64 = 0.25;
 const PIXELS_PER_LINE: f64 = 40.0;
 /// The time slider's range when the scene has no camera path to take it from.
 const DEFAULT_TIME_SPAN: f64 = 60.0;
+/// Time between frames while the viewer rests (standing still with every pass drawn): input, the watched file and
+/// the panel are still looked at, and nothing is rendered.
+const REST_FRAME: Duration = Duration::from_millis(50);
 
 pub fn run(scene: ViewerScene, options: ViewerOptions) -> Result<ViewerSummary, ViewerError> {
     let overrides = EffectOverrides::default().with_samples(options.samples);
@@ -172,6 +177,10 @@ struct App {
     overlay: Option<Overlay>,
     dragging: Option<SliderTarget>,
     cursor: (f64, f64),
+    /// Progressive passes while the view stands still.
+    still: Accumulator,
+    /// Input arrived since the last frame: a resting viewer draws the next frame now.
+    woken: bool,
 }
 
 impl App {
@@ -223,6 +232,8 @@ impl App {
             overlay: None,
             dragging: None,
             cursor: (0.0, 0.0),
+            still: Accumulator::new(options.accumulate),
+            woken: false,
             live,
             options,
         })
@@ -286,11 +297,13 @@ impl App {
         };
         let settings = &self.live.scene.settings;
         let (params, selected) = self.params.rows();
+        let mut status = vec![
+            self.live.name.clone(),
+            format!("{}, {timing}, {}x{}", self.engine.device().backend, self.render_size.0, self.render_size.1),
+        ];
+        status.extend(self.still.describe().map(|passes| format!("still: {passes}")));
         let content = PanelContent {
-            status: vec![
-                self.live.name.clone(),
-                format!("{}, {timing}, {}x{}", self.engine.device().backend, self.render_size.0, self.render_size.1),
-            ],
+            status,
             time: self.time,
             time_span: self.time_span(),
             paused: self.paused,
@@ -405,7 +418,10 @@ impl App {
         if let Some(window) = self.window.clone() {
             self.draw_frame(&window, event_loop);
             if let Some(seconds) = measured {
-                self.scale.record(seconds);
+                // Standing still holds the render scale: the passes keep the size they started at.
+                if !self.still.still() {
+                    self.scale.record(seconds);
+                }
                 if self.clock.record(seconds, now) {
                     self.update_title(&window);
                 }
@@ -438,11 +454,19 @@ impl App {
                 }
             };
         let want_screenshot = self.screenshot_request.is_some();
-        self.overlay = self.panel(window_size.0);
-        match self.draw(&frame, window_size, want_screenshot) {
+        let presenter = self.presenter.as_ref().map_or("none", Presenter::name);
+        let key = StillKey::new(&self.live.scene, &frame, window_size, self.engine.device().backend, presenter);
+        self.render_size = render_size;
+        let drawn = match self.still.plan(key) {
+            Plan::Frame => {
+                self.overlay = self.panel(window_size.0);
+                self.draw(&frame, window_size, want_screenshot)
+            }
+            plan => self.draw_still(plan, &frame, window_size, want_screenshot),
+        };
+        match drawn {
             Ok(shown) => {
                 self.last_good = None;
-                self.render_size = render_size;
                 self.summary.frames += 1;
                 if let Some(path) = self.screenshot_request.take() {
                     self.save_screenshot(path, shown, &pose, render_size, window_size);
@@ -500,6 +524,7 @@ impl App {
                     window_size,
                     device: self.engine.device(),
                     presenter: self.presenter.as_ref().map_or("none", Presenter::name),
+                    passes: self.still.shown(),
                 });
             }
             Err(e) => eprintln!("cannot save the screenshot {}: {e}", path.display()),
@@ -509,6 +534,7 @@ impl App {
     /// After a failed frame: back to the last good scene, down the backend chain, or to softbuffer; a failure with
     /// nowhere left to go ends the viewer with the error.
     fn recover(&mut self, error: DrawError, event_loop: &ActiveEventLoop) {
+        self.still.reset();
         match error {
             DrawError::Present(message) => {
                 if matches!(self.presenter, Some(Presenter::Gpu(_))) {
@@ -565,6 +591,7 @@ impl App {
         let effects = describe(&self.live.scene.settings);
         let param = self.params.describe();
         let backend = self.engine.device().backend.to_string();
+        let passes = self.still.describe();
         window.set_title(&title(&TitleFacts {
             scene: &self.live.name,
             frame_seconds: self.clock.average(),
@@ -576,6 +603,7 @@ impl App {
             effects: &effects,
             param: param.as_deref(),
             following_path: self.fly.is_none(),
+            passes: passes.as_deref(),
         }));
     }
 }
@@ -593,6 +621,9 @@ impl ApplicationHandler for App {
 
     fn window_event(&mut self, event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
         let scripted = self.script.is_some();
+        if !matches!(event, WindowEvent::RedrawRequested) {
+            self.woken = true;
+        }
         match event {
             WindowEvent::CloseRequested => event_loop.exit(),
             WindowEvent::RedrawRequested => self.frame(event_loop),
@@ -650,14 +681,25 @@ impl ApplicationHandler for App {
     fn device_event(&mut self, _event_loop: &ActiveEventLoop, _id: DeviceId, event: DeviceEvent) {
         if let DeviceEvent::MouseMotion { delta } = event {
             if self.captured && self.script.is_none() {
+                self.woken = true;
                 self.look(delta.0, delta.1);
             }
         }
     }
 
-    fn about_to_wait(&mut self, _event_loop: &ActiveEventLoop) {
-        if let Some(window) = &self.window {
-            window.request_redraw();
+    /// The next frame at once, or, while the viewer rests, after [`REST_FRAME`] or the next input.
+    fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
+        let Some(window) = &self.window else {
+            return;
+        };
+        if self.still.resting() && !self.woken {
+            if let Some(due) = self.last_frame_at.map(|at| at + REST_FRAME).filter(|&due| Instant::now() < due) {
+                event_loop.set_control_flow(ControlFlow::WaitUntil(due));
+                return;
+            }
         }
+        self.woken = false;
+        event_loop.set_control_flow(ControlFlow::Poll);
+        window.request_redraw();
     }
 }

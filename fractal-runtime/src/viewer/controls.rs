@@ -115,7 +115,8 @@ controls:
   O                 show / hide the panel: drag its sliders to scrub time and set each param(..)
   Space             pause / resume time           <- / -> time -1 s / +1 s
   Tab / Shift+Tab   next / previous param(..)     Up / Down  change it (Shift: 5x)   Backspace  reset it
-  F12 or K          save a PNG screenshot         H       this help";
+  F12 or K          save a PNG screenshot         H       this help
+standing still (time paused, or nothing moving with it) refines the picture pass by pass, up to 256 passes";
 
 #[cfg(test)]
 mod tests {

@@ -8,7 +8,7 @@ use std::time::{Duration, Instant};
 
 use fractal_dsl::eval::interp::Interpreter;
 use fractal_dsl::eval::Evaluator;
-use fractal_dsl::{NativeFns, Scene};
+use fractal_dsl::{Kernels, NativeFns, Scene};
 use fractal_render::renderer::KernelSources;
 use notify::{RecursiveMode, Watcher};
 
@@ -98,11 +98,38 @@ impl LiveScene {
 
     /// Every form of the scene, for whichever renderer draws it.
     pub fn kernels(&self) -> KernelSources<'_> {
-        let evaluator: &dyn Evaluator<f32> = match &self.evaluator {
+        KernelSources::default().with_wgsl(&self.wgsl).with_opencl(&self.opencl).with_cpu(self.evaluator(), &self.scene)
+    }
+
+    /// The CPU evaluator: geometry and materials, whatever the settings.
+    pub fn evaluator(&self) -> &dyn Evaluator<f32> {
+        match &self.evaluator {
             CpuEvaluator::Native(native) => native,
             CpuEvaluator::Interpreted(interpreter) => &**interpreter,
-        };
-        KernelSources::default().with_wgsl(&self.wgsl).with_opencl(&self.opencl).with_cpu(evaluator, &self.scene)
+        }
+    }
+
+    /// What a progressive pass draws: the scene with one sample a pixel and its trace kernels, compiled here.
+    pub fn one_sample(&self) -> Result<OneSample, fractal_dsl::validate::InvalidScene> {
+        let mut scene = self.scene.clone();
+        scene.settings.samples = 1;
+        let kernels = fractal_dsl::compile(&scene)?.tracing();
+        Ok(OneSample { scene, kernels })
+    }
+}
+
+/// A scene's one-sample form ([`LiveScene::one_sample`]): the scene (for the CPU renderer, which reads its settings)
+/// and its trace kernels (for the GPU renderers, whose `trace` returns each pixel's linear colour).
+#[derive(Clone, Debug)]
+pub struct OneSample {
+    pub scene: Scene,
+    pub kernels: Kernels,
+}
+
+impl OneSample {
+    /// The pass's forms of the scene, with `live`'s CPU evaluator.
+    pub fn sources<'a>(&'a self, live: &'a LiveScene) -> KernelSources<'a> {
+        KernelSources::compiled(&self.kernels).with_cpu(live.evaluator(), &self.scene)
     }
 }
 

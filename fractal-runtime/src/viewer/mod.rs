@@ -11,6 +11,10 @@
 //!   frame rate, and the image is upscaled to the window (nearest pixel).
 //! - Effects (shadows, ambient occlusion, glow, fog) are compiled into the kernels, so a toggle recompiles them with
 //!   [`fractal_dsl::compile`]; `param(..)` values are uniforms, so changing one only repacks the frame.
+//! - While nothing that changes the picture changes (camera, time where something moves with it, parameters,
+//!   effects, scene, sizes), each frame adds a progressive pass and the window shows their mean, refining it to the
+//!   pixel-integrated image, up to 256 passes; any change starts over (module `still`;
+//!   [`ViewerOptions::accumulate`] turns it off).
 //! - With no display, [`run`] returns [`ViewerError::NoDisplay`] and [`run_or_render`] renders a PNG instead.
 //!
 //! Controls (also printed at start-up, and again with H):
@@ -51,6 +55,7 @@ mod scale;
 pub mod screenshot;
 mod script;
 mod session;
+mod still;
 mod title;
 
 use std::path::{Path, PathBuf};

@@ -1,7 +1,8 @@
 //! Getting frames into the window, upscaled from the render size to the window size by nearest pixel.
 //!
 //! - [`GpuPresenter`]: the WGSL kernel computes into a storage buffer and a full-screen pass draws that buffer to the
-//!   window's wgpu surface; nothing crosses back to the host (except for screenshots).
+//!   window's wgpu surface; nothing crosses back to the host (except for screenshots). A host image (a progressive
+//!   picture) is uploaded into the same buffer and drawn the same way.
 //! - [`SoftPresenter`]: any image on the host (CPU and OpenCL frames, wgpu frames read back) copied into a softbuffer
 //!   surface.
 //!
@@ -65,6 +66,8 @@ pub struct SoftPresenter {
     _context: softbuffer::Context<Arc<Window>>,
     surface: softbuffer::Surface<Arc<Window>, Arc<Window>>,
     size: (u32, u32),
+    /// The image last presented, to present again ([`SoftPresenter::redraw`]).
+    source: Option<Image>,
     /// The window pixels last presented (softbuffer layout), for screenshots.
     shown: Vec<u32>,
     shown_size: (u32, u32),
@@ -74,12 +77,29 @@ impl SoftPresenter {
     pub fn new(window: Arc<Window>) -> Result<SoftPresenter, String> {
         let context = softbuffer::Context::new(window.clone()).map_err(|e| format!("softbuffer: {e}"))?;
         let surface = softbuffer::Surface::new(&context, window).map_err(|e| format!("softbuffer: {e}"))?;
-        Ok(SoftPresenter { _context: context, surface, size: (0, 0), shown: Vec::new(), shown_size: (0, 0) })
+        Ok(SoftPresenter {
+            _context: context,
+            surface,
+            size: (0, 0),
+            source: None,
+            shown: Vec::new(),
+            shown_size: (0, 0),
+        })
     }
 
     /// Shows `image` stretched over a window of `window` pixels.
     pub fn present(&mut self, image: &Image, window: (u32, u32), overlay: Option<&Overlay>) -> Result<(), String> {
-        let (Some(w), Some(h)) = (NonZeroU32::new(window.0), NonZeroU32::new(window.1)) else {
+        match &mut self.source {
+            Some(source) => source.clone_from(image),
+            None => self.source = Some(image.clone()),
+        }
+        self.redraw(window, overlay)
+    }
+
+    /// Shows the image last presented again (with this `overlay`); nothing before the first.
+    pub fn redraw(&mut self, window: (u32, u32), overlay: Option<&Overlay>) -> Result<(), String> {
+        let (Some(w), Some(h), Some(image)) = (NonZeroU32::new(window.0), NonZeroU32::new(window.1), &self.source)
+        else {
             return Ok(());
         };
         if self.size != window {
@@ -175,7 +195,18 @@ struct PixelBuffer {
     buffer: wgpu::Buffer,
 }
 
-/// Presents wgpu frames straight from the kernel's output buffer.
+/// What fills the pixel buffer before it is drawn to the surface.
+#[derive(Clone, Copy)]
+enum Fill<'a> {
+    /// The WGSL kernel's frame.
+    Kernel { wgsl: &'a str, frame: &'a Frame },
+    /// A host image.
+    Image(&'a Image),
+    /// Nothing: the buffer keeps what it holds.
+    Kept,
+}
+
+/// Presents wgpu frames straight from the kernel's output buffer, and host images through the same buffer.
 pub struct GpuPresenter {
     surface: wgpu::Surface<'static>,
     config: wgpu::SurfaceConfiguration,
@@ -252,6 +283,41 @@ impl GpuPresenter {
         screenshot: bool,
         overlay: Option<&Overlay>,
     ) -> Result<Option<Image>, GpuFrameError> {
+        self.present(renderer, Fill::Kernel { wgsl, frame }, window, screenshot, overlay)
+    }
+
+    /// Uploads a host `image` (a progressive picture) into the pixel buffer and draws it, as [`GpuPresenter::draw`].
+    pub fn show(
+        &mut self,
+        renderer: &mut WgpuRenderer,
+        image: &Image,
+        window: (u32, u32),
+        screenshot: bool,
+        overlay: Option<&Overlay>,
+    ) -> Result<Option<Image>, GpuFrameError> {
+        self.present(renderer, Fill::Image(image), window, screenshot, overlay)
+    }
+
+    /// Draws the pixel buffer again as it is (with this `overlay`), as [`GpuPresenter::draw`]; nothing before the
+    /// first frame.
+    pub fn redraw(
+        &mut self,
+        renderer: &mut WgpuRenderer,
+        window: (u32, u32),
+        screenshot: bool,
+        overlay: Option<&Overlay>,
+    ) -> Result<Option<Image>, GpuFrameError> {
+        self.present(renderer, Fill::Kept, window, screenshot, overlay)
+    }
+
+    fn present(
+        &mut self,
+        renderer: &mut WgpuRenderer,
+        fill: Fill,
+        window: (u32, u32),
+        screenshot: bool,
+        overlay: Option<&Overlay>,
+    ) -> Result<Option<Image>, GpuFrameError> {
         if window.0 == 0 || window.1 == 0 {
             return Ok(None);
         }
@@ -260,7 +326,17 @@ impl GpuPresenter {
             self.config.height = window.1;
             self.configure(renderer)?;
         }
-        let (width, height) = (frame.width(), frame.height());
+        let (passes, (width, height)) = match fill {
+            Fill::Kernel { wgsl, frame } => {
+                let size = (frame.width(), frame.height());
+                (Some(renderer.pixel_passes(Entry::Render, wgsl, size).map_err(GpuFrameError::Render)?), size)
+            }
+            Fill::Image(image) => (None, (image.width, image.height)),
+            Fill::Kept => match &self.pixels {
+                Some(pixels) => (None, pixels.size),
+                None => return Ok(None),
+            },
+        };
         let bytes = width as u64 * height as u64 * 4;
         let device = renderer.wgpu_device().clone();
         let queue = renderer.queue().clone();
@@ -276,28 +352,42 @@ impl GpuPresenter {
                 detail: "larger than the device's storage buffers or workgroup grid".to_string(),
             }));
         }
-        let passes = renderer.pixel_passes(Entry::Render, wgsl, (width, height)).map_err(GpuFrameError::Render)?;
+        let device_error = |e: wgpu::Error| {
+            GpuFrameError::Render(RenderError::Device { backend: Backend::Wgpu, message: e.to_string() })
+        };
         if self.pixels.as_ref().is_none_or(|p| p.size != (width, height)) {
             self.pixels = None;
             let (buffer, error) = capture(&device, || {
                 device.create_buffer(&wgpu::BufferDescriptor {
                     label: Some("viewer pixels"),
                     size: bytes,
-                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
                     mapped_at_creation: false,
                 })
             });
             if let Some(e) = error {
-                return Err(GpuFrameError::Render(RenderError::Device {
-                    backend: Backend::Wgpu,
-                    message: e.to_string(),
-                }));
+                return Err(device_error(e));
             }
             self.pixels = Some(PixelBuffer { size: (width, height), buffer });
         }
         let Some(pixels) = self.pixels.as_ref() else {
             return Ok(None);
         };
+        // Uploaded before the surface is asked for a texture, so a skipped frame still leaves the buffer holding
+        // the picture a later redraw shows.
+        if let Fill::Image(image) = fill {
+            if image.pixels.len() as u64 * 4 != bytes {
+                return Err(GpuFrameError::Render(RenderError::Device {
+                    backend: Backend::Wgpu,
+                    message: format!("a {width}x{height} image with {} pixels", image.pixels.len()),
+                }));
+            }
+            let ((), error) =
+                capture(&device, || queue.write_buffer(&pixels.buffer, 0, bytemuck::cast_slice(&image.pixels)));
+            if let Some(e) = error {
+                return Err(device_error(e));
+            }
+        }
 
         let texture = match self.surface.get_current_texture() {
             wgpu::CurrentSurfaceTexture::Success(t) | wgpu::CurrentSurfaceTexture::Suboptimal(t) => t,
@@ -311,11 +401,6 @@ impl GpuPresenter {
 
         let row_bytes = (window.0 * 4).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
         let (readback, error) = capture(&device, || {
-            let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("frame"),
-                contents: frame.as_bytes(),
-                usage: wgpu::BufferUsages::UNIFORM,
-            });
             let decode_srgb = self.config.format.is_srgb() as u32;
             // No panel: an empty rectangle over a one-word buffer (a binding cannot be empty).
             let (origin, size, words) = match overlay {
@@ -345,7 +430,14 @@ impl GpuPresenter {
             });
             let view = texture.texture.create_view(&wgpu::TextureViewDescriptor::default());
             let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("viewer") });
-            passes.record(&device, &mut encoder, &uniform, &pixels.buffer, None);
+            if let (Some(passes), Fill::Kernel { frame, .. }) = (&passes, fill) {
+                let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("frame"),
+                    contents: frame.as_bytes(),
+                    usage: wgpu::BufferUsages::UNIFORM,
+                });
+                passes.record(&device, &mut encoder, &uniform, &pixels.buffer, None);
+            }
             {
                 let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                     label: Some("blit"),

@@ -97,6 +97,8 @@ pub struct ViewerOptions {
     pub print_help: bool,
     /// The most rays a pixel may take (`None`: the scene's `samples`).
     pub samples: Option<u32>,
+    /// While nothing that changes the picture changes, refine it with progressive passes (module `still`).
+    pub accumulate: bool,
 }
 
 impl Default for ViewerOptions {
@@ -120,6 +122,7 @@ impl Default for ViewerOptions {
             script: None,
             print_help: true,
             samples: None,
+            accumulate: true,
         }
     }
 }
@@ -140,6 +143,8 @@ pub struct ScreenshotInfo {
     pub device: DeviceInfo,
     /// `"wgpu surface"` or `"softbuffer"`.
     pub presenter: &'static str,
+    /// The progressive passes whose mean the window showed (the view stood still); 0 for a frame drawn as usual.
+    pub passes: u32,
 }
 
 /// What a viewer session did.

@@ -1,5 +1,6 @@
-//! The window title as the viewer's overlay: frame time and FPS, render size, device, time and effects, and the
-//! selected parameter. Frame times are averaged over short windows so the numbers are readable.
+//! The window title as the viewer's overlay: frame time and FPS, render size, device, time and effects, the
+//! selected parameter, and the passes while the view stands still. Frame times are averaged over short windows so
+//! the numbers are readable.
 
 use std::time::{Duration, Instant};
 
@@ -54,6 +55,8 @@ pub struct TitleFacts<'a> {
     pub effects: &'a str,
     pub param: Option<&'a str>,
     pub following_path: bool,
+    /// The progressive passes while the view stands still (e.g. `37 passes`).
+    pub passes: Option<&'a str>,
 }
 
 pub fn title(f: &TitleFacts) -> String {
@@ -73,9 +76,9 @@ pub fn title(f: &TitleFacts) -> String {
         if f.following_path { "" } else { " — free camera" },
         f.effects
     );
-    if let Some(p) = f.param {
+    for part in [f.param, f.passes].into_iter().flatten() {
         t.push_str(" — ");
-        t.push_str(p);
+        t.push_str(part);
     }
     t
 }
@@ -102,10 +105,12 @@ mod tests {
             effects: "no shadows",
             param: Some("r = 1"),
             following_path: false,
+            passes: Some("16 passes"),
         });
         assert_eq!(
             text,
-            "s — 20.0 ms (50 FPS) — 640x360 (50%) — wgpu — t 1.00 (paused) — free camera — no shadows — r = 1"
+            "s — 20.0 ms (50 FPS) — 640x360 (50%) — wgpu — t 1.00 (paused) — free camera — no shadows — r = 1 — 16 \
+             passes"
         );
     }
 }
