@@ -13,12 +13,12 @@
 //!   passes. The next frame with the same key draws pass 1 (every pixel's centre ray: the usual one-sample frame),
 //!   each frame after it one more, up to [`PASS_CAP`]; then the viewer rests: it shows the same picture again a few
 //!   times a second and renders nothing until something changes.
-//! - A scene with `.samples(n)`, n > 1, draws its usual frame with up to n adaptive samples a pixel (five, then more
-//!   where they disagree). The passes take the same sequence of samples at every pixel, so from n passes on every
-//!   pixel has at least the samples the usual frame gave it, and until then the window keeps the usual frame: standing
-//!   still never makes the picture worse. Past 16 that wait would hide the refinement for long, and a pixel the
-//!   adaptive rule stopped early was already within its threshold, so the passes show from min(n, 16) on
-//!   ([`SHOW_FROM_MAX`]).
+//! - A scene with `.samples(n)`, n > 1, draws its usual frame with up to n adaptive samples a pixel (one, or where
+//!   it differs from a neighbour five, then more while they disagree). The passes take the same sequence of samples
+//!   at every pixel, so from n passes on every pixel has at least the samples the usual frame gave it, and until then
+//!   the window keeps the usual frame: standing still never makes the picture worse. Past 16 that wait would hide the
+//!   refinement for long, and a pixel the adaptive rule stopped early was already within its threshold, so the passes
+//!   show from min(n, 16) on ([`SHOW_FROM_MAX`]).
 //! - The render scale holds while standing still (the game loop stops feeding the scale controller), so the passes
 //!   keep the size they started at.
 
