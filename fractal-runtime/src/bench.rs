@@ -47,7 +47,7 @@ use fractal_render::renderer::{KernelSources, RenderJob};
 use fractal_render::select::{BackendChoice, RendererOptions};
 use glam::{DQuat, DVec3};
 
-use crate::accuracy::image::{image_error, ImageError};
+use crate::accuracy::image::{image_error, ImageBudget, ImageError};
 use crate::accuracy::{measure, Observed, TrueError};
 use crate::truth::image::{ImageTruth, ImageTruthError, ImageTruthSettings};
 use crate::truth::{Truth, TruthSettings};
@@ -334,10 +334,11 @@ impl BenchReport {
         if let Some(e) = &self.image_error {
             writeln!(
                 out,
-                "  image error (vs the truth of the image at {}x{}, the box-filtered pixel: docs/image-truth.md): {}",
+                "  image error (vs the truth of the image at {}x{}, the box-filtered pixel: docs/image-truth.md): {}; {}",
                 self.true_error.width,
                 self.true_error.height,
-                e.describe()
+                e.describe(),
+                ImageBudget::default().verdict(e)
             )?;
         }
         if let Some(b) = &self.baseline {

@@ -49,6 +49,52 @@ impl ImageError {
     }
 }
 
+/// The image budget: the least PSNR and the largest share of pixels off by more than [`OFF_LEVELS`] an image may
+/// have against the truth of the image. Derived from measurement in `docs/image-truth.md` (“The image budget”): the
+/// PSNR lies below what the truth's own lattices settle to on the hardest scene, the share between the smooth
+/// scenes' aliased one-ray images and their anti-aliased ones.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ImageBudget {
+    /// dB.
+    pub psnr: f64,
+    /// Fraction of pixels.
+    pub off: f64,
+}
+
+impl Default for ImageBudget {
+    fn default() -> Self {
+        ImageBudget { psnr: 35.0, off: 0.02 }
+    }
+}
+
+impl ImageBudget {
+    /// The ways `e` exceeds the budget (empty: within it).
+    pub fn violations(&self, e: &ImageError) -> Vec<String> {
+        let mut out = Vec::new();
+        if e.psnr.is_nan() || e.psnr < self.psnr {
+            out.push(format!("PSNR {:.2} dB < {} dB", e.psnr, self.psnr));
+        }
+        if e.off.is_nan() || e.off > self.off {
+            out.push(format!(
+                "{:.2} % of pixels off by more than {OFF_LEVELS}/255 > {} %",
+                100.0 * e.off,
+                100.0 * self.off
+            ));
+        }
+        out
+    }
+
+    /// The verdict on `e` in a few words.
+    pub fn verdict(&self, e: &ImageError) -> String {
+        let violations = self.violations(e);
+        if violations.is_empty() {
+            "within the image budget".to_string()
+        } else {
+            format!("outside the image budget: {}", violations.join(", "))
+        }
+    }
+}
+
 /// `image` against `truth` (same size, which the caller ensures: a size mismatch panics).
 pub fn image_error(truth: &Image, image: &Image) -> ImageError {
     assert_eq!((truth.width, truth.height), (image.width, image.height), "image and truth differ in size");
@@ -206,4 +252,21 @@ pub fn normal_error(truth: &ImageTruth, traces: &[PixelTrace]) -> NormalError {
         }
     };
     NormalError { hit_pixels, judged: angles.len(), median: at(0.5), p90: at(0.9) }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_image_budget_judges_psnr_and_the_share_off() {
+        let budget = ImageBudget::default();
+        let e = |psnr: f64, off: f64| ImageError { psnr, ssim: 1.0, off };
+        assert!(budget.violations(&e(47.6, 0.0065)).is_empty());
+        assert_eq!(budget.violations(&e(35.2, 0.0361)).len(), 1, "sphere_box's aliased one-ray image");
+        assert_eq!(budget.violations(&e(21.7, 0.18)).len(), 2);
+        assert_eq!(budget.violations(&e(f64::NAN, f64::NAN)).len(), 2, "a broken image is never within");
+        assert!(budget.verdict(&e(50.0, 0.0)).starts_with("within"));
+        assert!(budget.verdict(&e(30.0, 0.0)).contains("PSNR 30.00 dB < 35 dB"), "{}", budget.verdict(&e(30.0, 0.0)));
+    }
 }

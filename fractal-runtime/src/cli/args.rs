@@ -243,7 +243,8 @@ normals is not judged, and the verdict says so.
 --image measures the scene default's image instead against the truth of the image: per pixel, the box-filtered mean
 of the scene's shading over a lattice of sub-rays (docs/image-truth.md): PSNR, SSIM, pixels off by more than 8/255,
 normals against the pixel-integrated true normal, and flicker along --flicker-frames frames of the camera path, 1/30 s
-apart (or an orbit of a pixel's angle per frame where the camera stands still).")]
+apart (or an orbit of a pixel's angle per frame where the camera stands still); each image is judged against the image
+budget: PSNR >= 35 dB, at most 2 % of pixels off by more than 8/255.")]
 pub struct AccuracyArgs {
     /// Built-in scene name or .fractal file (every built-in scene with --report)
     #[arg(required_unless_present_any = ["report", "estimators"])]

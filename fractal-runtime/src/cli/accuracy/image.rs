@@ -15,7 +15,7 @@ use fractal_render::renderer::{KernelSources, RenderJob, Renderer};
 use fractal_render::select::RendererOptions;
 use fractal_render::Pose;
 
-use crate::accuracy::image::{flicker, image_error, motion, normal_error};
+use crate::accuracy::image::{flicker, image_error, motion, normal_error, ImageBudget};
 use crate::cli::args::AccuracyArgs;
 use crate::cli::error::CliError;
 use crate::cli::scene::LoadedScene;
@@ -154,10 +154,11 @@ pub fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend) -> Res
         let shimmer =
             shimmer.map_or(String::new(), |f| format!(", flicker {f:.2} levels RMS ({:.2}x)", f / base_flicker));
         say(format!(
-            "  samples {n} (threshold {}): {per_pixel:.2} per pixel, {ms:.1} ms ({:.2}x), {}{shimmer}",
+            "  samples {n} (threshold {}): {per_pixel:.2} per pixel, {ms:.1} ms ({:.2}x), {}{shimmer}; {}",
             scene.settings.sample_threshold,
             ms / base_ms,
             error.describe(),
+            ImageBudget::default().verdict(&error),
         ));
         if n == own {
             match &traces {
