@@ -105,7 +105,7 @@ impl Program {
     }
 }
 
-/// What the render and trace kernels write of a pixel, as values of [`pixel`]'s body.
+/// What the render and trace kernels write of a pixel, as values of [`pixel()`]'s body.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PixelVals {
     /// The colour as displayed (clamped, gamma-encoded), V3.
@@ -132,7 +132,7 @@ impl PixelVals {
     }
 }
 
-/// The argument names of [`pixel`]'s body: the pixel's column and row (whole numbers, as F).
+/// The argument names of [`pixel()`]'s body: the pixel's column and row (whole numbers, as F).
 pub const PIXEL_ARGS: [&str; 2] = ["fx", "fy"];
 
 /// The frame's view as the traced program reads it: the frame uniform's camera and lights.

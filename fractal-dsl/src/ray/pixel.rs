@@ -1,7 +1,7 @@
 //! Step 1 over a pixel's area, and step 7's mean: where a pixel's samples go in the pixel and on the lens, how
 //! their colours add up, when an adaptive pixel takes more, and the pixel's value. Every renderer draws a pixel
-//! with [`pixel`] (or, scheduling its rays otherwise, with these same steps in the same order), so the CPU and the
-//! kernels take the same samples and stop at the same count.
+//! with [`first_pass`] and [`refine`] (or, scheduling its rays otherwise, with these same steps in the same order),
+//! so the CPU and the kernels take the same samples and stop at the same count.
 //!
 //! **Value.** A pixel's value is the box-filtered mean over its square of the linear colour clamped to [0, 1], then
 //! displayed (step 7). Sample 0 is the ray through the pixel's centre (and the lens's): with one sample a render is
