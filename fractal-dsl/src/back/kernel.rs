@@ -9,7 +9,7 @@
 use std::fmt::Write;
 
 use super::syntax::{self, Prec, Spelling, Syntax};
-use super::{f32_literal, Entry, FrameLayout, Level, REFINE_MARK};
+use super::{f32_literal, Entry, FrameLayout, Level, Pass, REFINE_MARK};
 use crate::ir::HitEpsilon;
 use crate::lower::code::{Body, FrameField, MathFn, SceneFn, Ty, Val};
 use crate::lower::ray;
@@ -107,17 +107,15 @@ pub trait Dialect {
 /// What a language's compute kernels spell their own way ([`write()`]): resources, entry points and pixel output.
 pub trait KernelDialect: Dialect {
     /// Type definitions and resource bindings, written before the helpers; `refine` where the kernel has the
-    /// second pass ([`super::Pass::Refine`]).
+    /// second pass ([`Pass::Refine`]).
     fn declarations(&self, out: &mut String, layout: FrameLayout, entry: Entry, refine: bool);
-    /// Writes the `render` or `trace` entry point's first lines, through its `{` and the statements naming the
-    /// invocation's pixel; returns the pixel's x and y, whose type is [`Self::pixel_index_type`].
-    fn render_open(&self, out: &mut String, entry: Entry) -> [&'static str; 2];
+    /// Writes the first lines of the `render` or `trace` kernel's entry point for `pass` (the refine pass also takes
+    /// the first pass's pixels), through its `{` and the statements naming the invocation's pixel; returns the
+    /// pixel's x and y, whose type is [`Self::pixel_index_type`].
+    fn render_open(&self, out: &mut String, entry: Entry, pass: Pass) -> [&'static str; 2];
     fn pixel_index_type(&self) -> &'static str;
     /// The statements that pack `col` into RGBA8 and store it at the pixel.
     fn pack_pixel(&self) -> &'static [&'static str];
-    /// Writes the `refine` entry point's first lines ([`super::Pass::Refine`] of a `render` or `trace` kernel), as
-    /// [`Self::render_open`] does.
-    fn refine_open(&self, out: &mut String, entry: Entry) -> [&'static str; 2];
     /// The pixel index `i` moved by `step` (−1 or 1) and kept within 0..`size`.
     fn clamp_index(&self, i: &str, step: i32, size: &str) -> String;
     /// The first pass's displayed colour at pixel index `index` of the refine pass's input, as a 3-vector in [0, 1].
@@ -511,7 +509,7 @@ impl<'a, D: Dialect> Kernel<'a, D> {
     fn render<K: KernelDialect>(&mut self, kernel: &K, entry: Entry) {
         let d = self.d;
         let l1 = Level(1);
-        let [px, py] = kernel.render_open(&mut self.out, entry);
+        let [px, py] = kernel.render_open(&mut self.out, entry, Pass::First);
         let index = self.pixel_preamble(kernel, [px, py]);
         let (body, vals) = ray::pixel(self.p);
         let (all, shown) = (vals.all(), [vals.display]);
@@ -540,13 +538,13 @@ impl<'a, D: Dialect> Kernel<'a, D> {
         self.out.push_str("}\n");
     }
 
-    /// The `refine` entry point ([`super::Pass::Refine`]): the ray program's second pass ([`crate::lower::ray::refine`]) from
+    /// The `refine` entry point ([`Pass::Refine`]): the ray program's second pass ([`crate::lower::ray::refine`]) from
     /// the first pass's pixels around this one, then what it writes where the pixel took more samples.
     fn refine<K: KernelDialect>(&mut self, kernel: &K, entry: Entry) {
         let d = self.d;
         let (l1, l2) = (Level(1), Level(2));
         let _ = writeln!(self.out, "\n{REFINE_MARK}");
-        let [px, py] = kernel.refine_open(&mut self.out, entry);
+        let [px, py] = kernel.render_open(&mut self.out, entry, Pass::Refine);
         let index = self.pixel_preamble(kernel, [px, py]);
         let rows = [kernel.clamp_index(py, -1, "h"), py.to_string(), kernel.clamp_index(py, 1, "h")];
         let columns = [kernel.clamp_index(px, -1, "w"), px.to_string(), kernel.clamp_index(px, 1, "w")];

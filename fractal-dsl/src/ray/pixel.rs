@@ -245,18 +245,6 @@ pub fn sample<N: Num, S: SceneFns<N>>(
     trace_ray(rules, view, scene, camera_ray(rules, view, x + dx, y + dy, on_lens))
 }
 
-/// Steps 1–6 for sample 0, the ray through the pixel's centre (and the lens's: the pinhole's ray).
-#[inline(always)]
-pub fn centre<N: Num, S: SceneFns<N>>(
-    rules: &Rules,
-    view: &View<N>,
-    scene: &S,
-    (x, y): (N, N),
-) -> (march::March<N>, N::Mask, Shaded<N>) {
-    let half = N::lit(0.5);
-    trace_ray(rules, view, scene, view.ray(x + half, y + half))
-}
-
 /// Steps 2–6 along the unit ray (ro, rd): the march, whether the ray entered the bound, and the shading (which a
 /// ray outside the bound, taking no step, shades as the background).
 #[inline(always)]
@@ -270,10 +258,12 @@ fn trace_ray<N: Num, S: SceneFns<N>>(
     (m, enters, shade::shade(rules, view, scene, (ro, rd), &m))
 }
 
-/// The first pass of the pixel whose top left corner is (x, y): sample 0, the ray through its centre.
+/// The first pass of the pixel whose top left corner is (x, y): sample 0, the ray through its centre (and the
+/// lens's: the pinhole's ray).
 #[inline(always)]
 pub fn first_pass<N: Num, S: SceneFns<N>>(rules: &Rules, view: &View<N>, scene: &S, x: N, y: N) -> Drawn<N> {
-    let (centre, enters, shaded) = centre(rules, view, scene, (x, y));
+    let half = N::lit(0.5);
+    let (centre, enters, shaded) = trace_ray(rules, view, scene, view.ray(x + half, y + half));
     Drawn { centre, enters, shaded }
 }
 

@@ -22,7 +22,7 @@ use std::cell::Cell;
 use crate::device::{Backend, DeviceInfo};
 use crate::error::{FrameError, RenderError};
 use crate::frame::{Frame, LightSlot};
-use crate::image::{pack_linear, Image};
+use crate::image::{pack_linear, unpack_rgba8, Image};
 pub use crate::renderer::PixelTrace;
 use crate::renderer::{RenderJob, Renderer, Traced};
 
@@ -155,7 +155,7 @@ impl<F: Real> FirstPass<F> {
 
 /// A packed pixel's colour channels in [0, 1].
 fn unpack<F: Real>(p: u32) -> V3<F> {
-    let [r, g, b, _] = p.to_le_bytes();
+    let [r, g, b, _] = unpack_rgba8(p);
     let channel = |c: u8| F::c(c as f64) / F::c(255.0);
     v3(channel(r), channel(g), channel(b))
 }

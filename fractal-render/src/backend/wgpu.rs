@@ -33,8 +33,8 @@ pub struct WgpuRenderer {
     device: wgpu::Device,
     queue: wgpu::Queue,
     info: wgpu::AdapterInfo,
-    /// The bind group and pipeline layouts of each entry point.
-    layouts: Vec<(EntryPoint, Layouts)>,
+    /// The bind group and pipeline layouts of each entry point, in [`ENTRY_POINTS`]' order.
+    layouts: [Layouts; 5],
     pipelines: Vec<(EntryPoint, String, wgpu::ComputePipeline)>,
     targets: Option<Targets>,
     /// The first pass's pixels, which a refine pass reads; kept while the image size stays the same.
@@ -46,6 +46,14 @@ pub struct WgpuRenderer {
 /// An entry point of a kernel: its entry and pass.
 type EntryPoint = (Entry, Pass);
 type Layouts = (wgpu::BindGroupLayout, wgpu::PipelineLayout);
+/// Every entry point a kernel has.
+const ENTRY_POINTS: [EntryPoint; 5] = [
+    (Entry::Render, Pass::First),
+    (Entry::Render, Pass::Refine),
+    (Entry::Trace, Pass::First),
+    (Entry::Trace, Pass::Refine),
+    (Entry::Probe, Pass::First),
+];
 
 /// Output and read-back buffers of one size.
 struct Targets {
@@ -103,8 +111,7 @@ impl WgpuRenderer {
                 errors.push(e.to_string());
             }
         }));
-        let points = [Entry::Render, Entry::Trace].into_iter().flat_map(|e| [(e, Pass::First), (e, Pass::Refine)]);
-        let layouts = points.chain([(Entry::Probe, Pass::First)]).map(|p| (p, pipeline_layout(&device, p))).collect();
+        let layouts = ENTRY_POINTS.map(|p| pipeline_layout(&device, p));
         Ok(WgpuRenderer {
             instance,
             adapter,
@@ -136,13 +143,16 @@ impl WgpuRenderer {
         &self.info
     }
 
-    /// The bind group and pipeline layouts of entry point `point`.
+    /// The bind group and pipeline layouts of entry point `point` (a probe kernel has one pass).
     fn layouts(&self, point: EntryPoint) -> &Layouts {
-        match self.layouts.iter().find(|(p, _)| *p == point) {
-            Some((_, layouts)) => layouts,
-            // Every entry point has its layouts from `with_features` on.
-            None => &self.layouts[0].1,
-        }
+        let at = match point {
+            (Entry::Render, Pass::First) => 0,
+            (Entry::Render, Pass::Refine) => 1,
+            (Entry::Trace, Pass::First) => 2,
+            (Entry::Trace, Pass::Refine) => 3,
+            (Entry::Probe, _) => 4,
+        };
+        &self.layouts[at]
     }
 
     /// Compiles (or finds in the cache) the pipeline of `entry`'s `pass` in `source`.

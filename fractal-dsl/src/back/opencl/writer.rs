@@ -96,12 +96,13 @@ impl KernelDialect for OpenCl {
         out.push_str("} Frame;\n\n");
         out.push_str(&self.sample_struct());
     }
-    fn render_open(&self, out: &mut String, entry: Entry) -> [&'static str; 2] {
+    fn render_open(&self, out: &mut String, entry: Entry, pass: Pass) -> [&'static str; 2] {
         let traces = if entry == Entry::Trace { ", __global float4* traces" } else { "" };
+        let first = if pass == Pass::Refine { ", __global const uint* first" } else { "" };
         let _ = writeln!(
             out,
-            "__kernel void {}(__global uint* out, __constant const Frame* frame{traces}) {{",
-            entry.name()
+            "__kernel void {}(__global uint* out, __constant const Frame* frame{traces}{first}) {{",
+            entry.entry_point(pass)
         );
         for (axis, name) in ["x", "y"].into_iter().enumerate() {
             let _ = writeln!(out, "{}const int {name} = (int)get_global_id({axis});", Level(1));
@@ -110,18 +111,6 @@ impl KernelDialect for OpenCl {
     }
     fn pixel_index_type(&self) -> &'static str {
         "int"
-    }
-    fn refine_open(&self, out: &mut String, entry: Entry) -> [&'static str; 2] {
-        let traces = if entry == Entry::Trace { ", __global float4* traces" } else { "" };
-        let _ = writeln!(
-            out,
-            "__kernel void {}(__global uint* out, __constant const Frame* frame{traces}, __global const uint* first) {{",
-            entry.entry_point(Pass::Refine)
-        );
-        for (axis, name) in ["x", "y"].into_iter().enumerate() {
-            let _ = writeln!(out, "{}const int {name} = (int)get_global_id({axis});", Level(1));
-        }
-        ["x", "y"]
     }
     fn clamp_index(&self, i: &str, step: i32, size: &str) -> String {
         if step < 0 {

@@ -133,19 +133,13 @@ impl KernelDialect for Wgsl {
             out.push_str("@group(0) @binding(3) var<storage, read> first_px: array<u32>;\n\n");
         }
     }
-    fn render_open(&self, out: &mut String, entry: Entry) -> [&'static str; 2] {
+    fn render_open(&self, out: &mut String, entry: Entry, pass: Pass) -> [&'static str; 2] {
         out.push_str("@compute @workgroup_size(8, 8, 1)\n");
-        let _ = writeln!(out, "fn {}(@builtin(global_invocation_id) gid: vec3<u32>) {{", entry.name());
+        let _ = writeln!(out, "fn {}(@builtin(global_invocation_id) gid: vec3<u32>) {{", entry.entry_point(pass));
         ["gid.x", "gid.y"]
     }
     fn pixel_index_type(&self) -> &'static str {
         "u32"
-    }
-    fn refine_open(&self, out: &mut String, entry: Entry) -> [&'static str; 2] {
-        out.push_str("@compute @workgroup_size(8, 8, 1)\n");
-        let _ =
-            writeln!(out, "fn {}(@builtin(global_invocation_id) gid: vec3<u32>) {{", entry.entry_point(Pass::Refine));
-        ["gid.x", "gid.y"]
     }
     fn clamp_index(&self, i: &str, step: i32, size: &str) -> String {
         if step < 0 {
