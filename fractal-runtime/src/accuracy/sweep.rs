@@ -362,10 +362,10 @@ pub fn run(
     Ok(out)
 }
 
-/// The points no other point beats on both time and `error` (lower is better), by increasing time.
-pub fn pareto(points: &[SweepPoint], error: impl Fn(&SweepPoint) -> f64) -> Vec<&SweepPoint> {
-    let mut sorted: Vec<&SweepPoint> = points.iter().collect();
-    sorted.sort_by(|a, b| a.time_ms.total_cmp(&b.time_ms).then(error(a).total_cmp(&error(b))));
+/// The points no other point beats on both `time` and `error` (lower is better for both), by increasing time.
+pub fn pareto<T>(points: &[T], time: impl Fn(&T) -> f64, error: impl Fn(&T) -> f64) -> Vec<&T> {
+    let mut sorted: Vec<&T> = points.iter().collect();
+    sorted.sort_by(|a, b| time(a).total_cmp(&time(b)).then(error(a).total_cmp(&error(b))));
     let mut front = Vec::new();
     let mut best = f64::INFINITY;
     for p in sorted {

@@ -21,9 +21,12 @@ use crate::output::png::prepare_output;
 use crate::quality::Quality;
 use crate::truth::{self, Truth, TruthSettings};
 
+mod files;
 pub mod image;
 mod keys;
 mod verdict;
+
+use files::{plot_dir, report_path, write_plot};
 
 use verdict::{capped, judged};
 
@@ -43,17 +46,14 @@ pub fn accuracy(args: &AccuracyArgs, library: &SceneLibrary) -> Result<(), CliEr
         }
     };
     if args.image {
-        let name = args.scene.as_deref().ok_or_else(|| CliError::usage("--image measures one scene: name it"))?;
-        let mut loaded = LoadedScene::load(name, library)?;
-        args.camera.apply(&mut loaded.scene.camera);
-        image::study(&loaded, args, backend)?;
-        return Ok(());
+        return image::run(args, library, backend);
     }
     if let Some(path) = &args.csv {
         prepare_output(path)?;
     }
+    let out = report_path(args);
     if args.report {
-        prepare_output(&args.out)?;
+        prepare_output(&out)?;
     }
     if args.estimators {
         let _ = estimator_study(args.estimator_samples as usize);
@@ -88,9 +88,8 @@ pub fn accuracy(args: &AccuracyArgs, library: &SceneLibrary) -> Result<(), CliEr
             report += &estimator_study(args.estimator_samples as usize);
         }
         let text = report_text(args, backend, &budget, &report);
-        std::fs::write(&args.out, text)
-            .map_err(|e| CliError::failure(format!("cannot write {}: {e}", args.out.display())))?;
-        eprintln!("wrote {}", args.out.display());
+        std::fs::write(&out, text).map_err(|e| CliError::failure(format!("cannot write {}: {e}", out.display())))?;
+        eprintln!("wrote {}", out.display());
     }
     Ok(())
 }
@@ -189,11 +188,7 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
     let _ = write!(out, "{}", table::text(&points, budget));
     if let Some(dir) = plot_dir(args) {
         let path = dir.join(format!("{}.svg", loaded.name));
-        let svg = plot::svg(&loaded.name, &points, budget)
-            .map_err(|e| CliError::failure(format!("cannot draw {}: {e}", path.display())))?;
-        std::fs::create_dir_all(&dir)
-            .and_then(|()| std::fs::write(&path, svg))
-            .map_err(|e| CliError::failure(format!("cannot write {}: {e}", path.display())))?;
+        write_plot(&path, plot::svg(&loaded.name, &points, budget))?;
         let _ = writeln!(out, "  wrote {}", path.display());
         if args.report {
             let folder = dir.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
@@ -368,15 +363,6 @@ fn estimator_study(samples: usize) -> String {
     }
     let _ = writeln!(out, "  ({:.1} s)", started.elapsed().as_secs_f64());
     md + "\n"
-}
-
-/// Where plots go: `--plot`, or with `--report` the folder named after the report beside it.
-fn plot_dir(args: &AccuracyArgs) -> Option<std::path::PathBuf> {
-    match (&args.plot, args.report && !args.default_only) {
-        (Some(dir), _) => Some(dir.clone()),
-        (None, true) => Some(args.out.with_extension("")),
-        (None, false) => None,
-    }
 }
 
 fn append_csv(path: &std::path::Path, rows: &str) -> Result<(), CliError> {

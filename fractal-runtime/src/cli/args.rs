@@ -244,7 +244,10 @@ normals is not judged, and the verdict says so.
 of the scene's shading over a lattice of sub-rays (docs/image-truth.md): PSNR, SSIM, pixels off by more than 8/255,
 normals against the pixel-integrated true normal, and flicker along --flicker-frames frames of the camera path, 1/30 s
 apart (or an orbit of a pixel's angle per frame where the camera stands still); each image is judged against the image
-budget: PSNR >= 35 dB, at most 2 % of pixels off by more than 8/255.")]
+budget: PSNR >= 35 dB, at most 2 % of pixels off by more than 8/255. With --samples and --sample-thresholds it
+measures each anti-aliasing setting and names the one the rule for defaults chooses (the best image within 3x the
+one-sample time, if it buys at least 3 dB over one sample); --plot draws the front; --report
+does it for every built-in scene and writes docs/image-accuracy.md with its plots.")]
 pub struct AccuracyArgs {
     /// Built-in scene name or .fractal file (every built-in scene with --report)
     #[arg(required_unless_present_any = ["report", "estimators"])]
@@ -269,6 +272,10 @@ pub struct AccuracyArgs {
     /// measured against the same truth
     #[arg(long, value_name = "N[,N..]", value_delimiter = ',', value_parser = parse_samples)]
     pub samples: Vec<u32>,
+    /// --image: the adaptive thresholds each count above one is measured with (0.004,0.001) [default: the scene's
+    /// `sample_threshold`]
+    #[arg(long, value_name = "E[,E..]", value_delimiter = ',', requires = "image", value_parser = parse_threshold)]
+    pub sample_thresholds: Vec<f64>,
 
     /// Scene time in seconds the sweep is measured at (the camera path's pose and every animated value then); a
     /// camera path's other keys are checked after it
@@ -288,8 +295,9 @@ pub struct AccuracyArgs {
     #[arg(long, conflicts_with_all = ["camera_pos", "fov"])]
     pub report: bool,
     /// Where --report writes (its plots go in the folder of the same name: docs/accuracy/SCENE.svg)
-    #[arg(long, value_name = "PATH", default_value = "docs/accuracy.md")]
-    pub out: PathBuf,
+    /// [default: docs/accuracy.md, with --image docs/image-accuracy.md]
+    #[arg(long, value_name = "PATH")]
+    pub out: Option<PathBuf>,
     /// Write a time-against-error plot of each scene, SCENE.svg, into this folder
     #[arg(long, value_name = "DIR")]
     pub plot: Option<PathBuf>,
@@ -301,7 +309,7 @@ pub struct AccuracyArgs {
     pub estimator_samples: u32,
     /// Measure the scene default's image against the truth of the image instead of sweeping: PSNR, SSIM, pixels
     /// off by more than 8/255, normals against the pixel-integrated true normal, and flicker along a slow camera move
-    #[arg(long, conflicts_with_all = ["report", "estimators", "default_only", "also_on", "csv", "plot"])]
+    #[arg(long, conflicts_with_all = ["estimators", "default_only", "also_on", "csv"])]
     pub image: bool,
     /// --image: sub-rays per side of each pixel's first lattice
     #[arg(long, value_name = "N", default_value_t = crate::truth::image::DEFAULT_GRID, requires = "image",
@@ -324,6 +332,10 @@ pub struct AccuracyArgs {
     /// --image: also compute the image truth with both lattices doubled per side and print how far it moved
     #[arg(long, requires = "image")]
     pub truth_check: bool,
+    /// --image: also draw progressive passes of the first frame for this long (as `fractal render --progressive`
+    /// and the viewer standing still draw them) and measure their mean against the truth
+    #[arg(long, value_name = "SECONDS", requires = "image", value_parser = parse_progressive)]
+    pub progressive: Option<f64>,
     /// --image: write the first frame's truth and render here as PNG (SCENE.truth.png, SCENE.render.png)
     #[arg(long, value_name = "DIR", requires = "image")]
     pub image_out: Option<PathBuf>,
@@ -499,6 +511,13 @@ pub fn parse_samples(text: &str) -> Result<u32, String> {
     match text.parse::<u32>() {
         Ok(n) if (1..=max).contains(&n) => Ok(n),
         _ => Err(format!("samples per pixel must be a whole number in 1..={max}, got `{text}`")),
+    }
+}
+
+fn parse_threshold(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(e) if (0.0..=1.0).contains(&e) => Ok(e),
+        _ => Err(format!("a sample threshold is a number in 0..=1 (display luma), got `{text}`")),
     }
 }
 

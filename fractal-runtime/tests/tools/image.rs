@@ -186,6 +186,48 @@ fn accuracy_image_refuses_bad_lattices_and_runs_a_small_scene() {
     assert!(failed(&["trivial", "--image", "--truth-grid", "1"]));
     assert!(failed(&["trivial", "--image", "--truth-settle", "-1"]));
     assert!(failed(&["trivial", "--truth-grid", "4"]), "--truth-grid without --image");
-    assert!(failed(&["--image", "--report"]));
+    assert!(failed(&["trivial", "--image", "--report"]), "--report studies every scene");
+    assert!(failed(&["--image"]), "no scene and no --report");
+    assert!(failed(&["trivial", "--image", "--sample-thresholds", "2"]), "a threshold above 1");
+    assert!(failed(&["trivial", "--sample-thresholds", "0.001"]), "--sample-thresholds without --image");
+    assert!(failed(&["trivial", "--image", "--progressive", "0"]), "no time to refine in");
     assert!(!failed(&["trivial", "--image", "--size", "16x9", "--flicker-frames", "2", "--truth-max-grid", "4"]));
+    assert!(!failed(&["trivial", "--image", "--size", "16x9", "--flicker-frames", "1", "--progressive", "0.05"]));
+}
+
+/// `--image --report` studies every built-in scene at each setting and writes the report, its summary line per
+/// scene and a plot per scene beside it.
+#[test]
+fn accuracy_image_report_covers_every_scene_with_a_plot() {
+    let dir = std::env::temp_dir().join(format!("fractal-image-report-{}", std::process::id()));
+    let out = dir.join("image-accuracy.md");
+    let status = run(&[
+        "--image",
+        "--report",
+        "--size",
+        "8x5",
+        "--samples",
+        "1,5",
+        "--sample-thresholds",
+        "0.004,0.001",
+        "--flicker-frames",
+        "1",
+        "--truth-max-grid",
+        "4",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(format!("{status:?}"), format!("{:?}", ExitCode::SUCCESS));
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert!(text.contains("--samples 1,5 --sample-thresholds 0.004,0.001"), "the command is on record:\n{text}");
+    for (name, _) in scenes::ALL {
+        assert!(text.contains(&format!("\n| {name} | ")), "{name} has a summary line:\n{text}");
+        assert!(text.contains(&format!("\n## {name}\n")), "{name} has a section");
+        assert!(text.contains(&format!("](image-accuracy/{name}.svg)")), "{name}'s plot is linked");
+        let plot = std::fs::read_to_string(dir.join("image-accuracy").join(format!("{name}.svg"))).unwrap();
+        assert!(plot.contains("time against image error"), "{name}'s plot");
+    }
+    // One sample, then 5 at each threshold: three rows a scene, and the rule's choice.
+    assert!(text.contains("| samples 5, threshold 0.001 |") && text.contains("The rule (the best image"), "{text}");
+    std::fs::remove_dir_all(&dir).unwrap();
 }
