@@ -15,8 +15,9 @@ fn macro_file_and_runtime_load_write_identical_kernels() {
             // At the default 128 steps one ray grazing the silhouette runs out of steps before it leaves (`fractal
             // accuracy hello_world`); 256 cost nothing measurable.
             .max_steps(256)
-            // Up to 16 rays a pixel, where its first five disagree (`docs/settings.md`, “Samples per pixel”).
-            .samples(16)
+            // Up to 5 rays a pixel where it differs from a neighbour: the best image within 3x the one-ray time, if it
+            // buys 3 dB (`docs/image-accuracy.md`; `docs/settings.md`, “Samples per pixel”).
+            .samples(5)
     };
     let from_file = &scenes::HELLO_WORLD;
     let loaded = compile(&parse_str(scenes::source_file("hello_world").unwrap()).unwrap()).unwrap();

@@ -416,7 +416,9 @@ fn report_text(args: &AccuracyArgs, backend: Backend, budget: &Budget, sections:
          at the scene's iteration count and at doubled counts until doubling moves less than {:.1} % of the hit mask \
          and none of the scene default's judged figures by more than {:.0} % of its limit (at most \
          {MAX_TRUTH_FACTOR}x; the default's figures against each are listed); renders are judged against the one of \
-         most iterations that has also settled in its step: a truth at twice the step moves less than {:.1} % of its mask.\n\n\
+         most iterations that has also settled in its step: a truth at twice the step moves less than {:.1} % of its mask. \
+         This report judges geometry at each pixel; the colour each pixel should have, and what anti-aliasing buys \
+         against it, is `docs/image-accuracy.md`'s (`fractal accuracy --image --report`).\n\n\
          Columns: time of the render (median of {}), distance evaluations per pixel, false hits and misses (% of \
          pixels; a false hit is *thin-ray* where the ray through the pixel's centre misses, *cone-consistent* where \
          no ray of the pixel's cone meets the scene either, and the budget counts the latter), rays out of steps, \

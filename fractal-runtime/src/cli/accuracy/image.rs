@@ -31,6 +31,11 @@ use crate::truth::TruthSettings;
 pub const FLICKER_STEP: f64 = 1.0 / 30.0;
 /// Timed renders of the default; the median is reported.
 const TIMING_RUNS: usize = 3;
+/// Renders faster than this many seconds in all are timed again, up to [`MOST_TIMING_RUNS`]: a render of a few
+/// milliseconds varies by more than the ratios the table compares.
+const TIMING_SECONDS: f64 = 0.5;
+/// The most timed renders of one setting.
+const MOST_TIMING_RUNS: usize = 25;
 
 /// The image truth's settings from the command line.
 pub fn settings(args: &AccuracyArgs) -> Result<ImageTruthSettings, CliError> {
@@ -121,6 +126,13 @@ fn report_text(args: &AccuracyArgs, backend: Backend, summary: &str, sections: &
         );
     }
     let budget = ImageBudget::default();
+    let flicker = match args.flicker_frames {
+        1 => "flicker is not measured (one frame; `--flicker-frames 2` or more measures it)".to_string(),
+        n => format!(
+            "flicker along {n} frames of the camera move (8-bit levels RMS of the render's change between frames \
+             less the truth's) and its ratio to one sample"
+        ),
+    };
     format!(
         "# Image accuracy: samples per pixel against the truth of the image\n\n\
          Written by `{command}`. Every built-in scene is rendered from its own camera at t = 0 (its glow left out, \
@@ -128,18 +140,17 @@ fn report_text(args: &AccuracyArgs, backend: Backend, summary: &str, sections: &
          against the truth of the image: per pixel, the box-filtered mean of the scene's shading over a lattice of \
          true sub-rays (`docs/image-truth.md`, where every figure is defined). The geometry of the same renders is \
          judged in `docs/accuracy.md`.\n\n\
-         Columns: rays a pixel took on average; render time (median of {TIMING_RUNS}, on the CPU in packets as \
+         Columns: rays a pixel took on average; render time (median of {TIMING_RUNS} renders, or of as many as \
+         fill {TIMING_SECONDS} s up to {MOST_TIMING_RUNS}; on the CPU in packets as \
          `fractal render` draws) and its ratio to one sample; PSNR and SSIM against the truth; pixels with a channel \
-         off by more than {OFF_LEVELS}/255; flicker along {} frames of the camera move (8-bit levels RMS of the \
-         render's change between frames less the truth's) and its ratio to one sample; the image budget's verdict \
-         (PSNR ≥ {} dB, at most {} % of pixels off).\n\n\
+         off by more than {OFF_LEVELS}/255; {flicker}; the image budget's verdict (PSNR ≥ {} dB, at most {} % of \
+         pixels off).\n\n\
          **The rule for a scene's default**: the setting of the best image within {}x the one-sample time, where it \
          buys at least {} dB over one sample; else one sample (`fractal-runtime/src/accuracy/samples.rs`). Each \
          scene's line says what it chooses; `docs/settings.md` (“Samples per pixel”) says where a default departs \
          from it and why.\n\n\
          | scene | default samples | PSNR 1 sample | PSNR default | off % default | time × default | rule's choice | \
          image budget (default) |\n|---|---|---|---|---|---|---|---|\n{summary}\n{sections}",
-        args.flicker_frames,
         budget.psnr,
         100.0 * budget.off,
         samples::TIME_LIMIT,
@@ -360,7 +371,7 @@ fn truth_error(e: ImageTruthError) -> CliError {
 }
 
 /// The scene's render by `renderer`: its image, its per-pixel traces, and the median time of [`TIMING_RUNS`]
-/// renders in milliseconds (where `timed`; else one render, untimed, and no traces). The CPU draws with `evaluator`
+/// renders or more (to [`TIMING_SECONDS`]) in milliseconds (where `timed`; else one render, untimed, and no traces). The CPU draws with `evaluator`
 /// (a built-in's native one, else the interpreter), in packets where it has them, as `fractal render` does.
 fn render(
     scene: &Scene,
@@ -377,7 +388,9 @@ fn render(
         return Ok((image, None, f64::NAN));
     }
     let mut times = Vec::new();
-    for _ in 0..TIMING_RUNS {
+    while times.len() < TIMING_RUNS
+        || (times.len() < MOST_TIMING_RUNS && times.iter().sum::<f64>() < TIMING_SECONDS * 1e3)
+    {
         let start = Instant::now();
         image = renderer.render(&job)?;
         times.push(start.elapsed().as_secs_f64() * 1e3);
