@@ -1,6 +1,8 @@
-//! `fractal accuracy SCENE --image`: the scene default's image against the truth of the image
-//! ([`crate::truth::image`]) — PSNR, SSIM, pixels off by more than 8/255, normals against the pixel-integrated true
-//! normal — and flicker along a few frames of a slow camera move, by the metrics of [`crate::accuracy::image`].
+//! `fractal accuracy SCENE --image`: the scene default's image, and its image at each anti-aliasing setting asked
+//! for, against the truth of the image ([`crate::truth::image`]) — PSNR, SSIM, pixels off by more than 8/255, normals
+//! against the pixel-integrated true normal — and flicker along a few frames of a slow camera move, by the metrics of
+//! [`crate::accuracy::image`]; the settings' front and the setting the rule for defaults chooses
+//! ([`crate::accuracy::samples`]); with `--report`, every built-in scene written as `docs/image-accuracy.md`.
 
 use std::fmt::Write as _;
 use std::time::Instant;
