@@ -62,6 +62,16 @@ impl Progressive {
         Ok(())
     }
 
+    /// Draws passes as [`Progressive::draw`] until `seconds` have passed since the call, at least one.
+    pub fn draw_for(&mut self, renderer: &mut dyn Renderer, job: &RenderJob, seconds: f64) -> Result<(), RenderError> {
+        let start = std::time::Instant::now();
+        let first = self.passes;
+        while self.passes == first || start.elapsed().as_secs_f64() < seconds {
+            self.draw(renderer, job)?;
+        }
+        Ok(())
+    }
+
     pub fn passes(&self) -> u32 {
         self.passes
     }

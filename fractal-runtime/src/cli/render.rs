@@ -171,11 +171,8 @@ fn progressive(
     let sources = KernelSources::compiled(&tracing).with_cpu(loaded.evaluator(), &loaded.scene);
     let job = RenderJob::new(sources, &frame);
     let mut passes = Progressive::new(&loaded.scene, &frame);
-    let start = Instant::now();
-    while passes.passes() == 0 || start.elapsed().as_secs_f64() < seconds {
-        let drawn = passes.draw(renderer, &job);
-        with_notes(renderer, drawn)?;
-    }
+    let drawn = passes.draw_for(renderer, &job, seconds);
+    with_notes(renderer, drawn)?;
     Ok((passes.image(), passes.passes()))
 }
 

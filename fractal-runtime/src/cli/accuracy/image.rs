@@ -8,7 +8,7 @@ use std::fmt::Write as _;
 use std::time::Instant;
 
 use fractal_dsl::eval::Evaluator;
-use fractal_dsl::Scene;
+use fractal_dsl::{Kernels, Scene};
 use fractal_render::backend::cpu::PixelTrace;
 use fractal_render::device::Backend;
 use fractal_render::frame::{Frame, ParamValues};
@@ -110,13 +110,13 @@ fn summary_row(name: &str, points: &[SamplePoint]) -> String {
 fn report_text(args: &AccuracyArgs, backend: Backend, summary: &str, sections: &str) -> String {
     let (w, h) = args.size;
     let mut command = format!("fractal accuracy --image --report --size {w}x{h} --backend {backend}");
-    let list = |v: &[String]| v.join(",");
+    let list = |v: Vec<String>| v.join(",");
     if !args.samples.is_empty() {
-        command += &format!(" --samples {}", list(&args.samples.iter().map(u32::to_string).collect::<Vec<_>>()));
+        command += &format!(" --samples {}", list(args.samples.iter().map(u32::to_string).collect()));
     }
     if !args.sample_thresholds.is_empty() {
-        let thresholds: Vec<String> = args.sample_thresholds.iter().map(f64::to_string).collect();
-        command += &format!(" --sample-thresholds {}", list(&thresholds));
+        command +=
+            &format!(" --sample-thresholds {}", list(args.sample_thresholds.iter().map(f64::to_string).collect()));
     }
     command += &format!(" --flicker-frames {} --truth-step {}", args.flicker_frames, args.truth_step);
     let defaults = ImageTruthSettings::default();
@@ -279,10 +279,11 @@ pub fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend) -> Res
         let mut sampled = scene.clone();
         sampled.settings.samples = n;
         sampled.settings.sample_threshold = threshold;
+        let kernels = fractal_dsl::compile(&sampled).map_err(|e| CliError::failure(e.to_string()))?;
         let mut images = Vec::new();
         let (mut ms, mut traces) = (0.0, None);
         for (i, frame) in frames.iter().enumerate() {
-            let (image, t, took) = render(&sampled, loaded.evaluator(), frame, renderer.as_mut(), i == 0)?;
+            let (image, t, took) = render(&sampled, &kernels, loaded.evaluator(), frame, renderer.as_mut(), i == 0)?;
             if i == 0 {
                 (ms, traces) = (took, t);
                 if let Some(dir) = &args.image_out {
@@ -377,13 +378,13 @@ fn truth_error(e: ImageTruthError) -> CliError {
 /// (a built-in's native one, else the interpreter), in packets where it has them, as `fractal render` does.
 fn render(
     scene: &Scene,
+    kernels: &Kernels,
     evaluator: &dyn Evaluator<f32>,
     frame: &Frame,
     renderer: &mut dyn Renderer,
     timed: bool,
 ) -> Result<(Image, Option<Vec<PixelTrace>>, f64), CliError> {
-    let kernels = fractal_dsl::compile(scene).map_err(|e| CliError::failure(e.to_string()))?;
-    let job = RenderJob::new(KernelSources::compiled(&kernels).with_cpu(evaluator, scene), frame);
+    let job = RenderJob::new(KernelSources::compiled(kernels).with_cpu(evaluator, scene), frame);
     // The first render builds the kernel; it is not timed.
     let mut image = renderer.render(&job)?;
     if !timed {
@@ -420,10 +421,7 @@ fn progressive(
     let job = RenderJob::new(KernelSources::compiled(&tracing).with_cpu(evaluator, &one), frame);
     Progressive::new(&one, frame).draw(renderer, &job)?;
     let mut passes = Progressive::new(&one, frame);
-    let start = Instant::now();
-    while passes.passes() == 0 || start.elapsed().as_secs_f64() < seconds {
-        passes.draw(renderer, &job)?;
-    }
+    passes.draw_for(renderer, &job, seconds)?;
     Ok((passes.image(), passes.passes()))
 }
 
