@@ -75,6 +75,9 @@ pub enum RenderError {
     /// The scene breaks a rule of the language (only scenes made with the builder can reach a renderer so).
     #[error(transparent)]
     InvalidScene(#[from] fractal_dsl::validate::InvalidScene),
+    /// The backend's kernels do not compute in the job's precision.
+    #[error("the {backend} kernels compute in f32 only; a frame in {precision} renders on the CPU (--backend cpu)")]
+    Precision { backend: Backend, precision: crate::precision::Precision },
     /// Every backend `auto` tried failed; one line per backend.
     #[error("no backend could render:\n{}", .0.join("\n"))]
     AllBackendsFailed(Vec<String>),

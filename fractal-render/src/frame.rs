@@ -98,6 +98,9 @@ pub struct Frame {
     width: u32,
     height: u32,
     slots: Vec<[f32; 4]>,
+    /// What the camera position lost when rounded to the f32 of slot 0: the position is slot 0 plus this, to about
+    /// 48 bits. Host-side only: the f32 kernels do not read it, the CPU renderer's f64 instance and the truth do.
+    origin_low: [f32; 3],
 }
 
 /// One light as a kernel reads it from its two slots.
@@ -156,6 +159,12 @@ fn f32x3(v: DVec3) -> [f32; 3] {
     v.as_vec3().to_array()
 }
 
+/// `v` as a high f32 part and the low f32 part the rounding left: their sum holds about 48 bits of each coordinate.
+fn split(v: DVec3) -> ([f32; 3], [f32; 3]) {
+    let high = f32x3(v);
+    (high, f32x3(v - DVec3::from_array(high.map(f64::from))))
+}
+
 impl Frame {
     /// Packs the uniforms of `scene` seen from `pose` at `time` for a `width`×`height` image.
     pub fn new(
@@ -186,7 +195,7 @@ impl Frame {
         let (w, h) = (width as f32, height as f32);
 
         let mut slots = vec![[0.0f32; 4]; layout.slots()];
-        let p = f32x3(pose.position);
+        let (p, origin_low) = split(pose.position);
         slots[0] = [p[0], p[1], p[2], time as f32];
         let r = f32x3(right * tan_half);
         slots[1] = [r[0], r[1], r[2], w];
@@ -243,7 +252,7 @@ impl Frame {
                 slots[layout.orbit_slot(k)] = [pair[0][0], pair[0][1], second[0], second[1]];
             }
         }
-        Ok(Frame { layout, width, height, slots })
+        Ok(Frame { layout, width, height, slots, origin_low })
     }
 
     /// The scene's own view at `time`: its camera, every parameter at its default, for a `width`×`height` image.
@@ -263,7 +272,7 @@ impl Frame {
         if slots.len() != layout.slots() {
             return Err(FrameError::SlotCount { expected: layout.slots(), got: slots.len() });
         }
-        Ok(Frame { layout, width, height, slots })
+        Ok(Frame { layout, width, height, slots, origin_low: [0.0; 3] })
     }
 
     pub fn layout(&self) -> FrameLayout {
@@ -298,6 +307,11 @@ impl Frame {
     pub fn camera(&self) -> [[f32; 3]; 4] {
         [0, 1, 2, 3].map(|i| [self.slots[i][0], self.slots[i][1], self.slots[i][2]])
     }
+    /// The camera position to about 48 bits: the f32 the kernels read plus what its rounding lost. A close zoom
+    /// needs it: near 1 the f32 position is 6e-8 off, and a camera 1e-9 from a surface would stand inside it.
+    pub fn camera_origin(&self) -> [f64; 3] {
+        [0, 1, 2].map(|i| f64::from(self.slots[0][i]) + f64::from(self.origin_low[i]))
+    }
     /// Pixel footprint per unit distance: 2·tan(fov/2)/height.
     pub fn pixel_footprint(&self) -> f32 {
         self.slots[3][3]
@@ -328,7 +342,8 @@ impl Frame {
     /// forward axis turns so that the pixel's centre ray is that ray; a perturbation orbit stays the camera's.
     pub fn jittered(&self, dx: f64, dy: f64, lens: Option<([f64; 2], f64)>) -> Frame {
         let d = |s: [f32; 4]| DVec3::new(f64::from(s[0]), f64::from(s[1]), f64::from(s[2]));
-        let (origin, right, up, forward) = (d(self.slots[0]), d(self.slots[1]), d(self.slots[2]), d(self.slots[3]));
+        let origin = DVec3::from_array(self.camera_origin());
+        let (right, up, forward) = (d(self.slots[1]), d(self.slots[2]), d(self.slots[3]));
         let h = f64::from(self.height);
         // The image point moves by (dx − ½, dy − ½) pixels: u by 2(dx − ½)/h, v by −2(dy − ½)/h.
         let mut forward = forward + right * (2.0 * (dx - 0.5) / h) - up * (2.0 * (dy - 0.5) / h);
@@ -340,10 +355,11 @@ impl Frame {
             forward -= offset / focus;
         }
         let mut slots = self.slots.clone();
-        let set = |slot: &mut [f32; 4], v: DVec3| (slot[0], slot[1], slot[2]) = (v.x as f32, v.y as f32, v.z as f32);
-        set(&mut slots[0], origin);
-        set(&mut slots[3], forward);
-        Frame { slots, ..self.clone() }
+        let set = |slot: &mut [f32; 4], v: [f32; 3]| (slot[0], slot[1], slot[2]) = (v[0], v[1], v[2]);
+        let (high, origin_low) = split(origin);
+        set(&mut slots[0], high);
+        set(&mut slots[3], f32x3(forward));
+        Frame { slots, origin_low, ..self.clone() }
     }
 
     /// The perturbation reference orbit up to its last entry, as the kernels read it (empty without one).

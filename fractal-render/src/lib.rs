@@ -42,11 +42,13 @@
 
 pub mod backend;
 pub mod camera;
+pub mod choose_precision;
 pub mod device;
 pub mod error;
 pub mod frame;
 pub mod image;
 pub mod limits;
+pub mod precision;
 pub mod progressive;
 pub mod renderer;
 pub mod select;
@@ -60,5 +62,6 @@ pub use device::{Backend, DeviceInfo};
 pub use error::{CameraError, FrameError, RenderError};
 pub use frame::{Frame, LightSlot, ParamValues, MAX_IMAGE_SIDE, MAX_TIME};
 pub use image::Image;
+pub use precision::{Chosen, Precision, PrecisionChoice};
 pub use renderer::{CpuKernel, KernelSources, PixelTrace, ProbeSample, RenderJob, Renderer, Traced};
 pub use select::{select, AutoRenderer, BackendChoice, RendererOptions, UnknownBackend};

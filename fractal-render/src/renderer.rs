@@ -15,15 +15,18 @@ pub use crate::device::{Backend, DeviceInfo};
 use crate::error::RenderError;
 use crate::frame::Frame;
 use crate::image::Image;
+use crate::precision::Precision;
 
 /// One probe result: `[distance, ambient, diffuse, specular, albedo.r, albedo.g, albedo.b, shininess]`.
 pub type ProbeSample = [f32; 8];
 
-/// What the CPU renderer runs: an f32 evaluator of the scene (native or interpreted) and the scene itself (for its
-/// render settings, bound and materials).
+/// What the CPU renderer runs: an f32 evaluator of the scene (native or interpreted), the f64 one where the caller
+/// has it (for frames drawn in [`Precision::F64`]), and the scene itself (for its render settings, bound and
+/// materials).
 #[derive(Clone, Copy)]
 pub struct CpuKernel<'a> {
     pub evaluator: &'a dyn Evaluator<f32>,
+    pub wide: Option<&'a dyn Evaluator<f64>>,
     pub scene: &'a Scene,
 }
 
@@ -57,7 +60,14 @@ impl<'a> KernelSources<'a> {
         self
     }
     pub fn with_cpu(mut self, evaluator: &'a dyn Evaluator<f32>, scene: &'a Scene) -> Self {
-        self.cpu = Some(CpuKernel { evaluator, scene });
+        self.cpu = Some(CpuKernel { evaluator, wide: None, scene });
+        self
+    }
+    /// The CPU kernel's f64 evaluator (after [`KernelSources::with_cpu`]; without a CPU kernel it is not kept).
+    pub fn with_cpu_wide(mut self, wide: &'a dyn Evaluator<f64>) -> Self {
+        if let Some(cpu) = &mut self.cpu {
+            cpu.wide = Some(wide);
+        }
         self
     }
 }
@@ -67,11 +77,24 @@ impl<'a> KernelSources<'a> {
 pub struct RenderJob<'a> {
     pub kernels: KernelSources<'a>,
     pub frame: &'a Frame,
+    /// The number type to draw it in ([`crate::precision`]); f32 unless set.
+    pub precision: Precision,
 }
 
 impl<'a> RenderJob<'a> {
     pub fn new(kernels: KernelSources<'a>, frame: &'a Frame) -> Self {
-        RenderJob { kernels, frame }
+        RenderJob { kernels, frame, precision: Precision::F32 }
+    }
+    pub fn with_precision(mut self, precision: Precision) -> Self {
+        self.precision = precision;
+        self
+    }
+    /// Refuses a job in another precision than f32: what a backend whose kernels compute in f32 says.
+    pub fn only_f32(&self, backend: Backend) -> Result<(), RenderError> {
+        match self.precision {
+            Precision::F32 => Ok(()),
+            precision => Err(RenderError::Precision { backend, precision }),
+        }
     }
     pub fn width(&self) -> u32 {
         self.frame.width()

@@ -10,6 +10,7 @@ use crate::backend::wgpu::WgpuRenderer;
 use crate::device::{Backend, DeviceInfo};
 use crate::error::RenderError;
 use crate::image::Image;
+use crate::precision::Precision;
 use crate::renderer::{RenderJob, Renderer, Traced};
 
 /// The `--backend` choice.
@@ -135,6 +136,20 @@ fn next_renderer(
 }
 
 impl AutoRenderer {
+    /// Whether `job` asks for a precision the current backend's kernels lack: such a frame is drawn on the CPU, and
+    /// the frames after it go back to the current backend (the note says so).
+    fn wider_than_current(&mut self, job: &RenderJob) -> bool {
+        let backend = self.current.device().backend;
+        let wider = job.precision != Precision::F32 && backend != Backend::Cpu;
+        if wider {
+            self.notes.push(format!(
+                "a frame in {} drawn on the CPU: the {backend} kernels compute in f32 only",
+                job.precision
+            ));
+        }
+        wider
+    }
+
     /// Runs `draw` on the current backend, moving to the next one while the failure is the backend's.
     fn with_fallback<T>(
         &mut self,
@@ -161,11 +176,17 @@ impl AutoRenderer {
 
 impl Renderer for AutoRenderer {
     fn render(&mut self, job: &RenderJob) -> Result<Image, RenderError> {
-        self.with_fallback(|r| r.render(job))
+        match self.wider_than_current(job) {
+            true => CpuRenderer::new().render(job),
+            false => self.with_fallback(|r| r.render(job)),
+        }
     }
 
     fn trace(&mut self, job: &RenderJob) -> Result<Traced, RenderError> {
-        self.with_fallback(|r| r.trace(job))
+        match self.wider_than_current(job) {
+            true => CpuRenderer::new().trace(job),
+            false => self.with_fallback(|r| r.trace(job)),
+        }
     }
 
     fn device(&self) -> DeviceInfo {

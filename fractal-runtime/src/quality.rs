@@ -9,6 +9,7 @@ use std::fmt;
 use fractal_dsl::eval::{Env, Evaluator, Sample};
 use fractal_dsl::number::math::{Real, V3};
 use fractal_dsl::{Fractal, HitEpsilon, Node, Op, Scene};
+use fractal_render::precision::Precision;
 
 /// One point of a sweep; `None` keeps the scene's own value.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -30,6 +31,9 @@ pub struct Quality {
     /// `Some(true)`: OpenCL builds the kernels without `-cl-fast-relaxed-math`, `Some(false)`: with it (OpenCL only;
     /// `None` keeps the sweep's own choice, `--precise`).
     pub precise: Option<bool>,
+    /// The number type (`None`: the one the view asks for, [`fractal_render::choose_precision`]); f64 renders on
+    /// the CPU whatever the backend, whose kernels are f32 only.
+    pub precision: Option<Precision>,
 }
 
 impl Quality {
@@ -70,8 +74,9 @@ impl Quality {
     }
 
     /// Whether this is the scene's own setting.
+    /// The scene's own setting, in whichever precision.
     pub fn is_default(&self) -> bool {
-        *self == Quality::default()
+        Quality { precision: None, ..*self } == Quality::default()
     }
 }
 
@@ -113,10 +118,14 @@ impl fmt::Display for Quality {
             Some(false) => parts.push("fast math".to_string()),
             None => {}
         }
+        let wide = match self.precision {
+            Some(Precision::F64) => " in f64",
+            _ => "",
+        };
         if parts.is_empty() {
-            write!(f, "scene default")
+            write!(f, "scene default{wide}")
         } else {
-            write!(f, "{}", parts.join(", "))
+            write!(f, "{}{wide}", parts.join(", "))
         }
     }
 }

@@ -54,6 +54,8 @@ library! {
     MANDELBROT = "mandelbrot";
     /// A camera path zooming into the Mandelbrot set to the f32 limit.
     MANDELBROT_ZOOM = "mandelbrot_zoom";
+    /// A dive from the whole power-8 Mandelbulb to 1e-9 from its surface, each frame in the precision it needs.
+    MANDELBULB_DIVE = "mandelbulb_dive";
     /// A noise heightfield with haze.
     TERRAIN = "terrain";
     /// A noise-displaced sphere with an ocean and an atmosphere.

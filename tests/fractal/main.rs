@@ -13,5 +13,6 @@ mod hostile;
 mod kernels;
 mod mandelbrot_zoom;
 mod mesh;
+mod precision;
 mod ui;
 mod viewer;

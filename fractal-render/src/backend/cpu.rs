@@ -23,8 +23,9 @@ use crate::device::{Backend, DeviceInfo};
 use crate::error::{FrameError, RenderError};
 use crate::frame::{Frame, LightSlot};
 use crate::image::{pack_linear, unpack_rgba8, Image};
+use crate::precision::Precision;
 pub use crate::renderer::PixelTrace;
-use crate::renderer::{RenderJob, Renderer, Traced};
+use crate::renderer::{CpuKernel, RenderJob, Renderer, Traced};
 
 /// Renders with the job's CPU evaluator on all cores.
 #[derive(Clone, Debug, Default)]
@@ -42,16 +43,20 @@ impl Renderer for CpuRenderer {
     fn render(&mut self, job: &RenderJob) -> Result<Image, RenderError> {
         let kernel =
             job.kernels.cpu.ok_or(RenderError::MissingKernel { backend: Backend::Cpu, what: "CPU evaluator" })?;
-        match kernel.evaluator.packets() {
-            Some(packets) => render_packets(packets, kernel.scene, job.frame),
-            None => render_scene::<f32, _>(kernel.evaluator, kernel.scene, job.frame),
+        match (job.precision, kernel.evaluator.packets()) {
+            (Precision::F64, _) => render_scene::<f64, _>(wide(&kernel)?, kernel.scene, job.frame),
+            (Precision::F32, Some(packets)) => render_packets(packets, kernel.scene, job.frame),
+            (Precision::F32, None) => render_scene::<f32, _>(kernel.evaluator, kernel.scene, job.frame),
         }
     }
 
     fn trace(&mut self, job: &RenderJob) -> Result<Traced, RenderError> {
         let kernel =
             job.kernels.cpu.ok_or(RenderError::MissingKernel { backend: Backend::Cpu, what: "CPU evaluator" })?;
-        let pixels = trace_scene::<f32, _>(kernel.evaluator, kernel.scene, job.frame)?;
+        let pixels = match job.precision {
+            Precision::F32 => trace_scene::<f32, _>(kernel.evaluator, kernel.scene, job.frame)?,
+            Precision::F64 => trace_scene::<f64, _>(wide(&kernel)?, kernel.scene, job.frame)?,
+        };
         let gamma = kernel.scene.settings.gamma;
         let packed =
             pixels.iter().map(|p| pack_linear(v3(p.colour[0] as f32, p.colour[1] as f32, p.colour[2] as f32), gamma));
@@ -73,6 +78,11 @@ impl Renderer for CpuRenderer {
             device_type: "Cpu".to_string(),
         }
     }
+}
+
+/// The f64 evaluator of a job in f64.
+fn wide<'a>(kernel: &CpuKernel<'a>) -> Result<&'a dyn Evaluator<f64>, RenderError> {
+    kernel.wide.ok_or(RenderError::MissingKernel { backend: Backend::Cpu, what: "f64 CPU evaluator" })
 }
 
 fn cpu_name() -> String {
@@ -375,7 +385,9 @@ impl<F: Real> View<F> {
         if frame.layout() != expected {
             return Err(FrameError::SlotCount { expected: expected.slots(), got: frame.layout().slots() }.into());
         }
-        let [origin, right, up, forward] = frame.camera();
+        let [_, right, up, forward] = frame.camera();
+        // In f32 the same position the kernels read; in f64 the one the pose had, to about 48 bits.
+        let [ox, oy, oz] = frame.camera_origin();
         let lights = frame
             .lights()
             .into_iter()
@@ -391,7 +403,7 @@ impl<F: Real> View<F> {
         Ok(View {
             rules: Rules::with_bound(scene, scene_bound),
             view: ray::View {
-                origin: f3(origin),
+                origin: v3(F::c(ox), F::c(oy), F::c(oz)),
                 right: f3(right),
                 up: f3(up),
                 forward: f3(forward),
@@ -432,6 +444,23 @@ impl<F: Real> View<F> {
 
     pub fn hit_epsilon(&self, t: F) -> F {
         march::hit_epsilon(&self.rules, &self.view, t)
+    }
+
+    /// The march of the ray through the image point (px, py), alone: where it hit, at what distance, and the hit
+    /// epsilon and the normal's tap there; `None` for a miss ([`crate::precision`] probes a frame with it).
+    pub fn probe_hit<E: Evaluator<F> + ?Sized>(
+        &self,
+        on: &Scalar<'_, F, E>,
+        px: f64,
+        py: f64,
+    ) -> Option<(V3<F>, F, F, F)> {
+        let (ro, rd) = self.view.ray(F::c(px), F::c(py));
+        let (m, enters) = march::march(&self.rules, &self.view, on, ro, rd);
+        if !(enters && m.hit()) {
+            return None;
+        }
+        let eps = march::hit_epsilon(&self.rules, &self.view, m.t);
+        Some((march::point(ro, rd, &m), m.t, eps, shade::normal_tap(&self.rules, &self.view, m.t, eps)))
     }
 
     /// The first pass for pixel (x, y) ([`pixel::first_pass`]): its centre ray's colour and what it found.

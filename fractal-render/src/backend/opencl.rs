@@ -305,10 +305,12 @@ impl OpenClRenderer {
 
 impl Renderer for OpenClRenderer {
     fn render(&mut self, job: &RenderJob) -> Result<Image, RenderError> {
+        job.only_f32(Backend::OpenCl)?;
         Ok(self.run_pixels(job, Entry::Render)?.0)
     }
 
     fn trace(&mut self, job: &RenderJob) -> Result<Traced, RenderError> {
+        job.only_f32(Backend::OpenCl)?;
         let (image, words) = self.run_pixels(job, Entry::Trace)?;
         Ok(Traced::from_kernel(image, &words))
     }

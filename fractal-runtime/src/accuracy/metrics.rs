@@ -22,6 +22,11 @@
 //!   across the pixel's footprint ([`Truth::cone_normal_error`], for errors above [`NORMAL_CONE_CHECK`]): a smooth
 //!   surface still turns by up to [`crate::truth::ROUGH_DEGREES`] within a pixel, which shades one normal for all of
 //!   it. The budget judges the latter. Also the share of both-hit pixels measured.
+//! - **Depth on smooth surfaces**: the thin-ray depth error over the pixels both hit where the true surface is smooth
+//!   at the pixel's scale (it has a normal there and is not rough). The cone explains nothing there, since every ray
+//!   of the pixel meets the same plane: a render that stops tens of footprints in front of a smooth surface (an f32
+//!   estimate too coarse for a close zoom) is wrong even where, a footprint away, the cone-consistent figures find
+//!   some other part of the scene. The budget judges its median.
 
 //! - **Colour**: PSNR of the 8-bit image against the true hit shaded the same way, over all pixels.
 //! - **Health**: pixels with NaN or Inf anywhere (colour, depth of a hit, normal); rays that ran out of steps;
@@ -113,6 +118,8 @@ pub struct TracedError {
     pub depth_cone: Spread,
     pub depth_thin_interior: Spread,
     pub depth_cone_interior: Spread,
+    /// Thin-ray, over the pixels both hit where the true surface is smooth at the pixel's scale.
+    pub depth_smooth: Spread,
     /// Fraction of pixels whose ray passed more than [`OVERSHOOT_FOOTPRINTS`] through the true surface: *thin-ray*.
     pub overshoot: f64,
     /// Of those, the fraction of pixels where every ray of the pixel's cone meets the scene that far in front of
@@ -186,12 +193,13 @@ impl TrueError {
         if let Some(t) = &self.traced {
             s += &format!(
                 "; depth error (footprints) median {:.2}, p99 {:.2} thin-ray / {:.2} cone-consistent, interior p99 \
-                 {:.2} cone-consistent; overshoot {:.3} % thin-ray / {:.3} % cone-consistent; normal error median {:.1}°, p99 {:.1}° at the centre / {:.1}° \
+                 {:.2} cone-consistent, median {:.2} thin-ray on smooth surfaces; overshoot {:.3} % thin-ray / {:.3} % cone-consistent; normal error median {:.1}°, p99 {:.1}° at the centre / {:.1}° \
                  cone-consistent (on {:.0} % of hits); {:.3} % out of steps; {} NaN/Inf pixels{}",
                 t.depth_thin.median,
                 t.depth_thin.p99,
                 t.depth_cone.p99,
                 t.depth_cone_interior.p99,
+                t.depth_smooth.median,
                 100.0 * t.overshoot,
                 100.0 * t.overshoot_cone,
                 t.normal.median,
@@ -269,9 +277,9 @@ fn interior(truth: &Truth, x: u32, y: u32) -> bool {
     })
 }
 
-/// One pixel's (thin, cone, interior) depth errors where both hit, (centre, cone) normal errors, and whether it
-/// overshot (`None`: no; `Some(cone)`: thin-ray, and `cone` when the pixel's cone does not explain it either).
-type PixelError = (Option<(f64, f64, bool)>, Option<(f64, f64)>, Option<bool>);
+/// One pixel's (thin, cone, interior, smooth) depth errors where both hit, (centre, cone) normal errors, and whether
+/// it overshot (`None`: no; `Some(cone)`: thin-ray, and `cone` when the pixel's cone does not explain it either).
+type PixelError = (Option<(f64, f64, bool, bool)>, Option<(f64, f64)>, Option<bool>);
 
 fn traced_error(truth: &Truth, traces: &[PixelTrace]) -> TracedError {
     use rayon::prelude::*;
@@ -308,7 +316,8 @@ fn traced_error(truth: &Truth, traces: &[PixelTrace]) -> TracedError {
                 }
                 _ => None,
             };
-            (Some((thin, cone, interior(truth, x, y))), normal, overshoot)
+            let smooth = t.normal.is_some() && !t.rough;
+            (Some((thin, cone, interior(truth, x, y), smooth)), normal, overshoot)
         })
         .collect();
     let depths = || per_pixel.iter().filter_map(|p| p.0);
@@ -325,6 +334,7 @@ fn traced_error(truth: &Truth, traces: &[PixelTrace]) -> TracedError {
         depth_cone: Spread::of(depths().map(|d| d.1).collect()),
         depth_thin_interior: Spread::of(depths().filter(|d| d.2).map(|d| d.0).collect()),
         depth_cone_interior: Spread::of(depths().filter(|d| d.2).map(|d| d.1).collect()),
+        depth_smooth: Spread::of(depths().filter(|d| d.3).map(|d| d.0).collect()),
         overshoot: per_pixel.iter().filter(|p| p.2.is_some()).count() as f64 / n,
         overshoot_cone: per_pixel.iter().filter(|p| p.2 == Some(true)).count() as f64 / n,
         normal: Spread::of(per_pixel.iter().filter_map(|p| p.1.map(|n| n.0)).collect()),

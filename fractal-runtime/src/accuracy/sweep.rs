@@ -21,6 +21,7 @@ use fractal_render::backend::cpu::{trace_scene_with, MarchLevers};
 use fractal_render::device::Backend;
 use fractal_render::error::RenderError;
 use fractal_render::frame::Frame;
+use fractal_render::precision::Precision;
 use fractal_render::renderer::{KernelSources, RenderJob, Renderer};
 use fractal_render::select::RendererOptions;
 
@@ -46,11 +47,20 @@ pub struct Budget {
     pub normal_p99: f64,
     /// Footprints, cone-consistent, over interior pixels.
     pub depth_p99_interior: f64,
+    /// Footprints, thin-ray, median over the pixels where the true surface is smooth at the pixel's scale (judged
+    /// over at least [`MIN_NORMALS`] of them).
+    pub depth_median_smooth: f64,
 }
 
 impl Default for Budget {
     fn default() -> Self {
-        Budget { hit_mismatch: 0.005, overshoot: 0.001, normal_p99: 5.0, depth_p99_interior: 1.0 }
+        Budget {
+            hit_mismatch: 0.005,
+            overshoot: 0.001,
+            normal_p99: 5.0,
+            depth_p99_interior: 1.0,
+            depth_median_smooth: 1.0,
+        }
     }
 }
 
@@ -74,7 +84,7 @@ impl Budget {
     }
 
     /// The figures of `e` the budget judges against the truth. Rays out of steps and NaN/Inf pixels read no truth.
-    fn against_truth(&self, e: &TrueError) -> [JudgedFigure; 4] {
+    fn against_truth(&self, e: &TrueError) -> [JudgedFigure; 5] {
         let t = e.traced.as_ref();
         [
             JudgedFigure {
@@ -100,6 +110,14 @@ impl Budget {
                 value: t.map(|t| t.depth_cone_interior.p99),
                 limit: self.depth_p99_interior,
                 violation: |v| format!("depth p99 {v:.2}"),
+            },
+            JudgedFigure {
+                name: "depth p50 smooth",
+                value: t.filter(|t| t.depth_smooth.count >= MIN_NORMALS).map(|t| t.depth_smooth.median),
+                limit: self.depth_median_smooth,
+                violation: |v| {
+                    format!("thin-ray depth median {v:.2} footprints on surfaces smooth at the pixel's scale")
+                },
             },
         ]
     }
@@ -292,11 +310,15 @@ fn run_cpu(scene: &Scene, quality: &Quality, frame: &Frame, truth: &Truth) -> Re
             _ => bound(&fold_node(&applied.root)),
         },
     };
+    let wide = StepScaled { inner: &interpreter, scale: quality.step_scale() };
     let mut times = Vec::new();
     let mut traces = Vec::new();
     for _ in 0..TIMING_RUNS {
         let start = Instant::now();
-        traces = trace_scene_with::<f32, _>(&scaled, &applied, frame, levers)?;
+        traces = match quality.precision {
+            Some(Precision::F64) => trace_scene_with::<f64, _>(&wide, &applied, frame, levers)?,
+            _ => trace_scene_with::<f32, _>(&scaled, &applied, frame, levers)?,
+        };
         times.push(start.elapsed().as_secs_f64() * 1e3);
     }
     let error = measure(&applied, truth, Observed::Traced(&traces));
@@ -334,6 +356,24 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
+/// `quality` with its precision decided: as given, or the one the view asks for with the setting applied
+/// ([`fractal_render::choose_precision`], through the interpreter).
+pub fn with_precision(scene: &Scene, quality: &Quality, frame: &Frame) -> Result<Quality, RenderError> {
+    if quality.precision.is_some() {
+        return Ok(*quality);
+    }
+    let applied = quality.apply(scene);
+    let interpreter = Interpreter::new(&applied)?;
+    let chosen = fractal_render::choose_precision::decide(
+        fractal_render::precision::PrecisionChoice::Auto,
+        &applied,
+        frame,
+        &interpreter,
+        &interpreter,
+    )?;
+    Ok(Quality { precision: Some(chosen.precision), ..*quality })
+}
+
 /// Measures every setting of `qualities` on `backend` against `truth`. `renderer` is the opened GPU renderer (unused
 /// for the CPU). `progress` is told each finished point.
 pub fn run(
@@ -347,8 +387,10 @@ pub fn run(
 ) -> Result<Vec<SweepPoint>, RenderError> {
     let mut out = Vec::new();
     for q in qualities {
+        let q = &with_precision(scene, q, frame)?;
         let point = match (backend, renderer.as_mut(), q.precise) {
             (Backend::Cpu, _, _) | (_, None, _) => run_cpu(scene, q, frame, truth)?,
+            (_, _, _) if q.precision == Some(Precision::F64) => run_cpu(scene, q, frame, truth)?,
             // The other math is another build of the program: a renderer of its own.
             (_, Some(_), Some(precise)) => {
                 let mut other = fractal_render::select::open(backend, &RendererOptions { precise })?;

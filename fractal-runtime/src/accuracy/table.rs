@@ -33,6 +33,7 @@ const COLUMNS: &[Column] = &[
     Column { header: "depth p99 thin", cell: |p| traced(&p.error, |t| format!("{:.2}", t.depth_thin.p99)) },
     Column { header: "depth p99 cone", cell: |p| traced(&p.error, |t| format!("{:.2}", t.depth_cone.p99)) },
     Column { header: "interior p99 cone", cell: |p| traced(&p.error, |t| format!("{:.2}", t.depth_cone_interior.p99)) },
+    Column { header: "smooth p50 thin", cell: |p| traced(&p.error, |t| format!("{:.2}", t.depth_smooth.median)) },
     Column { header: "overshoot % thin", cell: |p| traced(&p.error, |t| pct(t.overshoot)).flatten() },
     Column { header: "overshoot % cone", cell: |p| traced(&p.error, |t| pct(t.overshoot_cone)).flatten() },
     Column { header: "normal p50°", cell: |p| traced(&p.error, |t| format!("{:.1}", t.normal.median)) },

@@ -125,8 +125,7 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
         let took = start.elapsed().as_secs_f64();
         let hits = truth.pixels.iter().filter(|p| p.hit()).count();
         let default = if escape_time {
-            let defaults =
-                sweep::run(scene, &frame, &truth, backend, renderer.as_mut(), &[Quality::default()], &mut |_| {})?;
+            let defaults = sweep::run(scene, &frame, &truth, backend, renderer.as_mut(), &[own(args)], &mut |_| {})?;
             defaults.into_iter().next()
         } else {
             None
@@ -176,6 +175,8 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
 
     let qualities =
         if args.default_only { vec![Quality::default()] } else { sweep::grid(scene, backend, args.precise) };
+    let qualities: Vec<Quality> =
+        qualities.into_iter().map(|q| Quality { precision: own(args).precision, ..q }).collect();
     let _ = writeln!(md);
     // The default was measured against every truth of an escape-time scene already: its point against the judged one
     // is kept, not rendered again.
@@ -215,7 +216,7 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
         })
         .collect();
     for (other, opened) in &mut others {
-        let line = default_on(scene, &frame, judged, *other, opened, budget)?;
+        let line = default_on(scene, (&frame, judged), *other, opened, budget, &own(args))?;
         let _ = writeln!(out, "  {line}");
         let _ = writeln!(md, "- {line}");
     }
@@ -232,7 +233,7 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
         backend,
         renderer.as_mut(),
         &mut others,
-        &points,
+        (&points, &own(args)),
         budget,
         &mut |line| {
             let _ = writeln!(out, "  {line}");
@@ -252,17 +253,17 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
 /// holds and the budget's verdict on them, or why the backend did not open.
 fn default_on(
     scene: &fractal_dsl::Scene,
-    frame: &Frame,
-    truth: &Truth,
+    (frame, truth): (&Frame, &Truth),
     backend: Backend,
     opened: &mut Result<Box<dyn fractal_render::renderer::Renderer>, String>,
     budget: &Budget,
+    own: &Quality,
 ) -> Result<String, CliError> {
     let renderer = match opened {
         Ok(r) => r,
         Err(e) => return Ok(format!("scene default on {backend}: not measured, the backend did not open ({e})")),
     };
-    let point = &sweep::run(scene, frame, truth, backend, Some(renderer), &[Quality::default()], &mut |_| {})?[0];
+    let point = &sweep::run(scene, frame, truth, backend, Some(renderer), std::slice::from_ref(own), &mut |_| {})?[0];
     Ok(format!("scene default on {backend}: {}", judged(point, budget).0))
 }
 
@@ -305,6 +306,15 @@ fn settled_in_step(
 }
 
 /// Share of the pixels whose hit or miss differs between hit mask `a` and truth `b` of one frame.
+/// The scene's own setting in the precision `--precision` asks for (`auto`: the one each view asks for).
+fn own(args: &AccuracyArgs) -> Quality {
+    let precision = match args.precision {
+        fractal_render::precision::PrecisionChoice::Auto => None,
+        fractal_render::precision::PrecisionChoice::Only(p) => Some(p),
+    };
+    Quality { precision, ..Quality::default() }
+}
+
 fn mask_moved(a: impl IntoIterator<Item = bool>, b: &Truth) -> f64 {
     let moved = a.into_iter().zip(&b.pixels).filter(|(hit, q)| *hit != q.hit()).count();
     moved as f64 / b.pixels.len().max(1) as f64
@@ -436,7 +446,8 @@ fn report_text(args: &AccuracyArgs, backend: Backend, budget: &Budget, sections:
          kernel that also writes each pixel's depth, normal and steps.\n\n\
          Budget: hit mismatch ≤ {:.1} %, overshoot ≤ {:.1} %, normal p99 ≤ {}° (cone-consistent; judged over at \
          least {} measured normals: the p99 of fewer is their maximum, and a verdict names them unjudged), no ray out of steps, no \
-         NaN/Inf, interior depth p99 ≤ {} footprint (cone-consistent).\n\n{sections}",
+         NaN/Inf, interior depth p99 ≤ {} footprint (cone-consistent), and thin-ray depth median ≤ {} footprint \
+         where the true surface is smooth at the pixel's scale (over at least as many such pixels).\n\n{sections}",
         args.truth_step,
         100.0 * CONVERGED_MASK,
         100.0 * sweep::SETTLED_SHARE,
@@ -447,5 +458,6 @@ fn report_text(args: &AccuracyArgs, backend: Backend, budget: &Budget, sections:
         budget.normal_p99,
         sweep::MIN_NORMALS,
         budget.depth_p99_interior,
+        budget.depth_median_smooth,
     )
 }

@@ -6,6 +6,7 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
 use fractal_render::frame::check_image_size;
+use fractal_render::precision::PrecisionChoice;
 use fractal_render::select::BackendChoice;
 
 use crate::export::Target;
@@ -74,6 +75,10 @@ pub struct DeviceArgs {
     /// OpenCL: build without -cl-fast-relaxed-math
     #[arg(long)]
     pub precise: bool,
+    /// Number type of each frame: auto picks f32 unless f32's rounding at the frame's hits is too coarse for the
+    /// view (a close zoom, a scene far from the origin), then f64, which the CPU renderer draws
+    #[arg(long, value_name = "auto|f32|f64", default_value = "auto", value_parser = parse_precision)]
+    pub precision: PrecisionChoice,
 }
 
 /// Options shared by the commands that render.
@@ -235,7 +240,8 @@ on OpenCL, and on the CPU a factor on the step and the bound on or off), measure
 from each fractal's own membership test and exact primitive distances, and prints the table and the fastest setting
 within the error budget: hit mismatch <= 0.5 %, overshoot <= 0.1 % (pixel-cone consistent), normal p99 <= 5 degrees
 (pixel-cone consistent: against the nearest true normal across the pixel),
-no ray out of steps, no NaN/Inf, interior depth p99 <= 1 footprint (pixel-cone consistent). A scene with a camera
+no ray out of steps, no NaN/Inf, interior depth p99 <= 1 footprint (pixel-cone consistent), thin-ray depth median
+<= 1 footprint where the true surface is smooth at the pixel's scale. A scene with a camera
 path is then judged from each of its other keys. --default-only measures the scene's own setting alone.
 --report does it for every built-in scene and writes the Markdown report (docs/accuracy.md); with --default-only,
 the defaults alone (to judge them at a size the sweep cannot afford). A normal p99 over fewer than 100 measured
@@ -261,6 +267,10 @@ pub struct AccuracyArgs {
     /// OpenCL: build without -cl-fast-relaxed-math
     #[arg(long)]
     pub precise: bool,
+    /// Number type of every setting measured: auto takes the one each view asks for (f64 renders on the CPU whatever
+    /// the backend, whose kernels are f32 only)
+    #[arg(long, value_name = "auto|f32|f64", default_value = "auto", value_parser = parse_precision)]
+    pub precision: PrecisionChoice,
     /// After the sweep, measure the scene's default on these backends too, against the same truth (wgpu,opencl);
     /// one that does not open is reported, not an error
     #[arg(long, value_name = "BACKENDS", value_delimiter = ',', value_parser = parse_one_backend)]
@@ -519,6 +529,10 @@ fn parse_threshold(text: &str) -> Result<f64, String> {
         Ok(e) if (0.0..=1.0).contains(&e) => Ok(e),
         _ => Err(format!("a sample threshold is a number in 0..=1 (display luma), got `{text}`")),
     }
+}
+
+pub fn parse_precision(text: &str) -> Result<PrecisionChoice, String> {
+    text.parse::<PrecisionChoice>().map_err(|e| e.to_string())
 }
 
 pub fn parse_backend(text: &str) -> Result<BackendChoice, String> {

@@ -8,6 +8,7 @@ use fractal_render::image::Image;
 
 use crate::cli::args::{GalleryArgs, RenderOptions};
 use crate::cli::error::CliError;
+use crate::cli::precision::FramePrecision;
 use crate::cli::render::{open_renderer, render_frame};
 use crate::cli::scene::{LoadedScene, SceneLibrary};
 use crate::output::contact_sheet;
@@ -27,7 +28,8 @@ pub fn gallery(args: &GalleryArgs, library: &SceneLibrary) -> Result<(), CliErro
         loaded.set_samples(args.samples)?;
         let params = ParamValues::defaults(&loaded.scene);
         let start = Instant::now();
-        let image = render_frame(renderer.as_mut(), &loaded, &params, args.time, args.size)?;
+        let mut precision = FramePrecision::new(args.device.precision);
+        let image = render_frame(renderer.as_mut(), &loaded, &params, (args.time, args.size), &mut precision)?;
         let ms = start.elapsed().as_secs_f64() * 1e3;
         let path = args.output.join(format!("{name}.png"));
         write_png(&path, &image)?;

@@ -13,6 +13,7 @@ mod export;
 mod gallery;
 mod list;
 mod mesh;
+mod precision;
 mod render;
 pub mod scene;
 mod view;

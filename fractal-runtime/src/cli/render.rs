@@ -16,6 +16,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use crate::cli::args::{RenderArgs, RenderOptions};
 use crate::cli::error::CliError;
+use crate::cli::precision::FramePrecision;
 use crate::cli::scene::{LoadedScene, SceneLibrary};
 use crate::output::aov::write_aov;
 use crate::output::png::{prepare_output, write_png};
@@ -145,13 +146,16 @@ fn trace_frame(
     renderer: &mut dyn Renderer,
     loaded: &LoadedScene,
     params: &ParamValues,
-    time: f64,
-    size: (u32, u32),
+    (time, size): (f64, (u32, u32)),
+    precision: &mut FramePrecision,
 ) -> Result<Traced, CliError> {
     let frame = frame_at(loaded, params, time, size)?;
     let tracing = loaded.tracing()?;
-    let sources = KernelSources::compiled(&tracing).with_cpu(loaded.evaluator(), &loaded.scene);
-    let traced = renderer.trace(&RenderJob::new(sources, &frame));
+    let sources = KernelSources::compiled(&tracing)
+        .with_cpu(loaded.evaluator(), &loaded.scene)
+        .with_cpu_wide(loaded.evaluator_wide());
+    let job = RenderJob::new(sources, &frame).with_precision(precision.of(loaded, &frame)?);
+    let traced = renderer.trace(&job);
     with_notes(renderer, traced)
 }
 
@@ -161,15 +165,17 @@ fn progressive(
     renderer: &mut dyn Renderer,
     loaded: &mut LoadedScene,
     params: &ParamValues,
-    time: f64,
-    size: (u32, u32),
+    (time, size): (f64, (u32, u32)),
     seconds: f64,
+    precision: &mut FramePrecision,
 ) -> Result<(Image, u32), CliError> {
     loaded.set_samples(Some(1))?;
     let frame = frame_at(loaded, params, time, size)?;
     let tracing = loaded.tracing()?;
-    let sources = KernelSources::compiled(&tracing).with_cpu(loaded.evaluator(), &loaded.scene);
-    let job = RenderJob::new(sources, &frame);
+    let sources = KernelSources::compiled(&tracing)
+        .with_cpu(loaded.evaluator(), &loaded.scene)
+        .with_cpu_wide(loaded.evaluator_wide());
+    let job = RenderJob::new(sources, &frame).with_precision(precision.of(loaded, &frame)?);
     let mut passes = Progressive::new(&loaded.scene, &frame);
     let drawn = passes.draw_for(renderer, &job, seconds);
     with_notes(renderer, drawn)?;
@@ -195,16 +201,17 @@ fn write_aovs(args: &RenderArgs, traced: &Traced, png: &Path) -> Result<(), CliE
     Ok(())
 }
 
-/// One frame of the scene at `time`, seen from its own camera.
+/// One frame of the scene at `time`, seen from its own camera, in the precision `precision` gives it.
 pub(super) fn render_frame(
     renderer: &mut dyn Renderer,
     loaded: &LoadedScene,
     params: &ParamValues,
-    time: f64,
-    (width, height): (u32, u32),
+    (time, size): (f64, (u32, u32)),
+    precision: &mut FramePrecision,
 ) -> Result<Image, CliError> {
-    let frame = frame_at(loaded, params, time, (width, height))?;
-    let image = renderer.render(&RenderJob::new(loaded.sources(), &frame));
+    let frame = frame_at(loaded, params, time, size)?;
+    let job = RenderJob::new(loaded.sources(), &frame).with_precision(precision.of(loaded, &frame)?);
+    let image = renderer.render(&job);
     with_notes(renderer, image)
 }
 
@@ -219,9 +226,11 @@ pub fn render(args: &RenderArgs, library: &SceneLibrary) -> Result<(), CliError>
         Output::Image(path) => {
             prepare_output(&path)?;
             let mut renderer = open_renderer(&args.render)?;
+            let mut precision = FramePrecision::new(args.render.device.precision);
             let start = Instant::now();
             if let Some(seconds) = args.progressive {
-                let image = progressive(renderer.as_mut(), &mut loaded, &params, args.time, size, seconds)?;
+                let at = (args.time, size);
+                let image = progressive(renderer.as_mut(), &mut loaded, &params, at, seconds, &mut precision)?;
                 write_png(&path, &image.0)?;
                 let elapsed = start.elapsed().as_secs_f64();
                 eprintln!(
@@ -237,11 +246,11 @@ pub fn render(args: &RenderArgs, library: &SceneLibrary) -> Result<(), CliError>
             let traced = if args.aov.is_empty() {
                 None
             } else {
-                Some(trace_frame(renderer.as_mut(), &loaded, &params, args.time, size)?)
+                Some(trace_frame(renderer.as_mut(), &loaded, &params, (args.time, size), &mut precision)?)
             };
             let image = match &traced {
                 Some(traced) => traced.image.clone(),
-                None => render_frame(renderer.as_mut(), &loaded, &params, args.time, size)?,
+                None => render_frame(renderer.as_mut(), &loaded, &params, (args.time, size), &mut precision)?,
             };
             let elapsed = start.elapsed().as_secs_f64();
             write_png(&path, &image)?;
@@ -325,9 +334,11 @@ fn render_sequence(
     let batch_log = !std::io::stderr().is_terminal();
     let bar = progress_bar(plan.todo.len() as u64);
     let started = Instant::now();
+    let mut precision = FramePrecision::new(args.render.device.precision);
     for (done, &f) in plan.todo.iter().enumerate() {
         let start = Instant::now();
-        let image = render_frame(renderer.as_mut(), loaded, params, f as f64 / args.fps, args.render.size)?;
+        let at = (f as f64 / args.fps, args.render.size);
+        let image = render_frame(renderer.as_mut(), loaded, params, at, &mut precision)?;
         let path = pattern.path(f);
         if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
             std::fs::create_dir_all(dir)
@@ -367,8 +378,10 @@ fn render_video(args: &RenderArgs, loaded: &LoadedScene, params: &ParamValues, p
     let mut renderer = open_renderer(&args.render)?;
     let bar = progress_bar(range.len());
     let started = Instant::now();
+    let mut precision = FramePrecision::new(args.render.device.precision);
     for f in range.iter() {
-        let image = render_frame(renderer.as_mut(), loaded, params, f as f64 / args.fps, args.render.size)?;
+        let at = (f as f64 / args.fps, args.render.size);
+        let image = render_frame(renderer.as_mut(), loaded, params, at, &mut precision)?;
         video.push(&image)?;
         bar.inc(1);
     }

@@ -98,9 +98,12 @@ impl<'a> LoadedScene<'a> {
             Forms::BuiltIn { compiled, kernels: None, .. } => KernelSources::default()
                 .with_wgsl(compiled.wgsl())
                 .with_opencl(compiled.opencl())
-                .with_cpu(self.evaluator(), &self.scene),
+                .with_cpu(self.evaluator(), &self.scene)
+                .with_cpu_wide(self.evaluator_wide()),
             Forms::BuiltIn { kernels: Some(kernels), .. } | Forms::File { kernels, .. } => {
-                KernelSources::compiled(kernels).with_cpu(self.evaluator(), &self.scene)
+                KernelSources::compiled(kernels)
+                    .with_cpu(self.evaluator(), &self.scene)
+                    .with_cpu_wide(self.evaluator_wide())
             }
         }
     }
@@ -132,6 +135,14 @@ impl<'a> LoadedScene<'a> {
 
     /// The CPU evaluator of the scene: the native one of a built-in, the interpreter of a file.
     pub fn evaluator(&self) -> &dyn Evaluator<f32> {
+        match &self.forms {
+            Forms::BuiltIn { native, .. } => native,
+            Forms::File { interpreter, .. } => &**interpreter,
+        }
+    }
+
+    /// The same evaluator in f64, for frames drawn in f64.
+    pub fn evaluator_wide(&self) -> &dyn Evaluator<f64> {
         match &self.forms {
             Forms::BuiltIn { native, .. } => native,
             Forms::File { interpreter, .. } => &**interpreter,

@@ -98,11 +98,23 @@ impl LiveScene {
 
     /// Every form of the scene, for whichever renderer draws it.
     pub fn kernels(&self) -> KernelSources<'_> {
-        KernelSources::default().with_wgsl(&self.wgsl).with_opencl(&self.opencl).with_cpu(self.evaluator(), &self.scene)
+        KernelSources::default()
+            .with_wgsl(&self.wgsl)
+            .with_opencl(&self.opencl)
+            .with_cpu(self.evaluator(), &self.scene)
+            .with_cpu_wide(self.evaluator_wide())
     }
 
     /// The CPU evaluator: geometry and materials, whatever the settings.
     pub fn evaluator(&self) -> &dyn Evaluator<f32> {
+        match &self.evaluator {
+            CpuEvaluator::Native(native) => native,
+            CpuEvaluator::Interpreted(interpreter) => &**interpreter,
+        }
+    }
+
+    /// The same evaluator in f64, for frames drawn in f64.
+    pub fn evaluator_wide(&self) -> &dyn Evaluator<f64> {
         match &self.evaluator {
             CpuEvaluator::Native(native) => native,
             CpuEvaluator::Interpreted(interpreter) => &**interpreter,
@@ -129,7 +141,9 @@ pub struct OneSample {
 impl OneSample {
     /// The pass's forms of the scene, with `live`'s CPU evaluator.
     pub fn sources<'a>(&'a self, live: &'a LiveScene) -> KernelSources<'a> {
-        KernelSources::compiled(&self.kernels).with_cpu(live.evaluator(), &self.scene)
+        KernelSources::compiled(&self.kernels)
+            .with_cpu(live.evaluator(), &self.scene)
+            .with_cpu_wide(live.evaluator_wide())
     }
 }
 

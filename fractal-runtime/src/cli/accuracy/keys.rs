@@ -65,7 +65,7 @@ pub(super) fn check(
     backend: Backend,
     mut renderer: Option<&mut Box<dyn Renderer>>,
     others: &mut [Opened],
-    points: &[SweepPoint],
+    (points, own): (&[SweepPoint], &Quality),
     budget: &Budget,
     say: &mut dyn FnMut(String),
 ) -> Result<bool, CliError> {
@@ -96,7 +96,7 @@ pub(super) fn check(
 
     let mut default_fails = Vec::new();
     for view in &views {
-        let point = measure(scene, view, backend, renderer.as_deref_mut(), &Quality::default())?;
+        let point = measure(scene, view, backend, renderer.as_deref_mut(), own)?;
         let (line, violations) = judged(&point, budget);
         say(format!("{}: scene default on {backend}: {line}", view.name()));
         if !violations.is_empty() {
@@ -105,7 +105,7 @@ pub(super) fn check(
         for (other, opened) in others.iter_mut() {
             let line = match opened {
                 Ok(r) => {
-                    let point = measure(scene, view, *other, Some(r), &Quality::default())?;
+                    let point = measure(scene, view, *other, Some(r), own)?;
                     let (line, violations) = judged(&point, budget);
                     if !violations.is_empty() {
                         default_fails.push(format!("{} on {other} ({})", view.name(), violations.join("; ")));

@@ -1,0 +1,107 @@
+//! Precision chosen by the view: close to a fractal's surface f32 fails the accuracy budget and the rule picks f64,
+//! which passes it; far from the origin the same scene draws the image it draws at the origin. Judged against the
+//! f64 truth (membership, never the estimate), at a small size and a coarse truth step so the test stays short: the
+//! dive's close keys are smooth surfaces at the pixel's scale, which a step of 1/32 footprint resolves.
+
+use fractal::dsl::builder::*;
+use fractal::dsl::eval::interp::Interpreter;
+use fractal::dsl::Scene;
+use fractal::render::backend::cpu::trace_scene;
+use fractal::render::choose_precision::{choose, decide};
+use fractal::render::precision::{Limits, Precision, PrecisionChoice};
+use fractal::render::{CpuRenderer, Frame, Image, KernelSources, ParamValues, Pose, RenderJob, Renderer};
+use fractal::runtime::accuracy::{measure, Budget, Observed};
+use fractal::runtime::truth::{Truth, TruthSettings};
+use fractal::scenes;
+use glam::DVec3;
+
+const SIZE: (u32, u32) = (32, 18);
+
+/// The dive's frame at `time` (a key every 3 s: 9 s is 1e-3 from the surface, 12 s 1e-4).
+fn dive_frame(time: f64) -> (&'static Scene, Frame) {
+    let scene = scenes::MANDELBULB_DIVE.scene();
+    (scene, Frame::default_view(scene, time, SIZE.0, SIZE.1).unwrap())
+}
+
+/// The budget's violations of the CPU render of `frame` in `precision`, against `truth`.
+fn violations(scene: &Scene, frame: &Frame, truth: &Truth, precision: Precision) -> Vec<String> {
+    let native = scenes::MANDELBULB_DIVE.native();
+    let traces = match precision {
+        Precision::F32 => trace_scene::<f32, _>(&native, scene, frame).unwrap(),
+        Precision::F64 => trace_scene::<f64, _>(&native, scene, frame).unwrap(),
+    };
+    Budget::default().verdict(&measure(scene, truth, Observed::Traced(&traces))).violations
+}
+
+fn truth(scene: &Scene, frame: &Frame) -> Truth {
+    Truth::compute(scene, frame, TruthSettings { step_footprints: 1.0 / 32.0, iteration_factor: 1 }).unwrap()
+}
+
+#[test]
+fn close_to_the_bulb_f32_fails_the_budget_and_the_view_asks_for_f64_which_passes() {
+    let (scene, frame) = dive_frame(12.0);
+    let native = scenes::MANDELBULB_DIVE.native();
+    let chosen = choose(scene, &frame, &native, &native, Limits::default()).unwrap();
+    assert_eq!(chosen.precision, Precision::F64, "{chosen}");
+    let truth = truth(scene, &frame);
+    let f32_fails = violations(scene, &frame, &truth, Precision::F32);
+    assert!(!f32_fails.is_empty(), "f32 1e-4 from the surface is within budget");
+    let f64_fails = violations(scene, &frame, &truth, Precision::F64);
+    assert!(f64_fails.is_empty(), "f64 1e-4 from the surface: {f64_fails:?}");
+}
+
+#[test]
+fn the_whole_bulb_and_every_built_in_scene_stay_in_f32() {
+    let (scene, frame) = dive_frame(0.0);
+    let native = scenes::MANDELBULB_DIVE.native();
+    assert_eq!(choose(scene, &frame, &native, &native, Limits::default()).unwrap().precision, Precision::F32);
+    for (name, compiled) in scenes::ALL.iter().filter(|(n, _)| *n != "mandelbulb_dive") {
+        let scene = compiled.scene();
+        let frame = Frame::default_view(scene, 0.0, 48, 27).unwrap();
+        let native = compiled.native();
+        let chosen = choose(scene, &frame, &native, &native, Limits::default()).unwrap();
+        assert_eq!(chosen.precision, Precision::F32, "{name}: {chosen}");
+    }
+}
+
+/// A unit sphere and a small box, moved by `offset`, seen from a camera moved likewise.
+fn far_scene(offset: f64) -> (Scene, Pose) {
+    let at = |x: f64, y: f64, z: f64| [x + offset, y, z];
+    let s = scene(union(sphere(1.0).translate(at(0.0, 0.0, 0.0)), box3([0.3, 0.3, 0.3]).translate(at(1.2, 0.6, 0.0))))
+        .light(directional([0.5, 0.8, -0.4], rgb(1.0, 1.0, 1.0)));
+    let pose = Pose::look_at(DVec3::from(at(0.5, 1.0, -3.5)), DVec3::from(at(0.3, 0.0, 0.0)), 50.0).unwrap();
+    (s, pose)
+}
+
+fn render_cpu(scene: &Scene, pose: &Pose, precision: PrecisionChoice) -> (Precision, Image) {
+    let frame = Frame::new(scene, pose, 0.0, 160, 90, &ParamValues::defaults(scene)).unwrap();
+    let interp = Interpreter::new(scene).unwrap();
+    let chosen = decide(precision, scene, &frame, &interp, &interp).unwrap();
+    let sources = KernelSources::default().with_cpu(&interp, scene).with_cpu_wide(&interp);
+    let image = CpuRenderer::new().render(&RenderJob::new(sources, &frame).with_precision(chosen.precision)).unwrap();
+    (chosen.precision, image)
+}
+
+/// Share of pixels whose channels differ by more than `levels`.
+fn differing(a: &Image, b: &Image, levels: u8) -> f64 {
+    let off = a
+        .pixels
+        .iter()
+        .zip(&b.pixels)
+        .filter(|(p, q)| p.to_le_bytes().iter().zip(q.to_le_bytes()).take(3).any(|(x, y)| x.abs_diff(y) > levels));
+    off.count() as f64 / a.pixels.len() as f64
+}
+
+#[test]
+fn a_scene_a_million_units_out_draws_the_image_it_draws_at_the_origin() {
+    let (here, pose_here) = far_scene(0.0);
+    let (far, pose_far) = far_scene(1e6);
+    let (p_here, at_origin) = render_cpu(&here, &pose_here, PrecisionChoice::Auto);
+    assert_eq!(p_here, Precision::F32);
+    let (p_far, far_away) = render_cpu(&far, &pose_far, PrecisionChoice::Auto);
+    assert_eq!(p_far, Precision::F64, "the view 1e6 out asks for f64");
+    let (_, far_f32) = render_cpu(&far, &pose_far, PrecisionChoice::Only(Precision::F32));
+    let (f32_off, f64_off) = (differing(&at_origin, &far_f32, 2), differing(&at_origin, &far_away, 2));
+    assert!(f32_off > 0.05, "f32 1e6 out differs on only {:.2} % of pixels", 100.0 * f32_off);
+    assert!(f64_off < 0.002, "f64 1e6 out differs on {:.2} % of pixels", 100.0 * f64_off);
+}
