@@ -10,7 +10,7 @@
 //! tetrahedral gradient, computed as the f32 render computes it, against f64's. A frame whose distance and normal
 //! figures stay within [`Limits`] (at [`QUANTILE`] of the probe's hits) is drawn in f32; otherwise in f64. The figures
 //! say why. The rounding of the hit points is reported, not judged: a perturbed Mandelbrot zoom
-//! ([`fractal_dsl::formula::mandelbrot`]) reads its pattern from the ray's offset, not from the rounded point, and
+//! ([`fractal_dsl::formula::mandelbrot`](mod@fractal_dsl::formula::mandelbrot)) reads its pattern from the ray's offset, not from the rounded point, and
 //! is right in f32 where its points are rounded by millions of footprints; a distance or a normal that rounding
 //! spoils shows in their own figures.
 //!
@@ -59,7 +59,7 @@ pub fn choose(
         (probe.normal_degrees, limits.normal_degrees, "its normals are", "°"),
     ]
     .into_iter()
-    .filter(|(v, limit, _, _)| !(v <= limit))
+    .filter(|(v, limit, _, _)| v.is_nan() || v > limit)
     .map(|(v, limit, what, unit)| format!("{what} {} {unit} off f64's (limit {limit})", show(v)))
     .collect();
     let at = format!("at the {:.0}th percentile of {} probe hits", 100.0 * QUANTILE, probe.hits);

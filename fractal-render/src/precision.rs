@@ -27,7 +27,7 @@ impl fmt::Display for Precision {
 /// The `--precision` choice.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum PrecisionChoice {
-    /// Per frame, by [`choose`].
+    /// Per frame, by [`crate::choose_precision::choose`].
     #[default]
     Auto,
     Only(Precision),

@@ -40,9 +40,11 @@ use std::time::Instant;
 
 use fractal_dsl::{CameraPlacement, Scene};
 use fractal_render::camera::{CameraPath, Pose};
+use fractal_render::choose_precision::decide;
 use fractal_render::device::Backend;
 use fractal_render::error::RenderError;
 use fractal_render::frame::{Frame, ParamValues};
+use fractal_render::precision::{Chosen, Precision, PrecisionChoice};
 use fractal_render::renderer::{KernelSources, RenderJob};
 use fractal_render::select::{BackendChoice, RendererOptions};
 use glam::{DQuat, DVec3};
@@ -91,6 +93,9 @@ pub struct BenchSpec<'a> {
     pub length: BenchLength,
     pub backend: BackendChoice,
     pub options: RendererOptions,
+    /// The number type of each frame: given, or chosen per frame by the view. The CPU draws f64 frames; the GPU
+    /// backends' kernels are f32 only, and the report says how many frames wanted more.
+    pub precision: PrecisionChoice,
     /// Also run the hand-written baseline.
     pub baseline: bool,
     /// Also measure the first frame's image against the truth of the image ([`crate::truth::image`]).
@@ -213,6 +218,47 @@ fn image_error_of(
     }
 }
 
+/// The precision of each timed frame: how many were drawn in each, how many wanted more than the backend has, and why
+/// the first was drawn as it was.
+#[derive(Default)]
+struct PrecisionTally {
+    drawn: std::collections::BTreeMap<Precision, usize>,
+    wanted_more: usize,
+    first: Option<String>,
+}
+
+impl PrecisionTally {
+    /// The precision `frame` is drawn in on `backend` (the one it asks for where the backend has it, else f32).
+    fn of(&mut self, spec: &BenchSpec, frame: &Frame, backend: Backend) -> Result<Precision, RenderError> {
+        let chosen = match spec.kernels.cpu {
+            Some(cpu) => match cpu.wide {
+                Some(wide) => decide(spec.precision, spec.scene, frame, cpu.evaluator, wide)?,
+                None => Chosen { precision: Precision::F32, probe: None, reason: "no f64 evaluator".into() },
+            },
+            None => Chosen { precision: Precision::F32, probe: None, reason: "no CPU evaluator to probe".into() },
+        };
+        let drawn = if backend == Backend::Cpu { chosen.precision } else { Precision::F32 };
+        self.wanted_more += usize::from(drawn != chosen.precision);
+        *self.drawn.entry(drawn).or_default() += 1;
+        self.first.get_or_insert_with(|| chosen.to_string());
+        Ok(drawn)
+    }
+
+    fn describe(&self, backend: Backend) -> String {
+        let total: usize = self.drawn.values().sum();
+        let each: Vec<String> = self.drawn.iter().map(|(p, n)| format!("{p} on {n} of {total} frames")).collect();
+        let mut line =
+            format!("precision: {} (the first frame: {})", each.join(", "), self.first.as_deref().unwrap_or("-"));
+        if self.wanted_more > 0 {
+            line += &format!(
+                "; {} frames wanted f64, which the {backend} kernels lack: timed in f32 (--backend cpu draws them in f64)",
+                self.wanted_more
+            );
+        }
+        line
+    }
+}
+
 /// Runs the benchmark. `progress` is called after every timed frame with (frames done, elapsed seconds).
 pub fn run(spec: &BenchSpec, progress: &mut dyn FnMut(u64, f64)) -> Result<BenchReport, RenderError> {
     let motion = motion_for(spec);
@@ -233,6 +279,8 @@ pub fn run(spec: &BenchSpec, progress: &mut dyn FnMut(u64, f64)) -> Result<Bench
         baseline_first_ms.map(|first_frame_ms| Timings { kernel_ms: Vec::new(), frame_ms: Vec::new(), first_frame_ms });
     let started = Instant::now();
     let mut index = 0u64;
+    let backend = timer.device().backend;
+    let mut precisions = PrecisionTally::default();
     loop {
         let done = match spec.length {
             BenchLength::Frames(n) => index >= n as u64,
@@ -242,7 +290,9 @@ pub fn run(spec: &BenchSpec, progress: &mut dyn FnMut(u64, f64)) -> Result<Bench
             break;
         }
         let frame = frame_at(spec, motion, index, size)?;
-        let timed = timer.run(&timer::Work::Generated(RenderJob::new(spec.kernels, &frame)))?;
+        let precision = precisions.of(spec, &frame, backend)?;
+        let timed =
+            timer.run(&timer::Work::Generated(RenderJob::new(spec.kernels, &frame).with_precision(precision)))?;
         generated.kernel_ms.push(timed.kernel_ms);
         generated.frame_ms.push(timed.frame_ms);
         // Interleaved, so a device that warms up or throttles during the run affects both kernels alike.
@@ -255,9 +305,12 @@ pub fn run(spec: &BenchSpec, progress: &mut dyn FnMut(u64, f64)) -> Result<Bench
         progress(index, started.elapsed().as_secs_f64());
     }
 
+    notes.push(precisions.describe(backend));
     let error_size = error_size(spec.width, spec.height);
     let small = frame_at(spec, motion, 0, error_size)?;
-    let image = timer.run(&timer::Work::Generated(RenderJob::new(spec.kernels, &small)))?.image;
+    let precision = precisions.of(spec, &small, backend)?;
+    let image =
+        timer.run(&timer::Work::Generated(RenderJob::new(spec.kernels, &small).with_precision(precision)))?.image;
     let reference = precision::reference(spec.scene, &small)?;
     let accuracy = precision::compare_scene(spec.scene, &image, &reference);
     let truth = Truth::compute(spec.scene, &small, TruthSettings { step_footprints: TRUTH_STEP, iteration_factor: 1 })?;

@@ -68,9 +68,11 @@ pub const ROUGH_DEGREES: f64 = 10.0;
 const NEIGHBOURS: [(f64, f64); 8] =
     [(-1.0, 0.0), (1.0, 0.0), (0.0, -1.0), (0.0, 1.0), (-1.0, -1.0), (1.0, -1.0), (-1.0, 1.0), (1.0, 1.0)];
 /// Below this distance the truth march steps as if it were this far (scene units), so it never crawls at the camera;
-/// nearer where the scene is nearer ([`Truth::near`]).
+/// nearer where the scene is nearer (see [`NEAR_SHARE`]).
 pub const NEAR: f64 = 0.1;
-/// Share of the scene's distance estimate at the camera below which the march may step as if at [`Truth::near`].
+/// Below a ray distance of this share of the scene's f64 distance estimate at the camera (where that is under
+/// [`NEAR`]) the truth march steps as if it were that far: a camera 1e-9 from a surface is stepped at the surface's
+/// footprints. Only the step's fineness reads the estimate, never where a crossing is.
 pub const NEAR_SHARE: f64 = 0.25;
 
 /// The truth march's default step in footprints. Halving it from 1/160 to 1/320 on the built-in `mandelbulb` at

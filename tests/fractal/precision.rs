@@ -1,11 +1,11 @@
 //! Precision chosen by the view: close to a fractal's surface f32 fails the accuracy budget and the rule picks f64,
 //! which passes it; far from the origin the same scene draws the image it draws at the origin. Judged against the
-//! f64 truth (membership, never the estimate), at a small size and a coarse truth step so the test stays short: the
-//! dive's close keys are smooth surfaces at the pixel's scale, which a step of 1/32 footprint resolves.
+//! f64 truth (membership, never the estimate), at a small size and a truth step of 1/32 footprint so the test stays
+//! short.
 
 use fractal::dsl::builder::*;
 use fractal::dsl::eval::interp::Interpreter;
-use fractal::dsl::Scene;
+use fractal::dsl::{CompiledScene, Scene};
 use fractal::render::backend::cpu::trace_scene;
 use fractal::render::choose_precision::{choose, decide};
 use fractal::render::precision::{Limits, Precision, PrecisionChoice};
@@ -17,15 +17,15 @@ use glam::DVec3;
 
 const SIZE: (u32, u32) = (32, 18);
 
-/// The dive's frame at `time` (a key every 3 s: 9 s is 1e-3 from the surface, 12 s 1e-4).
+/// The dive's frame at `time`: a key every 3 s, 10^-(k-1) from the south pole at 3k s (27 s: 1e-9).
 fn dive_frame(time: f64) -> (&'static Scene, Frame) {
     let scene = scenes::MANDELBULB_DIVE.scene();
     (scene, Frame::default_view(scene, time, SIZE.0, SIZE.1).unwrap())
 }
 
-/// The budget's violations of the CPU render of `frame` in `precision`, against `truth`.
-fn violations(scene: &Scene, frame: &Frame, truth: &Truth, precision: Precision) -> Vec<String> {
-    let native = scenes::MANDELBULB_DIVE.native();
+/// The budget's violations of the CPU render of `frame` of `compiled` in `precision`, against `truth`.
+fn violations(compiled: &CompiledScene, frame: &Frame, truth: &Truth, precision: Precision) -> Vec<String> {
+    let (scene, native) = (compiled.scene(), compiled.native());
     let traces = match precision {
         Precision::F32 => trace_scene::<f32, _>(&native, scene, frame).unwrap(),
         Precision::F64 => trace_scene::<f64, _>(&native, scene, frame).unwrap(),
@@ -37,17 +37,31 @@ fn truth(scene: &Scene, frame: &Frame) -> Truth {
     Truth::compute(scene, frame, TruthSettings { step_footprints: 1.0 / 32.0, iteration_factor: 1 }).unwrap()
 }
 
+/// The view the precision issue was filed with: the showcase `mandelbulb` at t = 0 from 3e-4 before the set's first
+/// crossing of the line from (1.2, 1, −2.2) to the origin. Its f32 render passed the budget of old (whose truth
+/// stepped near the camera as if it stood 0.1 away); against a truth stepped at the surface's footprints it fails.
 #[test]
-fn close_to_the_bulb_f32_fails_the_budget_and_the_view_asks_for_f64_which_passes() {
-    let (scene, frame) = dive_frame(12.0);
+fn the_showcase_3e_4_from_its_surface_fails_the_budget_in_f32() {
+    let compiled = &scenes::MANDELBULB;
+    let scene = compiled.scene();
+    let at = DVec3::new(0.413_507_549_962_055_1, 0.344_589_624_968_379_2, -0.758_097_174_930_434_4);
+    let pose = Pose::look_at(at, DVec3::ZERO, scene.camera.fov_degrees).unwrap();
+    let frame = Frame::new(scene, &pose, 0.0, SIZE.0, SIZE.1, &ParamValues::defaults(scene)).unwrap();
+    let fails = violations(compiled, &frame, &truth(scene, &frame), Precision::F32);
+    assert!(!fails.is_empty(), "the 3e-4 view is within budget in f32");
+}
+
+#[test]
+fn the_dive_1e9_from_the_pole_asks_for_f64_which_is_within_budget_where_f32_is_not() {
+    let (scene, frame) = dive_frame(27.0);
     let native = scenes::MANDELBULB_DIVE.native();
-    let chosen = choose(scene, &frame, &native, &native, Limits::default()).unwrap();
+    let chosen = decide(PrecisionChoice::Auto, scene, &frame, &native, &native).unwrap();
     assert_eq!(chosen.precision, Precision::F64, "{chosen}");
     let truth = truth(scene, &frame);
-    let f32_fails = violations(scene, &frame, &truth, Precision::F32);
-    assert!(!f32_fails.is_empty(), "f32 1e-4 from the surface is within budget");
-    let f64_fails = violations(scene, &frame, &truth, Precision::F64);
-    assert!(f64_fails.is_empty(), "f64 1e-4 from the surface: {f64_fails:?}");
+    let f32_fails = violations(&scenes::MANDELBULB_DIVE, &frame, &truth, Precision::F32);
+    assert!(!f32_fails.is_empty(), "f32 1e-9 from the surface is within budget");
+    let f64_fails = violations(&scenes::MANDELBULB_DIVE, &frame, &truth, Precision::F64);
+    assert!(f64_fails.is_empty(), "f64 1e-9 from the surface: {f64_fails:?}");
 }
 
 #[test]

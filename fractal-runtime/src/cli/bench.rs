@@ -42,6 +42,7 @@ pub fn bench(args: &BenchArgs, library: &SceneLibrary) -> Result<(), CliError> {
         length,
         backend: args.render.device.backend,
         options: RendererOptions { precise: args.render.device.precise },
+        precision: args.render.device.precision,
         baseline: args.baseline,
         image_error: args.image_error,
         baseline_comparable: loaded.origin == SceneOrigin::BuiltIn && loaded.name == BASELINE_SCENE,

@@ -34,6 +34,7 @@ pub fn view(args: &ViewArgs, library: &SceneLibrary) -> Result<(), CliError> {
         params: args.params.clone(),
         samples: args.samples,
         accumulate: !args.no_accumulate,
+        precision: args.device.precision,
         ..ViewerOptions::default()
     };
     match run(scene, options) {

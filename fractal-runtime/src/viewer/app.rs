@@ -12,6 +12,7 @@ use fractal_render::camera::Pose;
 use fractal_render::error::RenderError;
 use fractal_render::frame::Frame;
 use fractal_render::image::Image;
+use fractal_render::precision::Precision;
 use fractal_render::renderer::RenderJob;
 use winit::application::ApplicationHandler;
 use winit::dpi::{PhysicalPosition, PhysicalSize};
@@ -181,6 +182,8 @@ struct App {
     still: Accumulator,
     /// Input arrived since the last frame: a resting viewer draws the next frame now.
     woken: bool,
+    /// The precision of the last frame, once said.
+    precision: Option<Precision>,
 }
 
 impl App {
@@ -234,6 +237,7 @@ impl App {
             cursor: (0.0, 0.0),
             still: Accumulator::new(options.accumulate),
             woken: false,
+            precision: None,
             live,
             options,
         })
@@ -299,7 +303,15 @@ impl App {
         let (params, selected) = self.params.rows();
         let mut status = vec![
             self.live.name.clone(),
-            format!("{}, {timing}, {}x{}", self.engine.device().backend, self.render_size.0, self.render_size.1),
+            match self.precision {
+                Some(Precision::F64) => format!(
+                    "cpu in f64 (the view asks for it), {timing}, {}x{}",
+                    self.render_size.0, self.render_size.1
+                ),
+                _ => {
+                    format!("{}, {timing}, {}x{}", self.engine.device().backend, self.render_size.0, self.render_size.1)
+                }
+            },
         ];
         status.extend(self.still.describe().map(|passes| format!("still: {passes}")));
         let content = PanelContent {
@@ -457,12 +469,14 @@ impl App {
         let presenter = self.presenter.as_ref().map_or("none", Presenter::name);
         let key = StillKey::new(&self.live.scene, &frame, window_size, self.engine.device().backend, presenter);
         self.render_size = render_size;
-        let drawn = match self.still.plan(key) {
-            Plan::Frame => {
+        let precision = self.frame_precision(&frame);
+        let drawn = match (self.still.plan(key), precision) {
+            (Plan::Frame, Precision::F32) => {
                 self.overlay = self.panel(window_size.0);
                 self.draw(&frame, window_size, want_screenshot)
             }
-            plan => self.draw_still(plan, &frame, window_size, want_screenshot),
+            (Plan::Frame, _) => self.draw_wide(&frame, window_size, want_screenshot),
+            (plan, _) => self.draw_still(plan, (&frame, precision), window_size, want_screenshot),
         };
         match drawn {
             Ok(shown) => {

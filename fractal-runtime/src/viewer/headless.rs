@@ -1,12 +1,16 @@
 //! Without a display: whether there is a window system to open a window on, and the fallback that renders the scene's
-//! first frame (at the window size, from the scene's camera or the camera path file) to a PNG.
+//! first frame (at the window size, from the scene's camera or the camera path file, in the precision the view asks
+//! for) to a PNG.
 
 use std::path::Path;
 
+use fractal_render::backend::cpu::CpuRenderer;
 use fractal_render::camera::Pose;
+use fractal_render::choose_precision::decide;
 use fractal_render::device::DeviceInfo;
 use fractal_render::frame::{Frame, ParamValues};
-use fractal_render::renderer::RenderJob;
+use fractal_render::precision::Precision;
+use fractal_render::renderer::{RenderJob, Renderer};
 
 use super::engine::EngineChain;
 use super::live_scene::LiveScene;
@@ -47,11 +51,20 @@ pub fn render_png(scene: &ViewerScene, options: &ViewerOptions, png: &Path) -> R
     };
     let (width, height) = options.window_size;
     let frame = Frame::new(&live.scene, &pose, time, width, height, &params)?;
+    let chosen = decide(options.precision, &live.scene, &frame, live.evaluator(), live.evaluator_wide())?;
+    eprintln!("precision {chosen}");
+    let job = RenderJob::new(live.kernels(), &frame).with_precision(chosen.precision);
+    if chosen.precision != Precision::F32 {
+        // The kernels are f32 only: the CPU draws a frame in f64 whatever the backend.
+        let image = CpuRenderer::new().render(&job)?;
+        write_png(&image, png).map_err(|message| ViewerError::Output { path: png.to_path_buf(), message })?;
+        return Ok(CpuRenderer::new().device());
+    }
     let mut chain = EngineChain::new(options.backend, options.renderer);
     let mut notes = Vec::new();
     loop {
         let mut engine = chain.next(&mut notes)?;
-        match engine.renderer().render(&RenderJob::new(live.kernels(), &frame)) {
+        match engine.renderer().render(&job) {
             Ok(image) => {
                 write_png(&image, png).map_err(|message| ViewerError::Output { path: png.to_path_buf(), message })?;
                 return Ok(engine.device());

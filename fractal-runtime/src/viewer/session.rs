@@ -10,6 +10,7 @@ use fractal_dsl::{CompiledScene, Scene};
 use fractal_render::camera::Pose;
 use fractal_render::device::DeviceInfo;
 use fractal_render::frame::ParamValues;
+use fractal_render::precision::PrecisionChoice;
 use fractal_render::select::{BackendChoice, RendererOptions};
 
 use super::scale::RenderScale;
@@ -99,6 +100,8 @@ pub struct ViewerOptions {
     pub samples: Option<u32>,
     /// While nothing that changes the picture changes, refine it with progressive passes (module `still`).
     pub accumulate: bool,
+    /// The number type of each frame; a frame in f64 is drawn by the CPU renderer whatever the backend.
+    pub precision: PrecisionChoice,
 }
 
 impl Default for ViewerOptions {
@@ -123,6 +126,7 @@ impl Default for ViewerOptions {
             print_help: true,
             samples: None,
             accumulate: true,
+            precision: PrecisionChoice::Auto,
         }
     }
 }

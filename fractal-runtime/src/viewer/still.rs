@@ -27,6 +27,7 @@ use fractal_render::device::Backend;
 use fractal_render::error::RenderError;
 use fractal_render::frame::Frame;
 use fractal_render::image::Image;
+use fractal_render::precision::Precision;
 use fractal_render::progressive::Progressive;
 use fractal_render::renderer::{RenderJob, Renderer};
 
@@ -139,13 +140,13 @@ impl Accumulator {
         }
     }
 
-    /// Draws the next pass of `frame` of `live`'s scene with `renderer`; the picture to show, or `None` while the
-    /// window keeps the usual frame.
+    /// Draws the next pass of `frame` of `live`'s scene with `renderer` in `precision`; the picture to show, or `None`
+    /// while the window keeps the usual frame.
     pub fn pass(
         &mut self,
         renderer: &mut dyn Renderer,
         live: &LiveScene,
-        frame: &Frame,
+        (frame, precision): (&Frame, Precision),
     ) -> Result<Option<Image>, RenderError> {
         if self.one_sample.as_ref().is_none_or(|(scene, _)| *scene != live.scene) {
             self.one_sample = Some((live.scene.clone(), live.one_sample()?));
@@ -155,7 +156,7 @@ impl Accumulator {
         };
         self.show_from = show_from(live.scene.settings.samples);
         let passes = self.passes.get_or_insert_with(|| Progressive::new(&one.scene, frame));
-        passes.draw(renderer, &RenderJob::new(one.sources(live), frame))?;
+        passes.draw(renderer, &RenderJob::new(one.sources(live), frame).with_precision(precision))?;
         Ok((passes.passes() >= self.show_from).then(|| passes.image()))
     }
 
@@ -270,7 +271,7 @@ mod tests {
             let plan = acc.plan(key(&live.scene, &f));
             let mut shown = false;
             if plan == Plan::Pass {
-                let picture = acc.pass(&mut renderer, &live, &f).unwrap();
+                let picture = acc.pass(&mut renderer, &live, (&f, Precision::F32)).unwrap();
                 shown = picture.is_some();
                 last = picture.or(last);
             }

@@ -200,7 +200,19 @@ mod tests {
 
         let mut lines = Vec::new();
         let mut say = |line| lines.push(line);
-        let said = check(&s, &params, size, 0.0, settings, Backend::Cpu, None, &mut [], &points, &budget, &mut say);
+        let said = check(
+            &s,
+            &params,
+            size,
+            0.0,
+            settings,
+            Backend::Cpu,
+            None,
+            &mut [],
+            (&points, &Quality::default()),
+            &budget,
+            &mut say,
+        );
         assert!(said.unwrap());
         let text = lines.join("\n");
         assert!(text.contains("truth at key t = 2 s, (0, 0, -1.05) → (0, 0.9, 0)"), "{text}");
@@ -216,8 +228,19 @@ mod tests {
         // A camera that is not a path has no other key.
         let fixed = scene(sphere(1.0));
         let mut silent = |line: String| panic!("said {line}");
-        let said =
-            check(&fixed, &params, size, 0.0, settings, Backend::Cpu, None, &mut [], &points, &budget, &mut silent);
+        let said = check(
+            &fixed,
+            &params,
+            size,
+            0.0,
+            settings,
+            Backend::Cpu,
+            None,
+            &mut [],
+            (&points, &Quality::default()),
+            &budget,
+            &mut silent,
+        );
         assert!(!said.unwrap());
     }
 }

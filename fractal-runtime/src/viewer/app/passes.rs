@@ -1,9 +1,14 @@
 //! A frame of a view standing still: the next progressive pass (module `still` says when and why), drawn by whichever
 //! renderer draws and shown through either presenter as a host image, or the picture shown already, again. The game
-//! loop (`app.rs`) picks this over the usual frame.
+//! loop (`app.rs`) picks this over the usual frame. A frame in f64 (`--precision`) is drawn here too, by the CPU
+//! renderer, and shown the same way.
 
+use fractal_render::backend::cpu::CpuRenderer;
+use fractal_render::choose_precision::decide;
 use fractal_render::frame::Frame;
 use fractal_render::image::Image;
+use fractal_render::precision::Precision;
+use fractal_render::renderer::{RenderJob, Renderer};
 
 use super::{App, DrawError, Presenter};
 use crate::viewer::engine::Engine;
@@ -12,23 +17,40 @@ use crate::viewer::still::Plan;
 
 impl App {
     /// Draws `plan` (a pass, or a rest) of `frame`; the presented window when `screenshot` is set.
+    /// A frame in f64 takes its passes on the CPU, whatever the backend (whose kernels are f32 only).
     pub(super) fn draw_still(
         &mut self,
         plan: Plan,
-        frame: &Frame,
+        (frame, precision): (&Frame, Precision),
         window_size: (u32, u32),
         screenshot: bool,
     ) -> Result<Option<Image>, DrawError> {
-        let picture = match plan {
-            Plan::Pass => self.still.pass(self.engine.renderer(), &self.live, frame).map_err(DrawError::Render)?,
-            Plan::Frame | Plan::Rest => None,
+        let picture = match (plan, precision) {
+            (Plan::Pass, Precision::F32) => {
+                self.still.pass(self.engine.renderer(), &self.live, (frame, precision)).map_err(DrawError::Render)?
+            }
+            (Plan::Pass, _) => {
+                self.still.pass(&mut CpuRenderer::new(), &self.live, (frame, precision)).map_err(DrawError::Render)?
+            }
+            (Plan::Frame | Plan::Rest, _) => None,
         };
+        self.show(picture.as_ref(), window_size, screenshot)
+    }
+
+    /// Shows `picture` (a host image; `None`: the picture shown already, again) through either presenter, with the
+    /// panel drawn anew.
+    pub(super) fn show(
+        &mut self,
+        picture: Option<&Image>,
+        window_size: (u32, u32),
+        screenshot: bool,
+    ) -> Result<Option<Image>, DrawError> {
         // After the pass, so the panel counts it.
         self.overlay = self.panel(window_size.0);
         let overlay = self.overlay.as_ref();
         match (&mut self.presenter, &mut self.engine) {
             (Some(Presenter::Gpu(gpu)), Engine::Wgpu(renderer)) => {
-                let shown = match &picture {
+                let shown = match picture {
                     Some(image) => gpu.show(renderer, image, window_size, screenshot, overlay),
                     None => gpu.redraw(renderer, window_size, screenshot, overlay),
                 };
@@ -38,7 +60,7 @@ impl App {
                 })
             }
             (Some(Presenter::Soft(soft)), _) => {
-                match &picture {
+                match picture {
                     Some(image) => soft.present(image, window_size, overlay),
                     None => soft.redraw(window_size, overlay),
                 }
@@ -50,5 +72,36 @@ impl App {
             }
             (None, _) => Ok(None),
         }
+    }
+
+    /// The precision of `frame` (`--precision`: given, or the one the view asks for), said on stderr when it changes;
+    /// f32 with a report where the view cannot be probed.
+    pub(super) fn frame_precision(&mut self, frame: &Frame) -> Precision {
+        let live = &self.live;
+        match decide(self.options.precision, &live.scene, frame, live.evaluator(), live.evaluator_wide()) {
+            Ok(chosen) => {
+                if self.precision != Some(chosen.precision) {
+                    eprintln!("precision {chosen}");
+                    self.precision = Some(chosen.precision);
+                }
+                chosen.precision
+            }
+            Err(e) => {
+                self.report(format!("cannot choose this frame's precision, drawing it in f32: {e}"));
+                Precision::F32
+            }
+        }
+    }
+
+    /// Draws `frame` in f64 on the CPU and shows it.
+    pub(super) fn draw_wide(
+        &mut self,
+        frame: &Frame,
+        window_size: (u32, u32),
+        screenshot: bool,
+    ) -> Result<Option<Image>, DrawError> {
+        let job = RenderJob::new(self.live.kernels(), frame).with_precision(Precision::F64);
+        let image = CpuRenderer::new().render(&job).map_err(DrawError::Render)?;
+        self.show(Some(&image), window_size, screenshot)
     }
 }
