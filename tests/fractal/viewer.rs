@@ -18,6 +18,7 @@
 //! only one window-system event loop. Without Xvfb the window test is skipped with a note, or fails when
 //! `FRACTAL_REQUIRE_GPU_BACKENDS=1`.
 
+mod precision;
 mod still;
 
 use fractal_render::device::backends_required;
@@ -166,7 +167,7 @@ fn the_window_shows_the_offline_render_of_the_scripted_pose() {
     if xwd.is_none() {
         eprintln!("note: not comparing the X server's copy of the window (needs our own Xvfb and xwd)");
     }
-    for mode in ["auto", "cpu-softbuffer", "hot-reload", "animated", "still-auto", "still-cpu"] {
+    for mode in ["auto", "cpu-softbuffer", "hot-reload", "animated", "still-auto", "still-cpu", "deep"] {
         let dir = scratch_dir(mode);
         let mut child = spawn_child(mode, &dir, &display);
         let last_shot = dir.join(LAST_SHOT);
@@ -210,6 +211,11 @@ fn the_window_shows_the_offline_render_of_the_scripted_pose() {
         }
         if mode == "animated" {
             assert!(stdout.contains("param radius = 0.9140"), "the param key was reported: {stdout}");
+            let _ = std::fs::remove_dir_all(&dir);
+            continue;
+        }
+        if mode == "deep" {
+            assert!(stderr.contains("precision f64"), "the viewer did not say the frame's precision: {stderr}");
             let _ = std::fs::remove_dir_all(&dir);
             continue;
         }
@@ -265,6 +271,7 @@ fn viewer_child_process() {
         "still-auto" => return still::still_child(&dir, false),
         "still-cpu" => return still::still_child(&dir, true),
         "still-figures" => return still::figures_child(&dir),
+        "deep" => return precision::deep_child(&dir),
         _ => {}
     }
     let (backend, present) = match mode.as_str() {
