@@ -98,23 +98,23 @@ pub(super) fn check(
     for view in &views {
         let point = measure(scene, view, backend, renderer.as_deref_mut(), own)?;
         let (line, violations) = judged(&point, budget);
-        say(format!("{}: scene default on {backend}: {line}", view.name()));
+        say(format!("{}: {} on {backend}: {line}", view.name(), point.quality));
         if !violations.is_empty() {
             default_fails.push(format!("{} ({})", view.name(), violations.join("; ")));
         }
         for (other, opened) in others.iter_mut() {
-            let line = match opened {
+            let (setting, line) = match opened {
                 Ok(r) => {
                     let point = measure(scene, view, *other, Some(r), own)?;
                     let (line, violations) = judged(&point, budget);
                     if !violations.is_empty() {
                         default_fails.push(format!("{} on {other} ({})", view.name(), violations.join("; ")));
                     }
-                    line
+                    (point.quality.to_string(), line)
                 }
-                Err(e) => format!("not measured, the backend did not open ({e})"),
+                Err(e) => ("scene default".to_string(), format!("not measured, the backend did not open ({e})")),
             };
-            say(format!("{}: scene default on {other}: {line}", view.name()));
+            say(format!("{}: {setting} on {other}: {line}", view.name()));
         }
     }
     say(match (default_fails.is_empty(), views.len()) {
@@ -130,8 +130,11 @@ pub(super) fn check(
     let mut rejected = Vec::new();
     let mut chosen = None;
     'candidates: for candidate in candidates {
+        // The precision the setting was measured in at the sweep's time was that view's; each key's is its own
+        // (unless `--precision` gave one).
+        let setting = Quality { precision: own.precision, ..candidate.quality };
         for view in &views {
-            let point = measure(scene, view, backend, renderer.as_deref_mut(), &candidate.quality)?;
+            let point = measure(scene, view, backend, renderer.as_deref_mut(), &setting)?;
             let violations = budget.violations(&point.error);
             if !violations.is_empty() {
                 rejected.push(format!("{} fails at {} ({})", candidate.quality, view.name(), violations.join("; ")));
