@@ -19,7 +19,7 @@
 
 use fractal_dsl::analyse::{bound, fold::fold_node};
 use fractal_dsl::eval::Evaluator;
-use fractal_dsl::number::math::{dot, length, v3};
+use fractal_dsl::number::math::{dot, length, v3, V3};
 use fractal_dsl::ray::scene::tetrahedron;
 use fractal_dsl::ray::SceneFns;
 use fractal_dsl::Scene;
@@ -87,6 +87,11 @@ fn show(v: f64) -> String {
     }
 }
 
+/// How far rounding `p` to f32 moves it.
+fn f32_rounding(p: V3<f64>) -> f64 {
+    length(v3(p.x - f64::from(p.x as f32), p.y - f64::from(p.y as f32), p.z - f64::from(p.z as f32)))
+}
+
 /// Marches the probe grid in f64 and measures f32 against it at each hit.
 pub fn probe(
     scene: &Scene,
@@ -98,12 +103,8 @@ pub fn probe(
     let view = View::<f64>::new(scene, frame, scene_bound)?;
     let narrow = View::<f32>::new(scene, frame, scene_bound)?;
     let (on, on32) = (view.on(wide), narrow.on(evaluator));
-    let origin = frame.camera_origin();
-    let origin_rounding = length(v3(
-        origin[0] - f64::from(origin[0] as f32),
-        origin[1] - f64::from(origin[1] as f32),
-        origin[2] - f64::from(origin[2] as f32),
-    ));
+    let [ox, oy, oz] = frame.camera_origin();
+    let origin_rounding = f32_rounding(v3(ox, oy, oz));
     let (w, h) = (frame.width() as f64, frame.height() as f64);
     let mut figures = Vec::new();
     for j in 0..PROBE.1 {
@@ -113,9 +114,7 @@ pub fn probe(
             let Some((p, t, eps, tap)) = view.probe_hit(&on, px, py) else { continue };
             let footprint = view.footprint() * t;
             let narrow_p = v3(p.x as f32, p.y as f32, p.z as f32);
-            let rounding =
-                length(v3(p.x - f64::from(narrow_p.x), p.y - f64::from(narrow_p.y), p.z - f64::from(narrow_p.z)));
-            let position = (rounding + origin_rounding) / footprint;
+            let position = (f32_rounding(p) + origin_rounding) / footprint;
             let d64 = on.distance(p);
             let d32 = f64::from(on32.distance(narrow_p));
             let distance = (d32 - d64).abs() / eps;

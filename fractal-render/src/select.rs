@@ -94,6 +94,8 @@ pub struct AutoRenderer {
     current: Box<dyn Renderer>,
     remaining: Vec<Backend>,
     notes: Vec<String>,
+    /// Whether a frame drawn on the CPU for its precision was noted already.
+    wide_noted: bool,
 }
 
 impl AutoRenderer {
@@ -103,7 +105,7 @@ impl AutoRenderer {
         let mut failures = Vec::new();
         let current = next_renderer(&mut remaining, options, &mut notes, &mut failures)
             .ok_or(RenderError::AllBackendsFailed(failures))?;
-        Ok(AutoRenderer { options: *options, current, remaining, notes })
+        Ok(AutoRenderer { options: *options, current, remaining, notes, wide_noted: false })
     }
 
     /// The backends not yet tried, in the order they would be.
@@ -137,11 +139,13 @@ fn next_renderer(
 
 impl AutoRenderer {
     /// Whether `job` asks for a precision the current backend's kernels lack: such a frame is drawn on the CPU, and
-    /// the frames after it go back to the current backend (the note says so).
+    /// the frames after it go back to the current backend (the first such frame's note says so).
     fn wider_than_current(&mut self, job: &RenderJob) -> bool {
         let backend = self.current.device().backend;
         let wider = job.precision != Precision::F32 && backend != Backend::Cpu;
-        if wider {
+        // Said once, not for every frame of a sequence.
+        if wider && !self.wide_noted {
+            self.wide_noted = true;
             self.notes.push(format!(
                 "a frame in {} drawn on the CPU: the {backend} kernels compute in f32 only",
                 job.precision

@@ -15,6 +15,7 @@ pub mod accuracy;
 pub mod bench;
 pub mod cli;
 pub mod export;
+pub mod frame_precision;
 pub mod mesh;
 pub mod output;
 pub mod package;

@@ -8,9 +8,9 @@ use fractal_render::image::Image;
 
 use crate::cli::args::{GalleryArgs, RenderOptions};
 use crate::cli::error::CliError;
-use crate::cli::precision::FramePrecision;
 use crate::cli::render::{open_renderer, render_frame};
 use crate::cli::scene::{LoadedScene, SceneLibrary};
+use crate::frame_precision::FramePrecision;
 use crate::output::contact_sheet;
 use crate::output::png::{prepare_output, write_png};
 
@@ -28,7 +28,7 @@ pub fn gallery(args: &GalleryArgs, library: &SceneLibrary) -> Result<(), CliErro
         loaded.set_samples(args.samples)?;
         let params = ParamValues::defaults(&loaded.scene);
         let start = Instant::now();
-        let mut precision = FramePrecision::new(args.device.precision);
+        let mut precision = FramePrecision::new(args.device.precision, format!("fractal: {name}: "));
         let image = render_frame(renderer.as_mut(), &loaded, &params, (args.time, args.size), &mut precision)?;
         let ms = start.elapsed().as_secs_f64() * 1e3;
         let path = args.output.join(format!("{name}.png"));

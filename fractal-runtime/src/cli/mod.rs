@@ -13,7 +13,6 @@ mod export;
 mod gallery;
 mod list;
 mod mesh;
-mod precision;
 mod render;
 pub mod scene;
 mod view;

@@ -16,8 +16,8 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use crate::cli::args::{RenderArgs, RenderOptions};
 use crate::cli::error::CliError;
-use crate::cli::precision::FramePrecision;
 use crate::cli::scene::{LoadedScene, SceneLibrary};
+use crate::frame_precision::FramePrecision;
 use crate::output::aov::write_aov;
 use crate::output::png::{prepare_output, write_png};
 use crate::output::sequence::{plan, FramePattern, Shard};
@@ -154,7 +154,7 @@ fn trace_frame(
     let sources = KernelSources::compiled(&tracing)
         .with_cpu(loaded.evaluator(), &loaded.scene)
         .with_cpu_wide(loaded.evaluator_wide());
-    let job = RenderJob::new(sources, &frame).with_precision(precision.of(loaded, &frame)?);
+    let job = RenderJob::new(sources, &frame).with_precision(loaded.precision_of(precision, &frame)?);
     let traced = renderer.trace(&job);
     with_notes(renderer, traced)
 }
@@ -175,7 +175,7 @@ fn progressive(
     let sources = KernelSources::compiled(&tracing)
         .with_cpu(loaded.evaluator(), &loaded.scene)
         .with_cpu_wide(loaded.evaluator_wide());
-    let job = RenderJob::new(sources, &frame).with_precision(precision.of(loaded, &frame)?);
+    let job = RenderJob::new(sources, &frame).with_precision(loaded.precision_of(precision, &frame)?);
     let mut passes = Progressive::new(&loaded.scene, &frame);
     let drawn = passes.draw_for(renderer, &job, seconds);
     with_notes(renderer, drawn)?;
@@ -210,7 +210,7 @@ pub(super) fn render_frame(
     precision: &mut FramePrecision,
 ) -> Result<Image, CliError> {
     let frame = frame_at(loaded, params, time, size)?;
-    let job = RenderJob::new(loaded.sources(), &frame).with_precision(precision.of(loaded, &frame)?);
+    let job = RenderJob::new(loaded.sources(), &frame).with_precision(loaded.precision_of(precision, &frame)?);
     let image = renderer.render(&job);
     with_notes(renderer, image)
 }
@@ -226,7 +226,8 @@ pub fn render(args: &RenderArgs, library: &SceneLibrary) -> Result<(), CliError>
         Output::Image(path) => {
             prepare_output(&path)?;
             let mut renderer = open_renderer(&args.render)?;
-            let mut precision = FramePrecision::new(args.render.device.precision);
+            let mut precision =
+                FramePrecision::new(args.render.device.precision, format!("fractal: {}: ", loaded.name));
             let start = Instant::now();
             if let Some(seconds) = args.progressive {
                 let at = (args.time, size);
@@ -334,7 +335,7 @@ fn render_sequence(
     let batch_log = !std::io::stderr().is_terminal();
     let bar = progress_bar(plan.todo.len() as u64);
     let started = Instant::now();
-    let mut precision = FramePrecision::new(args.render.device.precision);
+    let mut precision = FramePrecision::new(args.render.device.precision, format!("fractal: {}: ", loaded.name));
     for (done, &f) in plan.todo.iter().enumerate() {
         let start = Instant::now();
         let at = (f as f64 / args.fps, args.render.size);
@@ -378,7 +379,7 @@ fn render_video(args: &RenderArgs, loaded: &LoadedScene, params: &ParamValues, p
     let mut renderer = open_renderer(&args.render)?;
     let bar = progress_bar(range.len());
     let started = Instant::now();
-    let mut precision = FramePrecision::new(args.render.device.precision);
+    let mut precision = FramePrecision::new(args.render.device.precision, format!("fractal: {}: ", loaded.name));
     for f in range.iter() {
         let at = (f as f64 / args.fps, args.render.size);
         let image = render_frame(renderer.as_mut(), loaded, params, at, &mut precision)?;

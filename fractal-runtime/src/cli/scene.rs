@@ -13,11 +13,13 @@ use fractal_dsl::eval::interp::Interpreter;
 use fractal_dsl::eval::Evaluator;
 use fractal_dsl::Scene;
 use fractal_render::error::{FrameError, RenderError};
-use fractal_render::frame::ParamValues;
+use fractal_render::frame::{Frame, ParamValues};
+use fractal_render::precision::Precision;
 use fractal_render::renderer::KernelSources;
 
 use crate::cli::error::CliError;
 use crate::export::{export, export_compiled, ExportError, Exported, Target};
+use crate::frame_precision::FramePrecision;
 
 /// The built-in scenes the program offers.
 #[derive(Clone, Copy)]
@@ -147,6 +149,11 @@ impl<'a> LoadedScene<'a> {
             Forms::BuiltIn { native, .. } => native,
             Forms::File { interpreter, .. } => &**interpreter,
         }
+    }
+
+    /// The precision `precision` gives `frame` of this scene (said when it changes).
+    pub fn precision_of(&self, precision: &mut FramePrecision, frame: &Frame) -> Result<Precision, RenderError> {
+        precision.of(&self.scene, frame, self.evaluator(), self.evaluator_wide())
     }
 
     /// The render kernel for another engine.

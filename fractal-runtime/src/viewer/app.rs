@@ -24,6 +24,8 @@ use winit::window::{Window, WindowId};
 mod input;
 mod passes;
 
+use crate::frame_precision::FramePrecision;
+
 use super::camera_control::{FlyCamera, SPRINT_FACTOR};
 use super::controls::{Move, HELP};
 use super::effects::{describe, describe_quality, EffectOverrides};
@@ -182,8 +184,8 @@ struct App {
     still: Accumulator,
     /// Input arrived since the last frame: a resting viewer draws the next frame now.
     woken: bool,
-    /// The precision of the last frame, once said.
-    precision: Option<Precision>,
+    /// Each frame's precision, and the last one said.
+    precision: FramePrecision,
 }
 
 impl App {
@@ -237,7 +239,7 @@ impl App {
             cursor: (0.0, 0.0),
             still: Accumulator::new(options.accumulate),
             woken: false,
-            precision: None,
+            precision: FramePrecision::new(options.precision, ""),
             live,
             options,
         })
@@ -303,7 +305,7 @@ impl App {
         let (params, selected) = self.params.rows();
         let mut status = vec![
             self.live.name.clone(),
-            match self.precision {
+            match self.precision.said() {
                 Some(Precision::F64) => format!(
                     "cpu in f64 (the view asks for it), {timing}, {}x{}",
                     self.render_size.0, self.render_size.1

@@ -4,7 +4,6 @@
 //! renderer, and shown the same way.
 
 use fractal_render::backend::cpu::CpuRenderer;
-use fractal_render::choose_precision::decide;
 use fractal_render::frame::Frame;
 use fractal_render::image::Image;
 use fractal_render::precision::Precision;
@@ -78,14 +77,8 @@ impl App {
     /// f32 with a report where the view cannot be probed.
     pub(super) fn frame_precision(&mut self, frame: &Frame) -> Precision {
         let live = &self.live;
-        match decide(self.options.precision, &live.scene, frame, live.evaluator(), live.evaluator_wide()) {
-            Ok(chosen) => {
-                if self.precision != Some(chosen.precision) {
-                    eprintln!("precision {chosen}");
-                    self.precision = Some(chosen.precision);
-                }
-                chosen.precision
-            }
+        match self.precision.of(&live.scene, frame, live.evaluator(), live.evaluator_wide()) {
+            Ok(precision) => precision,
             Err(e) => {
                 self.report(format!("cannot choose this frame's precision, drawing it in f32: {e}"));
                 Precision::F32
