@@ -3,6 +3,7 @@
 
 use std::sync::OnceLock;
 
+use crate::back::{opencl, wgsl, Entry, Scalar};
 use crate::eval::{Env, Evaluator, PacketEvaluator, Sample};
 use crate::ir::Scene;
 use crate::number::lanes::F32x8;
@@ -63,6 +64,7 @@ impl CompiledReal for f64 {
 pub struct CompiledScene {
     source: &'static str,
     opencl: &'static str,
+    opencl_f64: &'static str,
     wgsl: &'static str,
     native: NativeFns,
     build: fn() -> Scene,
@@ -76,17 +78,21 @@ impl CompiledScene {
     #[doc(hidden)]
     pub const fn new(
         source: &'static str,
-        opencl: &'static str,
+        (opencl, opencl_f64): (&'static str, &'static str),
         wgsl: &'static str,
         native: NativeFns,
         build: fn() -> Scene,
         defaults: DefaultParams,
     ) -> Self {
-        CompiledScene { source, opencl, wgsl, native, build, defaults, scene: OnceLock::new() }
+        CompiledScene { source, opencl, opencl_f64, wgsl, native, build, defaults, scene: OnceLock::new() }
     }
     /// The complete OpenCL C program (kernel `render`).
     pub fn opencl(&self) -> &'static str {
         self.opencl
+    }
+    /// The same OpenCL C program computing in f64, for devices with `cl_khr_fp64` ([`Kernels::opencl_f64`]).
+    pub fn opencl_f64(&self) -> &'static str {
+        self.opencl_f64
     }
     /// The complete WGSL module (entry point `render`).
     pub fn wgsl(&self) -> &'static str {
@@ -201,6 +207,8 @@ pub struct Kernels {
     pub source: String,
     /// OpenCL C program with kernel `render`.
     pub opencl: String,
+    /// The same OpenCL C program computing in f64 ([`crate::back::Scalar::F64`]), for devices with `cl_khr_fp64`.
+    pub opencl_f64: String,
     /// WGSL module with entry point `render`.
     pub wgsl: String,
     /// The lowered program (for the probe kernels and the native evaluator's source).
@@ -212,21 +220,24 @@ impl Kernels {
     /// that also writes each pixel's depth, normal and march, for measuring a GPU's render and for depth images.
     pub fn tracing(&self) -> Kernels {
         Kernels {
-            opencl: crate::back::opencl::write(&self.program, crate::back::Entry::Trace),
-            wgsl: crate::back::wgsl::write(&self.program, crate::back::Entry::Trace),
+            opencl: opencl::write(&self.program, Entry::Trace),
+            opencl_f64: opencl::write_in(&self.program, Entry::Trace, Scalar::F64),
+            wgsl: wgsl::write(&self.program, Entry::Trace),
             ..self.clone()
         }
     }
 }
 
-/// Compiles a scene: validates it, lowers it once and spells the render kernels in both GPU languages.
+/// Compiles a scene: validates it, lowers it once and spells the render kernels in both GPU languages (OpenCL C also
+/// in f64).
 pub fn compile(scene: &Scene) -> Result<Kernels, crate::validate::InvalidScene> {
     crate::validate::checked(scene)?;
     let program = crate::lower::lower(scene);
     Ok(Kernels {
         source: crate::print::to_source(scene),
-        opencl: crate::back::opencl::write(&program, crate::back::Entry::Render),
-        wgsl: crate::back::wgsl::write(&program, crate::back::Entry::Render),
+        opencl: opencl::write(&program, Entry::Render),
+        opencl_f64: opencl::write_in(&program, Entry::Render, Scalar::F64),
+        wgsl: wgsl::write(&program, Entry::Render),
         program,
     })
 }

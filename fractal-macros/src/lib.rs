@@ -111,7 +111,7 @@ fn expand(scene: &fractal_dsl::Scene, span: Span) -> TokenStream2 {
     let sample = syn::Ident::new(fractal_dsl::back::rust::SAMPLE_FN, Span::call_site());
     let ir = fractal_dsl::back::rust::ir_tokens::scene(scene, &krate);
     let (defaults_f32, defaults_f64) = fractal_dsl::back::rust::ir_tokens::default_params(scene);
-    let (source, opencl, wgsl) = (kernels.source, kernels.opencl, kernels.wgsl);
+    let (source, opencl, opencl_f64, wgsl) = (kernels.source, kernels.opencl, kernels.opencl_f64, kernels.wgsl);
     let lanes = quote! { #krate::number::lanes::F32x8 };
     let point = quote! { #krate::number::math::V3<#lanes> };
     let env = quote! { &#krate::eval::Env<#lanes> };
@@ -175,7 +175,7 @@ fn expand(scene: &fractal_dsl::Scene, span: Span) -> TokenStream2 {
             #krate::compiled::DefaultParams { f32: #defaults_f32, f64: #defaults_f64 };
         #krate::CompiledScene::new(
             #source,
-            #opencl,
+            (#opencl, #opencl_f64),
             #wgsl,
             #krate::NativeFns {
                 distance_f32: #distance::<f32>,

@@ -75,8 +75,11 @@ pub enum RenderError {
     /// The scene breaks a rule of the language (only scenes made with the builder can reach a renderer so).
     #[error(transparent)]
     InvalidScene(#[from] fractal_dsl::validate::InvalidScene),
-    /// The backend's kernels do not compute in the job's precision.
-    #[error("the {backend} kernels compute in f32 only; a frame in {precision} renders on the CPU (--backend cpu)")]
+    /// The backend does not draw in the job's precision ([`crate::renderer::Renderer::draws_in`]).
+    #[error(
+        "the {backend} device does not compute in {precision} (wgpu kernels are f32 only; OpenCL needs cl_khr_fp64); \
+         the frame renders on the CPU with --backend cpu or auto"
+    )]
     Precision { backend: Backend, precision: crate::precision::Precision },
     /// Every backend `auto` tried failed; one line per backend.
     #[error("no backend could render:\n{}", .0.join("\n"))]

@@ -10,7 +10,7 @@
 //! the kernels' f32 can resolve.
 
 use fractal_dsl::analyse::ReferenceSpec;
-use fractal_dsl::back::FrameLayout;
+use fractal_dsl::back::{FrameLayout, Scalar};
 use fractal_dsl::{LightKind, ParamDecl, Scene};
 use glam::DVec3;
 
@@ -290,6 +290,21 @@ impl Frame {
     /// The slots as the bytes of the uniform buffer.
     pub fn as_bytes(&self) -> &[u8] {
         bytemuck::cast_slice(&self.slots)
+    }
+    /// The slots as an f64 kernel reads them ([`fractal_dsl::back::Scalar::F64`]): the same values, the camera
+    /// position to the precision [`Frame::camera_origin`] keeps.
+    pub fn wide_slots(&self) -> Vec<[f64; 4]> {
+        let mut slots: Vec<[f64; 4]> = self.slots.iter().map(|s| s.map(f64::from)).collect();
+        let origin = self.camera_origin();
+        slots[0][..3].copy_from_slice(&origin);
+        slots
+    }
+    /// The uniform buffer's bytes for a kernel computing in `scalar`.
+    pub fn bytes_in(&self, scalar: Scalar) -> Vec<u8> {
+        match scalar {
+            Scalar::F32 => self.as_bytes().to_vec(),
+            Scalar::F64 => bytemuck::cast_slice(&self.wide_slots()).to_vec(),
+        }
     }
     /// The time, as the kernels read it.
     pub fn time(&self) -> f32 {

@@ -43,13 +43,20 @@ pub struct KernelSources<'a> {
     pub wgsl: Option<&'a str>,
     /// OpenCL C program with kernel `render`.
     pub opencl: Option<&'a str>,
+    /// The same OpenCL C program in f64 ([`fractal_dsl::back::Scalar::F64`]), for a job in f64.
+    pub opencl_f64: Option<&'a str>,
     pub cpu: Option<CpuKernel<'a>>,
 }
 
 impl<'a> KernelSources<'a> {
     /// The WGSL and OpenCL C render kernels the scene compiler wrote ([`fractal_dsl::compile`]).
     pub fn compiled(kernels: &'a fractal_dsl::Kernels) -> Self {
-        KernelSources { wgsl: Some(&kernels.wgsl), opencl: Some(&kernels.opencl), cpu: None }
+        KernelSources {
+            wgsl: Some(&kernels.wgsl),
+            opencl: Some(&kernels.opencl),
+            opencl_f64: Some(&kernels.opencl_f64),
+            cpu: None,
+        }
     }
     pub fn with_wgsl(mut self, source: &'a str) -> Self {
         self.wgsl = Some(source);
@@ -57,6 +64,11 @@ impl<'a> KernelSources<'a> {
     }
     pub fn with_opencl(mut self, source: &'a str) -> Self {
         self.opencl = Some(source);
+        self
+    }
+    /// The OpenCL C program in f64 ([`KernelSources::opencl_f64`]).
+    pub fn with_opencl_f64(mut self, source: &'a str) -> Self {
+        self.opencl_f64 = Some(source);
         self
     }
     pub fn with_cpu(mut self, evaluator: &'a dyn Evaluator<f32>, scene: &'a Scene) -> Self {
@@ -89,12 +101,9 @@ impl<'a> RenderJob<'a> {
         self.precision = precision;
         self
     }
-    /// Refuses a job in another precision than f32: what a backend whose kernels compute in f32 says.
-    pub fn only_f32(&self, backend: Backend) -> Result<(), RenderError> {
-        match self.precision {
-            Precision::F32 => Ok(()),
-            precision => Err(RenderError::Precision { backend, precision }),
-        }
+    /// What `backend` says of a job it does not draw in the job's precision ([`Renderer::draws_in`]).
+    pub fn refused(&self, backend: Backend) -> RenderError {
+        RenderError::Precision { backend, precision: self.precision }
     }
     pub fn width(&self) -> u32 {
         self.frame.width()
@@ -190,6 +199,12 @@ pub trait Renderer: Send {
     fn trace(&mut self, job: &RenderJob) -> Result<Traced, RenderError>;
     /// The device this renderer draws on.
     fn device(&self) -> DeviceInfo;
+    /// Whether this renderer draws `job` in the job's precision: f32 everywhere; f64 where the backend's device
+    /// computes in it and the job carries the kernel for it. A job it does not draw is refused
+    /// ([`RenderError::Precision`]), and the auto renderer draws it on the CPU.
+    fn draws_in(&self, job: &RenderJob) -> bool {
+        job.precision == Precision::F32
+    }
     /// Messages about backend changes since the last call (a fallback chain reports which backend failed and why).
     fn take_notes(&mut self) -> Vec<String> {
         Vec::new()
@@ -205,6 +220,9 @@ impl<R: Renderer + ?Sized> Renderer for Box<R> {
     }
     fn device(&self) -> DeviceInfo {
         (**self).device()
+    }
+    fn draws_in(&self, job: &RenderJob) -> bool {
+        (**self).draws_in(job)
     }
     fn take_notes(&mut self) -> Vec<String> {
         (**self).take_notes()

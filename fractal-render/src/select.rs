@@ -10,7 +10,6 @@ use crate::backend::wgpu::WgpuRenderer;
 use crate::device::{Backend, DeviceInfo};
 use crate::error::RenderError;
 use crate::image::Image;
-use crate::precision::Precision;
 use crate::renderer::{RenderJob, Renderer, Traced};
 
 /// The `--backend` choice.
@@ -138,17 +137,18 @@ fn next_renderer(
 }
 
 impl AutoRenderer {
-    /// Whether `job` asks for a precision the current backend's kernels lack: such a frame is drawn on the CPU, and
-    /// the frames after it go back to the current backend (the first such frame's note says so).
+    /// Whether `job` asks for a precision the current backend does not draw in ([`Renderer::draws_in`]): such a
+    /// frame is drawn on the CPU, and the frames after it go back to the current backend (the first such frame's
+    /// note says so).
     fn wider_than_current(&mut self, job: &RenderJob) -> bool {
-        let backend = self.current.device().backend;
-        let wider = job.precision != Precision::F32 && backend != Backend::Cpu;
+        let wider = !self.current.draws_in(job);
         // Said once, not for every frame of a sequence.
         if wider && !self.wide_noted {
             self.wide_noted = true;
+            let device = self.current.device();
             self.notes.push(format!(
-                "a frame in {} drawn on the CPU: the {backend} kernels compute in f32 only",
-                job.precision
+                "a frame in {} drawn on the CPU: {} ({}) does not compute in it",
+                job.precision, device.name, device.backend
             ));
         }
         wider
@@ -195,6 +195,10 @@ impl Renderer for AutoRenderer {
 
     fn device(&self) -> DeviceInfo {
         self.current.device()
+    }
+
+    fn draws_in(&self, job: &RenderJob) -> bool {
+        self.current.draws_in(job) || job.kernels.cpu.is_some_and(|cpu| cpu.wide.is_some())
     }
 
     fn take_notes(&mut self) -> Vec<String> {

@@ -93,8 +93,8 @@ pub struct BenchSpec<'a> {
     pub length: BenchLength,
     pub backend: BackendChoice,
     pub options: RendererOptions,
-    /// The number type of each frame: given, or chosen per frame by the view. The CPU draws f64 frames; the GPU
-    /// backends' kernels are f32 only, and the report says how many frames wanted more.
+    /// The number type of each frame: given, or chosen per frame by the view. The CPU and OpenCL with `cl_khr_fp64`
+    /// draw f64 frames; wgpu's kernels are f32 only, and the report says how many frames wanted more.
     pub precision: PrecisionChoice,
     /// Also run the hand-written baseline.
     pub baseline: bool,
@@ -187,11 +187,16 @@ fn open_timer(
 
 /// The true error of the timed march at `frame`: the same backend runs the scene's trace kernel, which keeps each
 /// pixel's depth, normal and steps beside the image.
-fn traced_error(spec: &BenchSpec, backend: Backend, frame: &Frame, truth: &Truth) -> Result<TrueError, RenderError> {
+fn traced_error(
+    spec: &BenchSpec,
+    (backend, precision): (Backend, Precision),
+    frame: &Frame,
+    truth: &Truth,
+) -> Result<TrueError, RenderError> {
     let mut renderer = fractal_render::select::open(backend, &spec.options)?;
     let tracing = fractal_dsl::compile(spec.scene)?.tracing();
     let sources = KernelSources { cpu: spec.kernels.cpu, ..KernelSources::compiled(&tracing) };
-    let traced = renderer.trace(&RenderJob::new(sources, frame))?;
+    let traced = renderer.trace(&RenderJob::new(sources, frame).with_precision(precision))?;
     Ok(measure(spec.scene, truth, Observed::Traced(&traced.pixels)))
 }
 
@@ -228,8 +233,8 @@ struct PrecisionTally {
 }
 
 impl PrecisionTally {
-    /// The precision `frame` is drawn in on `backend` (the one it asks for where the backend has it, else f32).
-    fn of(&mut self, spec: &BenchSpec, frame: &Frame, backend: Backend) -> Result<Precision, RenderError> {
+    /// The precision `frame` is drawn in (the one it asks for where the timer `computes_f64`, else f32).
+    fn of(&mut self, spec: &BenchSpec, frame: &Frame, computes_f64: bool) -> Result<Precision, RenderError> {
         let chosen = match spec.kernels.cpu {
             Some(cpu) => match cpu.wide {
                 Some(wide) => decide(spec.precision, spec.scene, frame, cpu.evaluator, wide)?,
@@ -237,7 +242,7 @@ impl PrecisionTally {
             },
             None => Chosen { precision: Precision::F32, probe: None, reason: "no CPU evaluator to probe".into() },
         };
-        let drawn = if backend == Backend::Cpu { chosen.precision } else { Precision::F32 };
+        let drawn = if computes_f64 { chosen.precision } else { Precision::F32 };
         self.wanted_more += usize::from(drawn != chosen.precision);
         *self.drawn.entry(drawn).or_default() += 1;
         self.first.get_or_insert_with(|| chosen.to_string());
@@ -251,7 +256,7 @@ impl PrecisionTally {
             format!("precision: {} (the first frame: {})", each.join(", "), self.first.as_deref().unwrap_or("-"));
         if self.wanted_more > 0 {
             line += &format!(
-                "; {} frames wanted f64, which the {backend} kernels lack: timed in f32 (--backend cpu draws them in f64)",
+                "; {} frames wanted f64, which this {backend} device lacks: timed in f32 (--backend cpu draws them in f64)",
                 self.wanted_more
             );
         }
@@ -279,7 +284,7 @@ pub fn run(spec: &BenchSpec, progress: &mut dyn FnMut(u64, f64)) -> Result<Bench
         baseline_first_ms.map(|first_frame_ms| Timings { kernel_ms: Vec::new(), frame_ms: Vec::new(), first_frame_ms });
     let started = Instant::now();
     let mut index = 0u64;
-    let backend = timer.device().backend;
+    let (backend, wide) = (timer.device().backend, timer.computes_f64());
     let mut precisions = PrecisionTally::default();
     loop {
         let done = match spec.length {
@@ -290,7 +295,7 @@ pub fn run(spec: &BenchSpec, progress: &mut dyn FnMut(u64, f64)) -> Result<Bench
             break;
         }
         let frame = frame_at(spec, motion, index, size)?;
-        let precision = precisions.of(spec, &frame, backend)?;
+        let precision = precisions.of(spec, &frame, wide)?;
         let timed =
             timer.run(&timer::Work::Generated(RenderJob::new(spec.kernels, &frame).with_precision(precision)))?;
         generated.kernel_ms.push(timed.kernel_ms);
@@ -308,13 +313,13 @@ pub fn run(spec: &BenchSpec, progress: &mut dyn FnMut(u64, f64)) -> Result<Bench
     notes.push(precisions.describe(backend));
     let error_size = error_size(spec.width, spec.height);
     let small = frame_at(spec, motion, 0, error_size)?;
-    let precision = precisions.of(spec, &small, backend)?;
+    let precision = precisions.of(spec, &small, wide)?;
     let image =
         timer.run(&timer::Work::Generated(RenderJob::new(spec.kernels, &small).with_precision(precision)))?.image;
     let reference = precision::reference(spec.scene, &small)?;
     let accuracy = precision::compare_scene(spec.scene, &image, &reference);
     let truth = Truth::compute(spec.scene, &small, TruthSettings { step_footprints: TRUTH_STEP, iteration_factor: 1 })?;
-    let true_error = match traced_error(spec, timer.device().backend, &small, &truth) {
+    let true_error = match traced_error(spec, (backend, precision), &small, &truth) {
         Ok(error) => error,
         Err(e) => {
             notes.push(format!("no trace kernel ran ({e}): the true error is what the image holds"));

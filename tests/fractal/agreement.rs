@@ -1,8 +1,8 @@
 //! Agreement: one meaning, many evaluators. The same points of every vocabulary item (and of the evaluation hard
 //! cases) go through the interpreter in f32, a point at a time and in packets of eight, the native evaluator in f64,
 //! f32 and packets of eight (`distance_slice`, `sample_slice`: the f32 tolerances), the WGSL probe kernel (wgpu;
-//! lavapipe without a GPU) and the OpenCL probe kernel (pocl without a GPU; precise, and fast-math as a separate,
-//! looser comparison), and each must agree with the f64 interpreter within the tolerances of `agreement/tolerance.rs`.
+//! lavapipe without a GPU) and the OpenCL probe kernel (pocl without a GPU; precise, fast-math as a separate, looser
+//! comparison, and in f64 where the device has `cl_khr_fp64`, to the f32 its outputs hold), and each must agree with the f64 interpreter within the tolerances of `agreement/tolerance.rs`.
 //!
 //! The suite is written once against [`harness::Subject`] and instantiated per evaluator (Fidget's
 //! `float_slice_tests!` pattern). Each test prints its table of largest differences; the test finishing last prints
@@ -16,6 +16,8 @@ mod tolerance;
 use fractal_render::device::backends_required;
 use std::sync::Mutex;
 
+#[cfg(feature = "opencl")]
+use fractal::dsl::back::Scalar;
 use fractal::dsl::back::{self, Entry};
 use fractal::dsl::eval::interp::Interpreter;
 use fractal::dsl::lower::lower;
@@ -183,35 +185,46 @@ impl Subject for WgslProbe {
     }
 }
 
+/// The OpenCL probe kernel in f32 (precise or fast math) or, precise, in f64.
 #[cfg(feature = "opencl")]
-struct OpenClProbe(fractal::render::OpenClRenderer);
+struct OpenClProbe(fractal::render::OpenClRenderer, Scalar);
 #[cfg(feature = "opencl")]
 impl Subject for OpenClProbe {
     fn name(&self) -> &'static str {
-        if self.0.precise() {
-            "opencl"
-        } else {
-            "opencl fast"
+        match (self.1, self.0.precise()) {
+            (Scalar::F64, _) => "opencl f64",
+            (Scalar::F32, true) => "opencl",
+            (Scalar::F32, false) => "opencl fast",
         }
     }
     fn class(&self) -> Class {
-        if self.0.precise() {
-            Class::Gpu
-        } else {
-            Class::FastMath
+        match (self.1, self.0.precise()) {
+            (Scalar::F64, _) => Class::GpuF64,
+            (Scalar::F32, true) => Class::Gpu,
+            (Scalar::F32, false) => Class::FastMath,
         }
     }
     fn answers(&mut self, row: &Row, points: &[V3<f32>]) -> Result<Vec<Answer>, String> {
-        let source = back::opencl::write(&lower(row.scene()), Entry::Probe);
+        let source = back::opencl::write_in(&lower(row.scene()), Entry::Probe, self.1);
         let frame = probe_frame(row)?;
-        self.0.probe(&source, &frame, &probe_points(points)).map(widen).map_err(|e| e.to_string())
+        self.0.probe((&source, self.1), &frame, &probe_points(points)).map(widen).map_err(|e| e.to_string())
+    }
+}
+
+/// The precise OpenCL renderer, where its device computes in f64.
+#[cfg(feature = "opencl")]
+fn opencl_f64() -> Result<Box<dyn Subject>, (&'static str, String)> {
+    match fractal::render::OpenClRenderer::new(true) {
+        Ok(r) if r.has_fp64() => Ok(Box::new(OpenClProbe(r, Scalar::F64))),
+        Ok(r) => Err(("opencl f64", format!("{} has no cl_khr_fp64", fractal::render::Renderer::device(&r)))),
+        Err(e) => Err(("opencl f64", e.to_string())),
     }
 }
 
 // ---- the suite, instantiated per evaluator --------------------------------------------------------------------------
 
 /// How many columns the summary waits for: one per test below.
-const SUBJECTS: usize = if cfg!(feature = "opencl") { 8 } else { 6 };
+const SUBJECTS: usize = if cfg!(feature = "opencl") { 9 } else { 6 };
 
 static COLUMNS: Mutex<Vec<Column>> = Mutex::new(Vec::new());
 
@@ -261,12 +274,14 @@ agreement_tests! {
         .map_err(|e| ("wgsl", e.to_string()));
     #[cfg(feature = "opencl")]
     opencl_probe_agrees_with_the_f64_interpreter => fractal::render::OpenClRenderer::new(true)
-        .map(|r| Box::new(OpenClProbe(r)) as Box<dyn Subject>)
+        .map(|r| Box::new(OpenClProbe(r, Scalar::F32)) as Box<dyn Subject>)
         .map_err(|e| ("opencl", e.to_string()));
     #[cfg(feature = "opencl")]
     opencl_fast_math_probe_agrees_within_its_looser_tolerance => fractal::render::OpenClRenderer::new(false)
-        .map(|r| Box::new(OpenClProbe(r)) as Box<dyn Subject>)
+        .map(|r| Box::new(OpenClProbe(r, Scalar::F32)) as Box<dyn Subject>)
         .map_err(|e| ("opencl fast", e.to_string()));
+    #[cfg(feature = "opencl")]
+    opencl_f64_probe_agrees_with_the_f64_interpreter_to_the_f32_it_writes => opencl_f64();
 }
 
 /// The reference's two spellings of the power-8 Mandelbulb, the trig-free polynomial and the trigonometric form

@@ -6,14 +6,16 @@
 //! its pixels hit — with no NaN or Inf anywhere in its CPU traces (colour before packing, depth, normal), which packing
 //! to RGBA8 would hide. The GPU backends' trace kernels (the render kernel that also keeps each pixel's depth, normal
 //! and steps, which the accuracy report reads) agree with the CPU's traces on a set of scenes chosen to cover the
-//! render algorithm's paths.
+//! render algorithm's paths. Each frame is drawn in the precision its view asks for: the dive's last key in f64, which
+//! OpenCL draws with its f64 kernel where the device has `cl_khr_fp64` (against the CPU's f64 render) and wgpu leaves
+//! to the CPU.
 //!
 //! Tolerance: a pixel "agrees" when every channel is within 8/255 of the CPU image. The kernels run the same algorithm
 //! in f32, but GPU built-ins (sqrt, pow, normalize, sin) may differ by a few ulps; near a silhouette or a shadow edge
 //! that can flip a hit or a shadow sample, which changes the pixel completely — such flips are what the 1 % allows.
 
 use fractal::render::choose_precision::decide;
-use fractal::render::precision::{Precision, PrecisionChoice};
+use fractal::render::precision::PrecisionChoice;
 use fractal::render::{CpuRenderer, Frame, Image, KernelSources, RenderJob, Renderer};
 use fractal::scenes;
 use fractal_render::device::backends_required;
@@ -99,23 +101,26 @@ fn check_frame(
     let scene = compiled.scene();
     let frame = frame_at(scene, time);
     let native = compiled.native();
-    // A frame whose view asks for f64 is drawn by the CPU whatever the backend (the kernels are f32 only): in f32 both
-    // draw rounding noise there, which need not agree (`tests/fractal/precision.rs` judges those frames).
+    // Each frame in the precision its view asks for. One in f64 that the backend does not compute in is drawn by the
+    // CPU (wgpu's kernels are f32 only): in f32 both draw rounding noise there, which need not agree
+    // (`tests/fractal/precision.rs` judges those frames).
     let chosen = decide(PrecisionChoice::Auto, scene, &frame, &native, &native).unwrap();
-    if chosen.precision != Precision::F32 {
+    let sources = kernels(name);
+    let job = RenderJob::new(sources, &frame).with_precision(chosen.precision);
+    if !renderer.draws_in(&job) {
         eprintln!("{name:>22} {label:>14} t = {time:>4}: not drawn by the kernels, {chosen}");
         return;
     }
+    let cpu_sources = KernelSources::default().with_cpu(&native, scene).with_cpu_wide(&native);
     let reference = cpu
-        .render(&RenderJob::new(KernelSources::default().with_cpu(&native, scene), &frame))
+        .render(&RenderJob::new(cpu_sources, &frame).with_precision(chosen.precision))
         .expect("the CPU renderer renders every built-in scene");
-    let image = renderer
-        .render(&RenderJob::new(kernels(name), &frame))
-        .unwrap_or_else(|e| panic!("{label} failed on {name}: {e}"));
+    let image = renderer.render(&job).unwrap_or_else(|e| panic!("{label} failed on {name}: {e}"));
     let c = compare(&reference, &image, background(scene));
     eprintln!(
-        "{name:>22} {label:>14} t = {time:>4}: hit mask {:.2} %, colour within {CHANNEL_TOLERANCE}/255 {:.2} % ({} \
-             hit pixels)",
+        "{name:>22} {label:>14} t = {time:>4} in {}: hit mask {:.2} %, colour within {CHANNEL_TOLERANCE}/255 {:.2} % \
+         ({} hit pixels)",
+        chosen.precision,
         100.0 * c.mask,
         100.0 * c.colour,
         c.hits
@@ -170,7 +175,11 @@ fn opencl_draws_what_the_cpu_draws() {
     for precise in [true, false] {
         let label = if precise { "opencl precise" } else { "opencl fast" };
         match fractal::render::OpenClRenderer::new(precise) {
-            Ok(r) => check_backend(label, r, |name| KernelSources::default().with_opencl(compiled(name).opencl())),
+            Ok(r) => check_backend(label, r, |name| {
+                KernelSources::default()
+                    .with_opencl(compiled(name).opencl())
+                    .with_opencl_f64(compiled(name).opencl_f64())
+            }),
             Err(e) if !backends_required() => eprintln!("skipped: no OpenCL device ({e})"),
             Err(e) => panic!("OpenCL is required (FRACTAL_REQUIRE_GPU_BACKENDS=1) but unavailable: {e}"),
         }

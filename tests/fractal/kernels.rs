@@ -16,6 +16,7 @@ fn snapshot(language: &str, name: &str, text: &str) {
 fn every_built_in_scene_has_pinned_kernels() {
     for (name, scene) in scenes::ALL {
         snapshot("opencl", name, scene.opencl());
+        snapshot("opencl_f64", name, scene.opencl_f64());
         snapshot("wgsl", name, scene.wgsl());
         snapshot("rust", name, &rust::write(&lower(scene.scene()), "fractal_dsl"));
     }
@@ -135,6 +136,43 @@ fn effects_appear_only_when_enabled() {
         let with = compile(&parse_str(&format!("scene(sphere(1.0)){setting}")).unwrap()).unwrap();
         assert!(!plain.wgsl.contains(marker), "plain kernel has `{marker}`");
         assert!(with.wgsl.contains(marker), "kernel with {setting} lacks `{marker}`:\n{}", with.wgsl);
+    }
+}
+
+/// Whether `line` has a number with an `f` suffix (`0.5f`).
+fn has_f32_literal(line: &str) -> bool {
+    let b = line.as_bytes();
+    (1..b.len()).any(|i| {
+        b[i] == b'f'
+            && b[i - 1].is_ascii_digit()
+            && b.get(i + 1).is_none_or(|c| !c.is_ascii_alphanumeric() && *c != b'_')
+            && !line[..i]
+                .rsplit(|c: char| !c.is_ascii_alphanumeric() && c != '_' && c != '.')
+                .next()
+                .is_some_and(|w| w.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_'))
+    })
+}
+
+/// An f64 program computes in f64 throughout: it enables `cl_khr_fp64`, reads its frame in f64 and declares no f32
+/// value; only its f32 outputs (trace and probe results) and inputs (probe points) are converted at the boundary.
+#[test]
+fn opencl_f64_kernels_compute_in_f64_only() {
+    use fractal::dsl::back::Scalar;
+    for (name, scene) in scenes::ALL {
+        let program = lower(scene.scene());
+        for entry in [Entry::Render, Entry::Trace, Entry::Probe] {
+            let text = opencl::write_in(&program, entry, Scalar::F64);
+            assert!(text.contains("#pragma OPENCL EXTENSION cl_khr_fp64 : enable"), "{name} {entry:?}");
+            assert!(text.contains("    double4 origin;"), "{name} {entry:?}: the frame is not read in f64");
+            for f32_type in ["float ", "float2", "float3", "(float4)"] {
+                assert!(!text.contains(f32_type), "{name} {entry:?}: an f64 program has `{f32_type}`");
+            }
+            // The pixel packing (`col.x * 255.0f + 0.5f`, the same lines as the f32 program's) is the only place an
+            // f32 literal may stand.
+            let literal = text.lines().filter(|l| !l.contains("(uint)(col.")).find(|l| has_f32_literal(l));
+            assert_eq!(literal, None, "{name} {entry:?}: an f32 literal in an f64 program");
+        }
+        assert_eq!(scene.opencl_f64(), opencl::write_in(&program, Entry::Render, Scalar::F64), "{name}");
     }
 }
 

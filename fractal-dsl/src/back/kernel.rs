@@ -102,6 +102,15 @@ pub trait Dialect {
     }
     /// A module-scope constant.
     fn global_constant(&self, name: &str, ty: &str, value: &str) -> String;
+    /// `v`, a 4-vector of the kernel's number type, as the f32 4-vector an output buffer holds (the trace and probe
+    /// outputs are f32 whatever the kernel computes in).
+    fn to_f32x4(&self, v: &str) -> String {
+        v.to_string()
+    }
+    /// `v`, an f32 3-vector read from an input buffer (the probe's points), as the kernel's V3.
+    fn read_f32x3(&self, v: &str) -> String {
+        v.to_string()
+    }
 }
 
 /// What a language's compute kernels spell their own way ([`write()`]): resources, entry points and pixel output.
@@ -528,7 +537,7 @@ impl<'a, D: Dialect> Kernel<'a, D> {
             ];
             for (k, row) in rows.iter().enumerate() {
                 let at = if k == 0 { "pixel".to_string() } else { format!("pixel + {}", d.index_lit(k as u32)) };
-                self.line(l1, &format!("{TRACES}[{at}] = {};", d.construct(vec4, row)));
+                self.line(l1, &format!("{TRACES}[{at}] = {};", d.to_f32x4(&d.construct(vec4, row))));
             }
         }
         self.line(l1, &self.constant("col", self.vec3(), &spelling.value(vals.display)));
@@ -573,7 +582,7 @@ impl<'a, D: Dialect> Kernel<'a, D> {
             let one = d.index_lit(1);
             self.line(l2, &format!("{TRACES}[pixel + {one}].w = {};", v(vals.samples)));
             let colour = d.construct(d.vec4_type(), &format!("{}, {}", v(vals.colour), self.lit(0.0)));
-            self.line(l2, &format!("{TRACES}[pixel + {}] = {colour};", d.index_lit(2)));
+            self.line(l2, &format!("{TRACES}[pixel + {}] = {};", d.index_lit(2), d.to_f32x4(&colour)));
             self.line(l1, "}");
         }
         self.line(l1, &self.constant("col", self.vec3(), &spelling.value(vals.display)));
@@ -674,15 +683,15 @@ impl<'a, D: Dialect> Kernel<'a, D> {
         self.line(l1, &format!("if (i >= {count}) {{"));
         self.line(l2, "return;");
         self.line(l1, "}");
-        self.line(l1, &self.constant("p", self.vec3(), "points[i].xyz"));
+        self.line(l1, &self.constant("p", self.vec3(), &d.read_f32x3("points[i].xyz")));
         let sample_args =
             if p.reference.is_some() { format!("p, p - {}", d.frame_field("origin.xyz")) } else { "p".to_string() };
         self.line(l1, &self.constant("s", "Sample", &self.call("scene_sample", &sample_args, p.sample_reads_frame)));
         let (out, two, one, vec4) = (kernel.probe_output(), d.index_lit(2), d.index_lit(1), d.vec4_type());
         let lighting = d.construct(vec4, &format!("{}, s.ambient, s.diffuse, s.specular", self.de("p")));
-        self.line(l1, &format!("{out}[{two} * i] = {lighting};"));
+        self.line(l1, &format!("{out}[{two} * i] = {};", d.to_f32x4(&lighting)));
         let albedo = d.construct(vec4, "s.albedo, s.shininess");
-        self.line(l1, &format!("{out}[{two} * i + {one}] = {albedo};"));
+        self.line(l1, &format!("{out}[{two} * i + {one}] = {};", d.to_f32x4(&albedo)));
         self.out.push_str("}\n");
     }
 }

@@ -36,18 +36,49 @@ impl fmt::Display for Level {
 }
 
 /// Formats a constant as the shortest decimal that reads back as the same f32, with a decimal point or exponent so
-/// every language takes it as floating point. Kernels run in f32, so this is exact for them.
+/// every language takes it as floating point: the literals of an f32 kernel, exact for it.
 pub fn f32_literal(v: f64) -> String {
     let v = v as f32;
-    if v.is_nan() || v.is_infinite() {
-        // Validation rejects these; a clear marker beats a silently wrong kernel.
-        return "(0.0 /* non-finite constant */)".to_string();
-    }
-    let s = format!("{v:?}");
-    if s.contains('.') || s.contains('e') {
+    // Validation rejects non-finite constants; a clear marker beats a silently wrong kernel.
+    decimal(format!("{v:?}"), v.is_finite())
+}
+
+/// Formats a constant as the shortest decimal that reads back as the same f64, with a decimal point or exponent: the
+/// literals of an f64 kernel ([`Scalar::F64`]).
+pub fn f64_literal(v: f64) -> String {
+    decimal(format!("{v:?}"), v.is_finite())
+}
+
+/// A float's shortest decimal (Rust's `{:?}`) with a decimal point or exponent, so every language takes it as
+/// floating point.
+fn decimal(s: String, finite: bool) -> String {
+    if !finite {
+        "(0.0 /* non-finite constant */)".to_string()
+    } else if s.contains('.') || s.contains('e') {
         s
     } else {
         format!("{s}.0")
+    }
+}
+
+/// The number type a GPU kernel computes in. Every kernel has an f32 form; OpenCL also writes an f64 form for devices
+/// with `cl_khr_fp64`, drawn where the view needs more than f32 (the runtime's precision choice). An f64 kernel reads
+/// the same [`FrameLayout`] slots in f64: the host fills them from the same values, the camera position to the
+/// precision the host keeps it (an f32 frame holds it rounded to f32).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Scalar {
+    #[default]
+    F32,
+    F64,
+}
+
+impl Scalar {
+    /// The bytes of one frame slot (four numbers).
+    pub fn slot_bytes(self) -> usize {
+        match self {
+            Scalar::F32 => 16,
+            Scalar::F64 => 32,
+        }
     }
 }
 

@@ -64,6 +64,13 @@ impl Renderer for CpuRenderer {
         Ok(Traced { image, pixels })
     }
 
+    fn draws_in(&self, job: &RenderJob) -> bool {
+        match job.precision {
+            Precision::F32 => true,
+            Precision::F64 => job.kernels.cpu.is_some_and(|kernel| kernel.wide.is_some()),
+        }
+    }
+
     fn device(&self) -> DeviceInfo {
         DeviceInfo {
             backend: Backend::Cpu,

@@ -1,13 +1,13 @@
 //! The OpenCL renderer (cargo feature `opencl`): builds a scene's OpenCL C program on the preferred device of all
 //! platforms (a GPU before an accelerator before the CPU) and runs its `render`, `trace` or `probe` kernel
-//! ([`fractal_dsl::back::Entry`]).
+//! ([`fractal_dsl::back::Entry`]), in f32, or in f64 where the device has `cl_khr_fp64` and the job asks for it.
 //!
 //! Programs are built with `-cl-fast-relaxed-math` unless the renderer is precise; a build failure returns the
 //! driver's build log. Programs are cached per source text and precision.
 
 use std::sync::Mutex;
 
-use fractal_dsl::back::{has_refine, Entry, Pass};
+use fractal_dsl::back::{has_refine, Entry, Pass, Scalar};
 use ocl::enums::{DeviceInfo as ClDeviceInfo, DeviceInfoResult};
 use ocl::flags::DeviceType;
 use ocl::{flags, Buffer, Context, Device, Kernel, Platform, Program, Queue};
@@ -16,6 +16,7 @@ use crate::device::{Backend, DeviceInfo};
 use crate::error::RenderError;
 use crate::frame::Frame;
 use crate::image::Image;
+use crate::precision::Precision;
 use crate::renderer::{PixelTrace, ProbeSample, RenderJob, Renderer, Traced};
 
 /// The build option that trades strict IEEE semantics for speed; off in precise mode.
@@ -30,6 +31,8 @@ pub struct OpenClRenderer {
     precise: bool,
     programs: Vec<(String, bool, Program)>,
     info: DeviceInfo,
+    /// Whether the device computes in f64 (`cl_khr_fp64`): then it draws jobs in f64 with their f64 kernels.
+    fp64: bool,
 }
 
 fn no_device(reason: impl ToString) -> RenderError {
@@ -130,7 +133,11 @@ impl OpenClRenderer {
             driver: format!("{} {}", text(platform.name()), info_text(ClDeviceInfo::DriverVersion)),
             device_type: info_text(ClDeviceInfo::Type),
         };
-        Ok(OpenClRenderer { device, context, queue, precise, programs: Vec::new(), info })
+        let fp64 = match device.info(ClDeviceInfo::Extensions) {
+            Ok(DeviceInfoResult::Extensions(list)) => list.split_whitespace().any(|e| e == "cl_khr_fp64"),
+            _ => false,
+        };
+        Ok(OpenClRenderer { device, context, queue, precise, programs: Vec::new(), info, fp64 })
     }
 
     /// The renderer's queue (created with profiling enabled), for dispatchers that share its device.
@@ -178,20 +185,45 @@ impl OpenClRenderer {
         Ok(program)
     }
 
-    /// The frame's uniform slots in a read-only buffer on the renderer's queue.
-    pub fn frame_buffer(&self, frame: &Frame) -> Result<Buffer<f32>, RenderError> {
-        let floats: &[f32] = bytemuck::cast_slice(frame.slots());
-        Buffer::<f32>::builder()
+    /// Whether the device computes in f64 (`cl_khr_fp64`).
+    pub fn has_fp64(&self) -> bool {
+        self.fp64
+    }
+
+    /// The frame's uniform slots, as a kernel computing in `scalar` reads them, in a read-only buffer on the
+    /// renderer's queue.
+    pub fn frame_buffer(&self, frame: &Frame, scalar: Scalar) -> Result<Buffer<u8>, RenderError> {
+        let bytes = frame.bytes_in(scalar);
+        Buffer::<u8>::builder()
             .queue(self.queue.clone())
             .flags(flags::MEM_READ_ONLY)
-            .len(floats.len())
-            .copy_host_slice(floats)
+            .len(bytes.len())
+            .copy_host_slice(&bytes)
             .build()
             .map_err(device_error)
     }
 
-    /// Evaluates a probe kernel (`probe(points, out, frame, n)`) at `points` (xyz; w ignored).
-    pub fn probe(&mut self, source: &str, frame: &Frame, points: &[[f32; 4]]) -> Result<Vec<ProbeSample>, RenderError> {
+    /// The job's program for its precision and the number type that program computes in; a job in a precision the
+    /// device lacks is refused ([`Renderer::draws_in`]).
+    pub fn source_of<'j>(&self, job: &RenderJob<'j>) -> Result<(&'j str, Scalar), RenderError> {
+        if !self.draws_in(job) {
+            return Err(job.refused(Backend::OpenCl));
+        }
+        let (source, scalar) = match job.precision {
+            Precision::F32 => (job.kernels.opencl, Scalar::F32),
+            Precision::F64 => (job.kernels.opencl_f64, Scalar::F64),
+        };
+        let source = source.ok_or(RenderError::MissingKernel { backend: Backend::OpenCl, what: "OpenCL kernel" })?;
+        Ok((source, scalar))
+    }
+
+    /// Evaluates a probe kernel (`probe(points, out, frame, n)`) computing in `scalar` at `points` (xyz; w ignored).
+    pub fn probe(
+        &mut self,
+        (source, scalar): (&str, Scalar),
+        frame: &Frame,
+        points: &[[f32; 4]],
+    ) -> Result<Vec<ProbeSample>, RenderError> {
         if points.is_empty() {
             return Ok(Vec::new());
         }
@@ -215,7 +247,7 @@ impl OpenClRenderer {
             .len(points.len() * 8)
             .build()
             .map_err(device_error)?;
-        let frame_buffer = self.frame_buffer(frame)?;
+        let frame_buffer = self.frame_buffer(frame, scalar)?;
         let kernel = Kernel::builder()
             .program(&program)
             .name(Entry::Probe.name())
@@ -242,7 +274,7 @@ impl OpenClRenderer {
         entry: Entry,
         source: &str,
         (width, height): (u32, u32),
-        (out, frame, traces): (&Buffer<u32>, &Buffer<f32>, Option<&Buffer<f32>>),
+        (out, frame, traces): (&Buffer<u32>, &Buffer<u8>, Option<&Buffer<f32>>),
     ) -> Result<Vec<Kernel>, RenderError> {
         let program = self.program(source)?;
         let first = has_refine(source).then(|| image_buffer(&self.queue, width, height)).transpose()?;
@@ -272,12 +304,11 @@ impl OpenClRenderer {
     /// Runs the job's `entry` kernel (`render` or `trace`) over the frame's pixels: the image, and the trace
     /// kernel's [`PixelTrace::KERNEL_WORDS`] words per pixel.
     fn run_pixels(&mut self, job: &RenderJob, entry: Entry) -> Result<(Image, Vec<f32>), RenderError> {
-        let source =
-            job.kernels.opencl.ok_or(RenderError::MissingKernel { backend: Backend::OpenCl, what: "OpenCL kernel" })?;
+        let (source, scalar) = self.source_of(job)?;
         let (width, height) = (job.width(), job.height());
         let count = width as usize * height as usize;
         let out = image_buffer(&self.queue, width, height)?;
-        let frame_buffer = self.frame_buffer(job.frame)?;
+        let frame_buffer = self.frame_buffer(job.frame, scalar)?;
         let words = if entry == Entry::Trace { count * PixelTrace::KERNEL_WORDS } else { 0 };
         let traces = (words > 0)
             .then(|| Buffer::<f32>::builder().queue(self.queue.clone()).flags(flags::MEM_WRITE_ONLY).len(words).build())
@@ -305,12 +336,10 @@ impl OpenClRenderer {
 
 impl Renderer for OpenClRenderer {
     fn render(&mut self, job: &RenderJob) -> Result<Image, RenderError> {
-        job.only_f32(Backend::OpenCl)?;
         Ok(self.run_pixels(job, Entry::Render)?.0)
     }
 
     fn trace(&mut self, job: &RenderJob) -> Result<Traced, RenderError> {
-        job.only_f32(Backend::OpenCl)?;
         let (image, words) = self.run_pixels(job, Entry::Trace)?;
         Ok(Traced::from_kernel(image, &words))
     }
@@ -318,16 +347,24 @@ impl Renderer for OpenClRenderer {
     fn device(&self) -> DeviceInfo {
         self.info.clone()
     }
+
+    fn draws_in(&self, job: &RenderJob) -> bool {
+        match job.precision {
+            Precision::F32 => true,
+            Precision::F64 => self.fp64 && job.kernels.opencl_f64.is_some(),
+        }
+    }
 }
 
-/// Evaluates an OpenCL probe kernel at `points` on the first OpenCL device, with fast math unless `precise`.
+/// Evaluates an OpenCL probe kernel (f32) at `points` on the preferred OpenCL device, with fast math unless
+/// `precise`.
 pub fn probe_opencl(
     source: &str,
     frame: &Frame,
     points: &[[f32; 4]],
     precise: bool,
 ) -> Result<Vec<ProbeSample>, RenderError> {
-    OpenClRenderer::new(precise)?.probe(source, frame, points)
+    OpenClRenderer::new(precise)?.probe((source, Scalar::F32), frame, points)
 }
 
 /// A write-only buffer for a packed RGBA8 image of `width`×`height`; too large for the device is

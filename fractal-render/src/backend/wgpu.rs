@@ -528,12 +528,16 @@ impl WgpuRenderer {
 
 impl Renderer for WgpuRenderer {
     fn render(&mut self, job: &RenderJob) -> Result<Image, RenderError> {
-        job.only_f32(Backend::Wgpu)?;
+        if !self.draws_in(job) {
+            return Err(job.refused(Backend::Wgpu));
+        }
         Ok(self.run_pixels(job, Entry::Render)?.0)
     }
 
     fn trace(&mut self, job: &RenderJob) -> Result<Traced, RenderError> {
-        job.only_f32(Backend::Wgpu)?;
+        if !self.draws_in(job) {
+            return Err(job.refused(Backend::Wgpu));
+        }
         let (image, words) = self.run_pixels(job, Entry::Trace)?;
         Ok(Traced::from_kernel(image, &words))
     }

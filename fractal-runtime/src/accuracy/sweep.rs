@@ -335,7 +335,8 @@ fn run_kernels(
 ) -> Result<SweepPoint, RenderError> {
     let applied = quality.apply(scene);
     let kernels = fractal_dsl::compile(&applied)?;
-    let job = RenderJob::new(KernelSources::compiled(&kernels), frame);
+    let precision = quality.precision.unwrap_or_default();
+    let job = RenderJob::new(KernelSources::compiled(&kernels), frame).with_precision(precision);
     // The first render builds the kernel; it is not timed.
     renderer.render(&job)?;
     let mut times = Vec::new();
@@ -346,7 +347,7 @@ fn run_kernels(
     }
     // The render kernel's march, read back by its trace kernel: the same steps, with depth, normal and steps kept.
     let tracing = kernels.tracing();
-    let traced = renderer.trace(&RenderJob::new(KernelSources::compiled(&tracing), frame))?;
+    let traced = renderer.trace(&RenderJob::new(KernelSources::compiled(&tracing), frame).with_precision(precision))?;
     let error = measure(&applied, truth, Observed::Traced(&traced.pixels));
     Ok(SweepPoint { quality: *quality, time_ms: median(times), error })
 }
@@ -375,7 +376,8 @@ pub fn with_precision(scene: &Scene, quality: &Quality, frame: &Frame) -> Result
 }
 
 /// Measures every setting of `qualities` on `backend` against `truth`. `renderer` is the opened GPU renderer (unused
-/// for the CPU). `progress` is told each finished point.
+/// for the CPU). A setting in f64 the backend does not compute in (wgpu; OpenCL without `cl_khr_fp64`) is measured on
+/// the CPU, as the auto renderer would draw it. `progress` is told each finished point.
 pub fn run(
     scene: &Scene,
     frame: &Frame,
@@ -388,15 +390,18 @@ pub fn run(
     let mut out = Vec::new();
     for q in qualities {
         let q = &with_precision(scene, q, frame)?;
-        let point = match (backend, renderer.as_mut(), q.precise) {
-            (Backend::Cpu, _, _) | (_, None, _) => run_cpu(scene, q, frame, truth)?,
-            (_, _, _) if q.precision == Some(Precision::F64) => run_cpu(scene, q, frame, truth)?,
+        let drawn = match (backend, renderer.as_mut(), q.precise) {
+            (Backend::Cpu, _, _) | (_, None, _) => run_cpu(scene, q, frame, truth),
             // The other math is another build of the program: a renderer of its own.
             (_, Some(_), Some(precise)) => {
                 let mut other = fractal_render::select::open(backend, &RendererOptions { precise })?;
-                run_kernels(other.as_mut(), scene, q, frame, truth)?
+                run_kernels(other.as_mut(), scene, q, frame, truth)
             }
-            (_, Some(r), None) => run_kernels(r.as_mut(), scene, q, frame, truth)?,
+            (_, Some(r), None) => run_kernels(r.as_mut(), scene, q, frame, truth),
+        };
+        let point = match drawn {
+            Err(RenderError::Precision { .. }) => run_cpu(scene, q, frame, truth)?,
+            drawn => drawn?,
         };
         progress(&point);
         out.push(point);

@@ -100,6 +100,7 @@ impl<'a> LoadedScene<'a> {
             Forms::BuiltIn { compiled, kernels: None, .. } => KernelSources::default()
                 .with_wgsl(compiled.wgsl())
                 .with_opencl(compiled.opencl())
+                .with_opencl_f64(compiled.opencl_f64())
                 .with_cpu(self.evaluator(), &self.scene)
                 .with_cpu_wide(self.evaluator_wide()),
             Forms::BuiltIn { kernels: Some(kernels), .. } | Forms::File { kernels, .. } => {

@@ -9,6 +9,7 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use fractal_render::camera::Pose;
+use fractal_render::device::Backend;
 use fractal_render::error::RenderError;
 use fractal_render::frame::Frame;
 use fractal_render::image::Image;
@@ -186,6 +187,8 @@ struct App {
     woken: bool,
     /// Each frame's precision, and the last one said.
     precision: FramePrecision,
+    /// The backend that drew the last frame in f64: the engine's where it computes in f64, else the CPU.
+    wide_backend: Backend,
 }
 
 impl App {
@@ -240,6 +243,7 @@ impl App {
             still: Accumulator::new(options.accumulate),
             woken: false,
             precision: FramePrecision::new(options.precision, ""),
+            wide_backend: Backend::Cpu,
             live,
             options,
         })
@@ -307,8 +311,8 @@ impl App {
             self.live.name.clone(),
             match self.precision.said() {
                 Some(Precision::F64) => format!(
-                    "cpu in f64 (the view asks for it), {timing}, {}x{}",
-                    self.render_size.0, self.render_size.1
+                    "{} in f64 (the view asks for it), {timing}, {}x{}",
+                    self.wide_backend, self.render_size.0, self.render_size.1
                 ),
                 _ => {
                     format!("{}, {timing}, {}x{}", self.engine.device().backend, self.render_size.0, self.render_size.1)

@@ -9,7 +9,6 @@ use fractal_render::camera::Pose;
 use fractal_render::choose_precision::decide;
 use fractal_render::device::DeviceInfo;
 use fractal_render::frame::{Frame, ParamValues};
-use fractal_render::precision::Precision;
 use fractal_render::renderer::{RenderJob, Renderer};
 
 use super::engine::EngineChain;
@@ -54,16 +53,16 @@ pub fn render_png(scene: &ViewerScene, options: &ViewerOptions, png: &Path) -> R
     let chosen = decide(options.precision, &live.scene, &frame, live.evaluator(), live.evaluator_wide())?;
     eprintln!("precision {chosen}");
     let job = RenderJob::new(live.kernels(), &frame).with_precision(chosen.precision);
-    if chosen.precision != Precision::F32 {
-        // The kernels are f32 only: the CPU draws a frame in f64 whatever the backend.
-        let image = CpuRenderer::new().render(&job)?;
-        write_png(&image, png).map_err(|message| ViewerError::Output { path: png.to_path_buf(), message })?;
-        return Ok(CpuRenderer::new().device());
-    }
     let mut chain = EngineChain::new(options.backend, options.renderer);
     let mut notes = Vec::new();
     loop {
         let mut engine = chain.next(&mut notes)?;
+        if !engine.renderer().draws_in(&job) {
+            // The backend does not compute in the view's precision (wgpu in f64): the CPU draws the frame.
+            let image = CpuRenderer::new().render(&job)?;
+            write_png(&image, png).map_err(|message| ViewerError::Output { path: png.to_path_buf(), message })?;
+            return Ok(CpuRenderer::new().device());
+        }
         match engine.renderer().render(&job) {
             Ok(image) => {
                 write_png(&image, png).map_err(|message| ViewerError::Output { path: png.to_path_buf(), message })?;

@@ -32,6 +32,7 @@ pub struct LiveScene {
     pub scene: Scene,
     wgsl: String,
     opencl: String,
+    opencl_f64: String,
     evaluator: CpuEvaluator,
 }
 
@@ -45,6 +46,7 @@ impl LiveScene {
                 scene: scene.scene().clone(),
                 wgsl: scene.wgsl().to_string(),
                 opencl: scene.opencl().to_string(),
+                opencl_f64: scene.opencl_f64().to_string(),
                 evaluator: CpuEvaluator::Native(scene.native()),
             }),
             ViewerScene::Built { name, scene } => LiveScene::from_scene(name.clone(), (**scene).clone()),
@@ -71,6 +73,7 @@ impl LiveScene {
             scene,
             wgsl: kernels.wgsl,
             opencl: kernels.opencl,
+            opencl_f64: kernels.opencl_f64,
         })
     }
 
@@ -89,7 +92,8 @@ impl LiveScene {
         let mut scene = self.authored.clone();
         scene.settings = settings;
         let kernels = fractal_dsl::compile(&scene).map_err(|e| e.to_string())?;
-        Ok(LiveScene { scene, wgsl: kernels.wgsl, opencl: kernels.opencl, ..self.clone() })
+        let (wgsl, opencl, opencl_f64) = (kernels.wgsl, kernels.opencl, kernels.opencl_f64);
+        Ok(LiveScene { scene, wgsl, opencl, opencl_f64, ..self.clone() })
     }
 
     pub fn wgsl(&self) -> &str {
@@ -101,6 +105,7 @@ impl LiveScene {
         KernelSources::default()
             .with_wgsl(&self.wgsl)
             .with_opencl(&self.opencl)
+            .with_opencl_f64(&self.opencl_f64)
             .with_cpu(self.evaluator(), &self.scene)
             .with_cpu_wide(self.evaluator_wide())
     }

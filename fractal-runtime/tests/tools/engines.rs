@@ -432,7 +432,7 @@ fn the_wgsl_library_renders_the_kernels_image_on_wgpu() {
         let frame = Frame::default_view(scene, 0.0, 96, 54).expect("frame");
         // A library marches one ray a pixel (the engine's fragment): against the kernel's one-sample image.
         let kernels = fractal_dsl::compile(&scene.clone().samples(1)).expect("compile");
-        let job = |wgsl| RenderJob::new(KernelSources { wgsl: Some(wgsl), opencl: None, cpu: None }, &frame);
+        let job = |wgsl| RenderJob::new(KernelSources::default().with_wgsl(wgsl), &frame);
         let got = gpu.render(&job(&render)).unwrap_or_else(|e| panic!("{name}: the library: {e}"));
         let want = gpu.render(&job(&kernels.wgsl)).expect("the render kernel");
         let (mut alike, mut total) = (0usize, 0usize);

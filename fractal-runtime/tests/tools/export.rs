@@ -208,7 +208,7 @@ fn export_compiled_exports_the_build_time_kernels() {
     let leak = |s: &str| -> &'static str { Box::leak(s.to_owned().into_boxed_str()) };
     let compiled = CompiledScene::new(
         leak(&kernels.source),
-        leak(&kernels.opencl),
+        (leak(&kernels.opencl), leak(&kernels.opencl_f64)),
         leak(&kernels.wgsl),
         native,
         unused_scene,

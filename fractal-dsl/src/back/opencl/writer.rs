@@ -1,26 +1,40 @@
 //! The OpenCL C writer: the OpenCL C [`Dialect`] of the shared GPU program ([`crate::back::kernel`]) — its
-//! spellings, the `Frame` and `Sample` structs, and the `render` and `probe` kernel signatures. Scene functions that
-//! read the frame take it as their last argument.
+//! spellings, the `Frame` and `Sample` structs, and the `render` and `probe` kernel signatures — in f32 or, for
+//! devices with `cl_khr_fp64`, in f64 ([`Scalar`]). Scene functions that read the frame take it as their last
+//! argument.
 
 use std::fmt::Write;
 
 use crate::back::kernel::{self, Dialect, KernelDialect};
 use crate::back::syntax::common_math_name;
-use crate::back::{f32_literal, Entry, FrameLayout, Level, Pass};
+use crate::back::{f32_literal, f64_literal, Entry, FrameLayout, Level, Pass, Scalar};
 use crate::lower::code::{MathFn, Ty};
 use crate::lower::trace::Function;
 use crate::lower::Program;
 
-struct OpenCl;
+/// OpenCL C computing in one number type.
+struct OpenCl(Scalar);
 
 /// Writes traced leaf functions in OpenCL C (a function library, without kernels).
 pub fn functions(functions: &[Function]) -> String {
-    kernel::write_functions(functions, &OpenCl)
+    kernel::write_functions(functions, &OpenCl(Scalar::F32))
 }
 
-/// Writes the complete OpenCL C program for `entry`.
+/// Writes the complete OpenCL C program for `entry`, in f32.
 pub fn write(program: &Program, entry: Entry) -> String {
-    kernel::write(program, entry, &OpenCl)
+    write_in(program, entry, Scalar::F32)
+}
+
+/// Writes the complete OpenCL C program for `entry`, computing in `scalar`. An f64 program enables `cl_khr_fp64`
+/// and reads its frame in f64; its outputs (pixels, traces, probe results) are those of the f32 program.
+pub fn write_in(program: &Program, entry: Entry, scalar: Scalar) -> String {
+    kernel::write(program, entry, &OpenCl(scalar))
+}
+
+impl OpenCl {
+    fn wide(&self) -> bool {
+        self.0 == Scalar::F64
+    }
 }
 
 impl Dialect for OpenCl {
@@ -28,25 +42,40 @@ impl Dialect for OpenCl {
         "OpenCL C"
     }
     fn sample_struct(&self) -> String {
-        "typedef struct {\n    float distance;\n    float3 albedo;\n    float ambient;\n    float diffuse;\n    float specular;\n    float shininess;\n} Sample;\n\n".to_string()
+        let mut out = "typedef struct {\n".to_string();
+        for (name, ty) in crate::lower::code::SAMPLE_FIELDS {
+            let _ = writeln!(out, "    {} {name};", self.type_name(ty));
+        }
+        out.push_str("} Sample;\n\n");
+        out
     }
 
     fn type_name(&self, ty: Ty) -> &'static str {
-        match ty {
-            Ty::F => "float",
-            Ty::V3 => "float3",
-            Ty::Pair => "float2",
-            Ty::Bool => "int",
-            Ty::Int => "uint",
-            Ty::Orbit => "__constant const Frame*",
-            Ty::Sample => "Sample",
+        match (ty, self.wide()) {
+            (Ty::F, false) => "float",
+            (Ty::V3, false) => "float3",
+            (Ty::Pair, false) => "float2",
+            (Ty::F, true) => "double",
+            (Ty::V3, true) => "double3",
+            (Ty::Pair, true) => "double2",
+            (Ty::Bool, _) => "int",
+            (Ty::Int, _) => "uint",
+            (Ty::Orbit, _) => "__constant const Frame*",
+            (Ty::Sample, _) => "Sample",
         }
     }
     fn vec4_type(&self) -> &'static str {
-        "float4"
+        if self.wide() {
+            "double4"
+        } else {
+            "float4"
+        }
     }
     fn lit(&self, v: f64) -> String {
-        format!("{}f", f32_literal(v))
+        match self.0 {
+            Scalar::F32 => format!("{}f", f32_literal(v)),
+            Scalar::F64 => f64_literal(v),
+        }
     }
     fn bool_lit(&self, v: bool) -> &'static str {
         if v {
@@ -80,18 +109,37 @@ impl Dialect for OpenCl {
     fn global_constant(&self, name: &str, ty: &str, value: &str) -> String {
         format!("__constant {ty} {name} = {value};")
     }
+    fn to_f32x4(&self, v: &str) -> String {
+        match self.0 {
+            Scalar::F32 => v.to_string(),
+            Scalar::F64 => format!("convert_float4({v})"),
+        }
+    }
+    fn read_f32x3(&self, v: &str) -> String {
+        match self.0 {
+            Scalar::F32 => v.to_string(),
+            Scalar::F64 => format!("convert_double3({v})"),
+        }
+    }
 }
 
 impl KernelDialect for OpenCl {
     fn declarations(&self, out: &mut String, layout: FrameLayout, _entry: Entry, _refine: bool) {
-        out.push_str("typedef struct {\n    float4 origin;\n    float4 right;\n    float4 up;\n    float4 forward;\n");
-        let _ = writeln!(out, "    float4 lights[{}];", 2 * layout.lights);
+        if self.wide() {
+            out.push_str("#pragma OPENCL EXTENSION cl_khr_fp64 : enable\n\n");
+        }
+        let slot = self.vec4_type();
+        out.push_str("typedef struct {\n");
+        for field in ["origin", "right", "up", "forward"] {
+            let _ = writeln!(out, "    {slot} {field};");
+        }
+        let _ = writeln!(out, "    {slot} lights[{}];", 2 * layout.lights);
         if layout.params > 0 {
-            let _ = writeln!(out, "    float4 params[{}];", layout.param_slots());
+            let _ = writeln!(out, "    {slot} params[{}];", layout.param_slots());
         }
         if layout.orbit > 0 {
-            out.push_str("    float4 reference;\n");
-            let _ = writeln!(out, "    float4 orbit[{}];", layout.orbit_slots());
+            let _ = writeln!(out, "    {slot} reference;");
+            let _ = writeln!(out, "    {slot} orbit[{}];", layout.orbit_slots());
         }
         out.push_str("} Frame;\n\n");
         out.push_str(&self.sample_struct());
@@ -121,7 +169,8 @@ impl KernelDialect for OpenCl {
     }
     fn first_shown(&self, index: &str) -> String {
         let word = format!("first[{index}]");
-        format!("convert_float3((uint3)({word} & 255u, ({word} >> 8) & 255u, ({word} >> 16) & 255u)) / 255.0f")
+        let bytes = format!("(uint3)({word} & 255u, ({word} >> 8) & 255u, ({word} >> 16) & 255u)");
+        format!("convert_{}({bytes}) / {}", self.type_name(Ty::V3), self.lit(255.0))
     }
     fn pack_pixel(&self) -> &'static [&'static str] {
         &[

@@ -30,6 +30,10 @@ impl Timer for CpuTimer {
         KernelClock::WholeFrame
     }
 
+    fn computes_f64(&self) -> bool {
+        true
+    }
+
     fn run(&mut self, work: &Work) -> Result<Timed, RenderError> {
         let start = Instant::now();
         let image = match work {

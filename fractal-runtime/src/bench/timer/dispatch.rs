@@ -62,6 +62,11 @@ pub(crate) struct Timed {
 pub(crate) trait Timer {
     fn device(&self) -> DeviceInfo;
     fn clock(&self) -> KernelClock;
+    /// Whether it times frames in f64 in f64 (the CPU; an OpenCL device with `cl_khr_fp64`); otherwise such frames
+    /// are timed in f32.
+    fn computes_f64(&self) -> bool {
+        false
+    }
     /// Runs `work` and times it; the first run of a kernel also builds it (callers leave that run out of the figures).
     fn run(&mut self, work: &Work) -> Result<Timed, RenderError>;
 }

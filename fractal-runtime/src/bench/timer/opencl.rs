@@ -5,9 +5,9 @@
 
 use std::time::Instant;
 
-use fractal_dsl::back::Entry;
+use fractal_dsl::back::{Entry, Scalar};
 use fractal_render::backend::opencl::{device_error, image_buffer, rejected, OpenClRenderer};
-use fractal_render::device::{Backend, DeviceInfo};
+use fractal_render::device::DeviceInfo;
 use fractal_render::error::RenderError;
 use fractal_render::image::Image;
 use fractal_render::renderer::Renderer;
@@ -54,17 +54,18 @@ impl Timer for OpenClTimer {
         KernelClock::ProfilingEvents
     }
 
+    fn computes_f64(&self) -> bool {
+        self.renderer.has_fp64()
+    }
+
     fn run(&mut self, work: &Work) -> Result<Timed, RenderError> {
         let (width, height) = match work {
             Work::Generated(job) => (job.width(), job.height()),
             Work::Baseline { width, height } => (*width, *height),
         };
-        let source = match work {
-            Work::Generated(job) => job
-                .kernels
-                .opencl
-                .ok_or(RenderError::MissingKernel { backend: Backend::OpenCl, what: "OpenCL kernel" })?,
-            Work::Baseline { .. } => BASELINE_OPENCL,
+        let (source, scalar) = match work {
+            Work::Generated(job) => self.renderer.source_of(job)?,
+            Work::Baseline { .. } => (BASELINE_OPENCL, Scalar::F32),
         };
         let count = width as usize * height as usize;
         let out = self.out(count, width, height)?;
@@ -72,7 +73,7 @@ impl Timer for OpenClTimer {
         let start = Instant::now();
         let kernels = match work {
             Work::Generated(job) => {
-                let frame = self.renderer.frame_buffer(job.frame)?;
+                let frame = self.renderer.frame_buffer(job.frame, scalar)?;
                 self.renderer.pixel_kernels(Entry::Render, source, (width, height), (&out, &frame, None))?
             }
             Work::Baseline { .. } => {

@@ -1,9 +1,11 @@
 //! A frame of a view standing still: the next progressive pass (module `still` says when and why), drawn by whichever
 //! renderer draws and shown through either presenter as a host image, or the picture shown already, again. The game
-//! loop (`app.rs`) picks this over the usual frame. A frame in f64 (`--precision`) is drawn here too, by the CPU
-//! renderer, and shown the same way.
+//! loop (`app.rs`) picks this over the usual frame. A frame in f64 (`--precision`) is drawn here too, by the
+//! engine's renderer where it computes in f64 (OpenCL with `cl_khr_fp64`), else by the CPU renderer, and shown the
+//! same way.
 
 use fractal_render::backend::cpu::CpuRenderer;
+use fractal_render::device::Backend;
 use fractal_render::frame::Frame;
 use fractal_render::image::Image;
 use fractal_render::precision::Precision;
@@ -16,7 +18,7 @@ use crate::viewer::still::Plan;
 
 impl App {
     /// Draws `plan` (a pass, or a rest) of `frame`; the presented window when `screenshot` is set.
-    /// A frame in f64 takes its passes on the CPU, whatever the backend (whose kernels are f32 only).
+    /// A frame in f64 takes its passes on the CPU where the engine does not compute in f64.
     pub(super) fn draw_still(
         &mut self,
         plan: Plan,
@@ -24,16 +26,27 @@ impl App {
         window_size: (u32, u32),
         screenshot: bool,
     ) -> Result<Option<Image>, DrawError> {
-        let picture = match (plan, precision) {
-            (Plan::Pass, Precision::F32) => {
+        let picture = match plan {
+            Plan::Pass if self.engine_draws(frame, precision) => {
                 self.still.pass(self.engine.renderer(), &self.live, (frame, precision)).map_err(DrawError::Render)?
             }
-            (Plan::Pass, _) => {
+            Plan::Pass => {
                 self.still.pass(&mut CpuRenderer::new(), &self.live, (frame, precision)).map_err(DrawError::Render)?
             }
-            (Plan::Frame | Plan::Rest, _) => None,
+            Plan::Frame | Plan::Rest => None,
         };
         self.show(picture.as_ref(), window_size, screenshot)
+    }
+
+    /// Whether the engine's renderer draws `frame` in `precision` (f32 always; f64 where it computes in it); noted
+    /// for the panel when the precision is wider.
+    fn engine_draws(&mut self, frame: &Frame, precision: Precision) -> bool {
+        let job = RenderJob::new(self.live.kernels(), frame).with_precision(precision);
+        let draws = self.engine.renderer().draws_in(&job);
+        if precision != Precision::F32 {
+            self.wide_backend = if draws { self.engine.device().backend } else { Backend::Cpu };
+        }
+        draws
     }
 
     /// Shows `picture` (a host image; `None`: the picture shown already, again) through either presenter, with the
@@ -86,15 +99,20 @@ impl App {
         }
     }
 
-    /// Draws `frame` in f64 on the CPU and shows it.
+    /// Draws `frame` in f64 (with the engine's renderer where it computes in f64, else on the CPU) and shows it.
     pub(super) fn draw_wide(
         &mut self,
         frame: &Frame,
         window_size: (u32, u32),
         screenshot: bool,
     ) -> Result<Option<Image>, DrawError> {
+        let on_engine = self.engine_draws(frame, Precision::F64);
         let job = RenderJob::new(self.live.kernels(), frame).with_precision(Precision::F64);
-        let image = CpuRenderer::new().render(&job).map_err(DrawError::Render)?;
+        let image = match on_engine {
+            true => self.engine.renderer().render(&job),
+            false => CpuRenderer::new().render(&job),
+        }
+        .map_err(DrawError::Render)?;
         self.show(Some(&image), window_size, screenshot)
     }
 }
