@@ -1,10 +1,11 @@
-//! Precision chosen by the view: close to a fractal's surface f32 fails the accuracy budget and the rule picks f64,
-//! which passes it; far from the origin the same scene draws the image it draws at the origin. Judged against the
+//! Precision chosen by the view: close to a fractal's surface (the Mandelbulb's pole, an edge of the Menger sponge) f32
+//! fails the accuracy budget and the rule picks f64, which passes it; far from the origin the same scene draws the image it draws at the origin. Judged against the
 //! f64 truth (membership, never the estimate), at a small size and a truth step of 1/32 footprint so the test stays
 //! short; on the CPU, and on OpenCL with its f64 kernels where the device has `cl_khr_fp64` (pocl's CPU device does).
 
 use fractal::dsl::builder::*;
 use fractal::dsl::eval::interp::Interpreter;
+use fractal::dsl::eval::Evaluator;
 use fractal::dsl::{CompiledScene, Scene};
 use fractal::render::backend::cpu::trace_scene;
 use fractal::render::choose_precision::{choose, decide};
@@ -25,10 +26,19 @@ fn dive_frame(time: f64) -> (&'static Scene, Frame) {
 
 /// The budget's violations of the CPU render of `frame` of `compiled` in `precision`, against `truth`.
 fn violations(compiled: &CompiledScene, frame: &Frame, truth: &Truth, precision: Precision) -> Vec<String> {
-    let (scene, native) = (compiled.scene(), compiled.native());
+    violations_of(&compiled.native(), compiled.scene(), (frame, truth), precision)
+}
+
+/// The budget's violations of the CPU render of `frame` of `scene` by `evaluator` in `precision`, against `truth`.
+fn violations_of<E: Evaluator<f32> + Evaluator<f64>>(
+    evaluator: &E,
+    scene: &Scene,
+    (frame, truth): (&Frame, &Truth),
+    precision: Precision,
+) -> Vec<String> {
     let traces = match precision {
-        Precision::F32 => trace_scene::<f32, _>(&native, scene, frame).unwrap(),
-        Precision::F64 => trace_scene::<f64, _>(&native, scene, frame).unwrap(),
+        Precision::F32 => trace_scene::<f32, _>(evaluator, scene, frame).unwrap(),
+        Precision::F64 => trace_scene::<f64, _>(evaluator, scene, frame).unwrap(),
     };
     Budget::default().verdict(&measure(scene, truth, Observed::Traced(&traces))).violations
 }
@@ -75,6 +85,38 @@ fn the_whole_bulb_and_every_built_in_scene_stay_in_f32() {
         let native = compiled.native();
         let chosen = choose(scene, &frame, &native, &native, Limits::default()).unwrap();
         assert_eq!(chosen.precision, Precision::F32, "{name}: {chosen}");
+    }
+}
+
+/// The Menger sponge (5 levels) `distance` from the concave edge where its face z = −1 meets the wall of its central
+/// tunnel, x = −1/3, looking at the edge. Its surface is planes at every level, so the truth's is the estimate's however
+/// close the camera goes.
+fn menger_edge(distance: f64) -> (Scene, Frame) {
+    let edge = DVec3::new(-1.0 / 3.0, 0.0, -1.0);
+    let s = scene(menger(5)).light(directional([-0.5, 0.8, -0.45], rgb(1.0, 0.96, 0.88))).pixel_epsilon(0.05);
+    let at = edge + DVec3::new(1.0, 0.25, -1.0).normalize() * distance;
+    let pose = Pose::look_at(at, edge, 50.0).unwrap();
+    let frame = Frame::new(&s, &pose, 0.0, SIZE.0, SIZE.1, &ParamValues::defaults(&s)).unwrap();
+    (s, frame)
+}
+
+#[test]
+fn the_menger_sponge_1e9_from_an_edge_asks_for_f64_which_is_within_budget_on_every_backend_that_has_it() {
+    let (s, frame) = menger_edge(1e-9);
+    let interp = Interpreter::new(&s).unwrap();
+    let chosen = decide(PrecisionChoice::Auto, &s, &frame, &interp, &interp).unwrap();
+    assert_eq!(chosen.precision, Precision::F64, "{chosen}");
+    let truth = truth(&s, &frame);
+    let f64_fails = violations_of(&interp, &s, (&frame, &truth), Precision::F64);
+    assert!(f64_fails.is_empty(), "f64 1e-9 from the sponge's edge: {f64_fails:?}");
+    assert!(!violations_of(&interp, &s, (&frame, &truth), Precision::F32).is_empty(), "f32 there is within budget");
+    #[cfg(feature = "opencl")]
+    if let Some(mut cl) = opencl_with_fp64() {
+        let tracing = fractal::dsl::compile(&s).unwrap().tracing();
+        let job = RenderJob::new(KernelSources::compiled(&tracing), &frame).with_precision(Precision::F64);
+        let traced = cl.trace(&job).unwrap();
+        let fails = Budget::default().verdict(&measure(&s, &truth, Observed::Traced(&traced.pixels))).violations;
+        assert!(fails.is_empty(), "OpenCL in f64 1e-9 from the sponge's edge: {fails:?}");
     }
 }
 
