@@ -74,6 +74,27 @@ fn every_wgsl_module_validates_with_naga() {
     }
 }
 
+/// An f64 WGSL module validates (WGSL converts nothing implicitly, so a value left in f32 fails here) and calls none
+/// of the built-ins Vulkan defines for f32 only: the traced ones of `lower::portable` stand in for them.
+#[test]
+fn every_wgsl_f64_module_validates_and_calls_no_f32_only_built_in() {
+    use fractal::dsl::back::Scalar;
+    for (name, scene) in scenes::ALL {
+        let program = lower(scene.scene());
+        for entry in [Entry::Render, Entry::Trace, Entry::Probe] {
+            let text = wgsl::write_in(&program, entry, Scalar::F64);
+            validate_wgsl(&format!("{name} {entry:?} in f64"), &text);
+            for built_in in ["sin(", "cos(", "acos(", "atan2(", "exp2(", "log(", "pow("] {
+                // A call of the built-in itself, not of `portable_sin` or (for `cos(`) of `acos`.
+                let bare = text
+                    .match_indices(built_in)
+                    .any(|(i, _)| !text[..i].ends_with(|c: char| c.is_ascii_alphanumeric() || c == '_'));
+                assert!(!bare, "{name} {entry:?}: an f64 module calls the built-in `{built_in}`");
+            }
+        }
+    }
+}
+
 #[test]
 fn a_sphere_only_kernel_has_no_fractal_shadow_or_effect_code() {
     let k = compile(&parse_str("sphere(1.0)").unwrap()).unwrap();

@@ -102,9 +102,19 @@ pub trait Dialect {
     }
     /// A module-scope constant.
     fn global_constant(&self, name: &str, ty: &str, value: &str) -> String;
+    /// Whether the kernel computes in a type whose `sin`, `cos`, `acos`, `atan2`, `exp2`, `log` and `pow` the
+    /// language leaves undefined (WGSL's f64): then [`Dialect::math_call`] calls the traced functions of
+    /// [`crate::lower::portable`] for them, and the program writes those it calls.
+    fn portable_math(&self) -> bool {
+        false
+    }
     /// `v`, a 4-vector of the kernel's number type, as the f32 4-vector an output buffer holds (the trace and probe
     /// outputs are f32 whatever the kernel computes in).
     fn to_f32x4(&self, v: &str) -> String {
+        v.to_string()
+    }
+    /// `v`, a scalar of the kernel's number type, as the f32 an output buffer holds.
+    fn to_f32(&self, v: &str) -> String {
         v.to_string()
     }
     /// `v`, an f32 3-vector read from an input buffer (the probe's points), as the kernel's V3.
@@ -269,6 +279,8 @@ pub fn write<D: KernelDialect>(program: &Program, entry: Entry, dialect: &D) -> 
     );
     let refine = entry != Entry::Probe && program.settings.samples > 1;
     dialect.declarations(&mut k.out, program.layout(), entry, refine);
+    // Where the elementary functions go, once the program shows which it calls: before every function that may.
+    let helpers_at = k.out.len();
     k.leaf_functions();
     k.scene_functions();
     match entry {
@@ -280,6 +292,10 @@ pub fn write<D: KernelDialect>(program: &Program, entry: Entry, dialect: &D) -> 
             }
         }
         Entry::Probe => k.probe(dialect),
+    }
+    if dialect.portable_math() {
+        let helpers = k.portable_functions();
+        k.out.insert_str(helpers_at, &helpers);
     }
     k.out
 }
@@ -580,7 +596,7 @@ impl<'a, D: Dialect> Kernel<'a, D> {
             self.line(l1, &self.constant("pixel", index, &format!("{} * ({py} * w + {px})", d.index_lit(3))));
             self.line(l1, &format!("if ({} > {}) {{", v(vals.refined), self.lit(0.5)));
             let one = d.index_lit(1);
-            self.line(l2, &format!("{TRACES}[pixel + {one}].w = {};", v(vals.samples)));
+            self.line(l2, &format!("{TRACES}[pixel + {one}].w = {};", d.to_f32(&v(vals.samples))));
             let colour = d.construct(d.vec4_type(), &format!("{}, {}", v(vals.colour), self.lit(0.0)));
             self.line(l2, &format!("{TRACES}[pixel + {}] = {};", d.index_lit(2), d.to_f32x4(&colour)));
             self.line(l1, "}");
@@ -674,6 +690,27 @@ impl<'a, D: Dialect> Kernel<'a, D> {
         let returned = value(&spelling);
         self.line(Level(1), &format!("return {returned};"));
         self.function_close();
+    }
+
+    /// The text of the traced elementary functions ([`crate::lower::portable`]) the program written so far calls.
+    fn portable_functions(&self) -> String {
+        let called: Vec<_> = crate::lower::portable::functions()
+            .into_iter()
+            .filter(|f| self.out.contains(&format!("{}(", crate::lower::portable::name(f.f))))
+            .collect();
+        let mut helpers = Kernel { out: String::new(), ..*self };
+        if !called.is_empty() {
+            helpers.out.push_str(
+                "// Elementary functions from arithmetic, sqrt and floor (the language defines them for f32 only).\n\n",
+            );
+        }
+        let float = self.float();
+        for f in called {
+            let params: Vec<(&str, &str)> = f.params.iter().map(|&(name, ty)| (name, self.d.type_name(ty))).collect();
+            let name = crate::lower::portable::name(f.f);
+            helpers.traced_function(float, name, &params, &f.body, &[f.result], false);
+        }
+        helpers.out
     }
 
     fn probe<K: KernelDialect>(&mut self, kernel: &K) {

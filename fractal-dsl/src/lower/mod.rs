@@ -8,6 +8,7 @@
 //! ([`mod@trace`]).
 
 pub mod code;
+pub mod portable;
 pub mod ray;
 pub mod trace;
 

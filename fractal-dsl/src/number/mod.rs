@@ -16,6 +16,7 @@
 pub mod elementary;
 pub mod lanes;
 pub mod math;
+pub mod portable;
 
 use core::fmt::Debug;
 use core::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};

@@ -1,31 +1,47 @@
 //! The WGSL writer: the WGSL [`Dialect`] of the shared GPU program ([`crate::back::kernel`]) — its spellings, the
-//! `Frame` and `Sample` structs, the bindings of each entry point, and the `render` and `probe` entry signatures.
-//! Every function reads the frame as the module-scope uniform `frame`.
+//! `Frame` and `Sample` structs, the bindings of each entry point, and the `render` and `probe` entry signatures — in
+//! f32 or, for devices with `SHADER_F64`, in f64 ([`Scalar`]), where the elementary functions Vulkan leaves undefined
+//! in f64 are the traced ones of [`crate::lower::portable`]. Every function reads the frame as the module-scope
+//! uniform `frame`.
 
 use std::fmt::Write;
 
 use crate::back::kernel::{self, Dialect, KernelDialect};
 use crate::back::syntax::{common_math_name, Prec};
-use crate::back::{Entry, FrameLayout, Level, Pass};
-use crate::lower::code::{MathFn, Ty};
+use crate::back::{f32_literal, f64_literal, Entry, FrameLayout, Level, Pass, Scalar};
+use crate::lower::code::{MathFn, Ty, SAMPLE_FIELDS};
+use crate::lower::portable;
 use crate::lower::trace::Function;
 use crate::lower::Program;
 
-struct Wgsl;
+/// WGSL computing in one number type.
+struct Wgsl(Scalar);
 
 /// Writes traced leaf functions in WGSL (a function library, without kernels).
 pub fn functions(functions: &[Function]) -> String {
-    kernel::write_functions(functions, &Wgsl)
+    kernel::write_functions(functions, &Wgsl(Scalar::F32))
 }
 
 /// Writes `program` as a function library ([`kernel::write_library`]).
 pub fn library(program: &Program, lib: &kernel::Library) -> String {
-    kernel::write_library(program, lib, &Wgsl)
+    kernel::write_library(program, lib, &Wgsl(Scalar::F32))
 }
 
-/// Writes the complete WGSL module for `entry`.
+/// Writes the complete WGSL module for `entry`, in f32.
 pub fn write(program: &Program, entry: Entry) -> String {
-    kernel::write(program, entry, &Wgsl)
+    write_in(program, entry, Scalar::F32)
+}
+
+/// Writes the complete WGSL module for `entry`, computing in `scalar`. An f64 module needs the device feature
+/// `SHADER_F64` and reads its frame in f64; its outputs (pixels, traces, probe results) are those of the f32 module.
+pub fn write_in(program: &Program, entry: Entry, scalar: Scalar) -> String {
+    kernel::write(program, entry, &Wgsl(scalar))
+}
+
+impl Wgsl {
+    fn wide(&self) -> bool {
+        self.0 == Scalar::F64
+    }
 }
 
 impl Dialect for Wgsl {
@@ -33,23 +49,41 @@ impl Dialect for Wgsl {
         "WGSL"
     }
     fn sample_struct(&self) -> String {
-        "struct Sample {\n    distance: f32,\n    albedo: vec3<f32>,\n    ambient: f32,\n    diffuse: f32,\n    specular: f32,\n    shininess: f32,\n}\n\n".to_string()
+        let mut out = "struct Sample {\n".to_string();
+        for (name, ty) in SAMPLE_FIELDS {
+            let _ = writeln!(out, "    {name}: {},", self.type_name(ty));
+        }
+        out.push_str("}\n\n");
+        out
     }
 
     fn type_name(&self, ty: Ty) -> &'static str {
-        match ty {
-            Ty::F => "f32",
-            Ty::V3 => "vec3<f32>",
-            Ty::Pair => "vec2<f32>",
-            Ty::Bool => "bool",
-            Ty::Int => "u32",
+        match (ty, self.wide()) {
+            (Ty::F, false) => "f32",
+            (Ty::V3, false) => "vec3<f32>",
+            (Ty::Pair, false) => "vec2<f32>",
+            (Ty::F, true) => "f64",
+            (Ty::V3, true) => "vec3<f64>",
+            (Ty::Pair, true) => "vec2<f64>",
+            (Ty::Bool, _) => "bool",
+            (Ty::Int, _) => "u32",
             // Never declared: WGSL functions read the orbit from the module's `frame`.
-            Ty::Orbit => "Frame",
-            Ty::Sample => "Sample",
+            (Ty::Orbit, _) => "Frame",
+            (Ty::Sample, _) => "Sample",
         }
     }
     fn vec4_type(&self) -> &'static str {
-        "vec4<f32>"
+        if self.wide() {
+            "vec4<f64>"
+        } else {
+            "vec4<f32>"
+        }
+    }
+    fn lit(&self, v: f64) -> String {
+        match self.0 {
+            Scalar::F32 => f32_literal(v),
+            Scalar::F64 => format!("{}lf", f64_literal(v)),
+        }
     }
     fn math_name(&self, f: MathFn) -> &'static str {
         match f {
@@ -58,6 +92,9 @@ impl Dialect for Wgsl {
         }
     }
     fn math_call(&self, f: MathFn, args: &[String]) -> String {
+        if self.wide() && !portable::exact_in_f64(f) {
+            return format!("{}({})", portable::name(f), args.join(", "));
+        }
         match f {
             // Vulkan drivers' acos loses most of its precision near ±1 (lavapipe: ~1e-4 radians at the Mandelbulb's
             // pole), where atan2 of the same angle's sine and cosine keeps full precision.
@@ -95,20 +132,43 @@ impl Dialect for Wgsl {
     fn global_constant(&self, name: &str, ty: &str, value: &str) -> String {
         format!("const {name}: {ty} = {value};")
     }
+    fn portable_math(&self) -> bool {
+        self.wide()
+    }
+    fn to_f32x4(&self, v: &str) -> String {
+        match self.0 {
+            Scalar::F32 => v.to_string(),
+            Scalar::F64 => format!("vec4<f32>({v})"),
+        }
+    }
+    fn read_f32x3(&self, v: &str) -> String {
+        match self.0 {
+            Scalar::F32 => v.to_string(),
+            Scalar::F64 => format!("vec3<f64>({v})"),
+        }
+    }
+    fn to_f32(&self, v: &str) -> String {
+        match self.0 {
+            Scalar::F32 => v.to_string(),
+            Scalar::F64 => format!("f32({v})"),
+        }
+    }
 }
 
 impl KernelDialect for Wgsl {
     fn declarations(&self, out: &mut String, layout: FrameLayout, entry: Entry, refine: bool) {
-        out.push_str(
-            "struct Frame {\n    origin: vec4<f32>,\n    right: vec4<f32>,\n    up: vec4<f32>,\n    forward: vec4<f32>,\n",
-        );
-        let _ = writeln!(out, "    lights: array<vec4<f32>, {}>,", 2 * layout.lights);
+        let slot = self.vec4_type();
+        out.push_str("struct Frame {\n");
+        for field in ["origin", "right", "up", "forward"] {
+            let _ = writeln!(out, "    {field}: {slot},");
+        }
+        let _ = writeln!(out, "    lights: array<{slot}, {}>,", 2 * layout.lights);
         if layout.params > 0 {
-            let _ = writeln!(out, "    params: array<vec4<f32>, {}>,", layout.param_slots());
+            let _ = writeln!(out, "    params: array<{slot}, {}>,", layout.param_slots());
         }
         if layout.orbit > 0 {
-            out.push_str("    reference: vec4<f32>,\n");
-            let _ = writeln!(out, "    orbit: array<vec4<f32>, {}>,", layout.orbit_slots());
+            let _ = writeln!(out, "    reference: {slot},");
+            let _ = writeln!(out, "    orbit: array<{slot}, {}>,", layout.orbit_slots());
         }
         out.push_str("}\n\n");
         out.push_str(&self.sample_struct());
@@ -149,7 +209,11 @@ impl KernelDialect for Wgsl {
         }
     }
     fn first_shown(&self, index: &str) -> String {
-        format!("unpack4x8unorm(first_px[{index}]).xyz")
+        let shown = format!("unpack4x8unorm(first_px[{index}]).xyz");
+        match self.0 {
+            Scalar::F32 => shown,
+            Scalar::F64 => format!("vec3<f64>({shown})"),
+        }
     }
     fn pack_pixel(&self) -> &'static [&'static str] {
         &[
