@@ -126,11 +126,14 @@ pub(super) fn bulb_power<F: Num, const STRETCHED: bool>(z: V3<F>, r: F, dr: F, p
     // (lavapipe's by ~1e-4 rad at the poles, which an orbit then magnifies). On the polar axis the azimuth is
     // undefined and atan2(0, 0) differs between drivers: it is taken as 0 there on every backend.
     let rho = sqrt(z.x * z.x + z.y * z.y);
-    let theta = atan2(rho, z.z) * power;
+    let theta = (!STRETCHED).then(|| atan2(rho, z.z) * power);
     let phi = select(gt(rho, c(0.0)), atan2(z.y, z.x), c(0.0)) * power;
     let dr = power * pow(r, power - c(1.0)) * dr;
     let zr = pow(r, power);
-    let (st, ct) = (sin(theta), cos(theta));
+    let (st, ct) = match theta {
+        Some(theta) => (sin(theta), cos(theta)),
+        None => polar_trig_from_the_nearer_pole(rho, z.z, power),
+    };
     let (sp, cp) = (sin(phi), cos(phi));
     let dr = if STRETCHED {
         // |sin pθ / sin θ| = |sin pθ|·r/ρ, capped at p: its limit on the axis and its bound for integer powers (a
@@ -141,6 +144,23 @@ pub(super) fn bulb_power<F: Num, const STRETCHED: bool>(z: V3<F>, r: F, dr: F, p
         dr
     };
     (v3(st * cp, sp * st, ct) * zr, dr)
+}
+
+/// sin pθ and cos pθ, θ = atan2(ρ, z), for the stretched map, whose estimate reads |sin pθ| relative to ρ. For a
+/// whole power p below the equator pθ = pπ − pθ', θ' the angle from the south pole, so they are ±sin pθ' and
+/// ±cos pθ': taken so, they keep their precision near the negative axis, where pθ lies close to a multiple of π and
+/// sin pθ would be mostly the rounding of pθ (one ulp of θ on the pole axis moved the estimate by half). The plain map
+/// keeps θ: its estimate does not read sin pθ alone, and the selects cost the animated showcase 11 %.
+#[inline(always)]
+fn polar_trig_from_the_nearer_pole<F: Num>(rho: F, z: F, power: F) -> (F, F) {
+    let near = atan2(rho, abs(z));
+    let south = lt(z, c(0.0));
+    let whole = le(power, floor(power)) & le(floor(power), power);
+    let odd = gt(power - c::<F>(2.0) * floor(power * c(0.5)), c(0.5));
+    let reflected = south & whole;
+    let theta = select(south & !whole, c::<F>(core::f64::consts::PI) - near, near) * power;
+    let (s, co) = (sin(theta), cos(theta));
+    (select(reflected, select(odd, s, -s), s), select(reflected & odd, -co, co))
 }
 
 /// Power-8 Mandelbulb without trigonometry: the same map as [`de_mandelbulb`] at power 8, by
