@@ -66,6 +66,7 @@ pub struct CompiledScene {
     opencl: &'static str,
     opencl_f64: &'static str,
     wgsl: &'static str,
+    wgsl_f64: &'static str,
     native: NativeFns,
     build: fn() -> Scene,
     defaults: DefaultParams,
@@ -79,12 +80,12 @@ impl CompiledScene {
     pub const fn new(
         source: &'static str,
         (opencl, opencl_f64): (&'static str, &'static str),
-        wgsl: &'static str,
+        (wgsl, wgsl_f64): (&'static str, &'static str),
         native: NativeFns,
         build: fn() -> Scene,
         defaults: DefaultParams,
     ) -> Self {
-        CompiledScene { source, opencl, opencl_f64, wgsl, native, build, defaults, scene: OnceLock::new() }
+        CompiledScene { source, opencl, opencl_f64, wgsl, wgsl_f64, native, build, defaults, scene: OnceLock::new() }
     }
     /// The complete OpenCL C program (kernel `render`).
     pub fn opencl(&self) -> &'static str {
@@ -97,6 +98,10 @@ impl CompiledScene {
     /// The complete WGSL module (entry point `render`).
     pub fn wgsl(&self) -> &'static str {
         self.wgsl
+    }
+    /// The same WGSL module computing in f64, for devices with `SHADER_F64` ([`Kernels::wgsl_f64`]).
+    pub fn wgsl_f64(&self) -> &'static str {
+        self.wgsl_f64
     }
     /// The scene in canonical `.fractal` syntax.
     pub fn source(&self) -> &'static str {
@@ -211,6 +216,8 @@ pub struct Kernels {
     pub opencl_f64: String,
     /// WGSL module with entry point `render`.
     pub wgsl: String,
+    /// The same WGSL module computing in f64, for devices with `SHADER_F64`.
+    pub wgsl_f64: String,
     /// The lowered program (for the probe kernels and the native evaluator's source).
     pub program: crate::lower::Program,
 }
@@ -223,13 +230,14 @@ impl Kernels {
             opencl: opencl::write(&self.program, Entry::Trace),
             opencl_f64: opencl::write_in(&self.program, Entry::Trace, Scalar::F64),
             wgsl: wgsl::write(&self.program, Entry::Trace),
+            wgsl_f64: wgsl::write_in(&self.program, Entry::Trace, Scalar::F64),
             ..self.clone()
         }
     }
 }
 
-/// Compiles a scene: validates it, lowers it once and spells the render kernels in both GPU languages (OpenCL C also
-/// in f64).
+/// Compiles a scene: validates it, lowers it once and spells the render kernels in both GPU languages, in f32 and in
+/// f64.
 pub fn compile(scene: &Scene) -> Result<Kernels, crate::validate::InvalidScene> {
     crate::validate::checked(scene)?;
     let program = crate::lower::lower(scene);
@@ -238,6 +246,7 @@ pub fn compile(scene: &Scene) -> Result<Kernels, crate::validate::InvalidScene> 
         opencl: opencl::write(&program, Entry::Render),
         opencl_f64: opencl::write_in(&program, Entry::Render, Scalar::F64),
         wgsl: wgsl::write(&program, Entry::Render),
+        wgsl_f64: wgsl::write_in(&program, Entry::Render, Scalar::F64),
         program,
     })
 }

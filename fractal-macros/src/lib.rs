@@ -111,7 +111,8 @@ fn expand(scene: &fractal_dsl::Scene, span: Span) -> TokenStream2 {
     let sample = syn::Ident::new(fractal_dsl::back::rust::SAMPLE_FN, Span::call_site());
     let ir = fractal_dsl::back::rust::ir_tokens::scene(scene, &krate);
     let (defaults_f32, defaults_f64) = fractal_dsl::back::rust::ir_tokens::default_params(scene);
-    let (source, opencl, opencl_f64, wgsl) = (kernels.source, kernels.opencl, kernels.opencl_f64, kernels.wgsl);
+    let (source, opencl, opencl_f64) = (kernels.source, kernels.opencl, kernels.opencl_f64);
+    let (wgsl, wgsl_f64) = (kernels.wgsl, kernels.wgsl_f64);
     let lanes = quote! { #krate::number::lanes::F32x8 };
     let point = quote! { #krate::number::math::V3<#lanes> };
     let env = quote! { &#krate::eval::Env<#lanes> };
@@ -176,7 +177,7 @@ fn expand(scene: &fractal_dsl::Scene, span: Span) -> TokenStream2 {
         #krate::CompiledScene::new(
             #source,
             (#opencl, #opencl_f64),
-            #wgsl,
+            (#wgsl, #wgsl_f64),
             #krate::NativeFns {
                 distance_f32: #distance::<f32>,
                 distance_f64: #distance::<f64>,

@@ -77,7 +77,7 @@ pub enum RenderError {
     InvalidScene(#[from] fractal_dsl::validate::InvalidScene),
     /// The backend does not draw in the job's precision ([`crate::renderer::Renderer::draws_in`]).
     #[error(
-        "the {backend} device does not compute in {precision} (wgpu kernels are f32 only; OpenCL needs cl_khr_fp64); \
+        "the {backend} device does not compute in {precision} (wgpu needs SHADER_F64, OpenCL cl_khr_fp64); \
          the frame renders on the CPU with --backend cpu or auto"
     )]
     Precision { backend: Backend, precision: crate::precision::Precision },

@@ -1,6 +1,6 @@
 //! The number type a frame is drawn in, the `--precision` choice, and the figures and limits of the rule that picks
-//! it from the view ([`crate::choose_precision`]). f64 runs on the CPU renderer and on OpenCL devices with
-//! `cl_khr_fp64` (the f64 kernels); the wgpu kernels compute in f32 and refuse a job in f64
+//! it from the view ([`crate::choose_precision`]). f64 runs on the CPU renderer and on GPU devices with f64 (OpenCL
+//! `cl_khr_fp64`, wgpu `SHADER_F64`: the f64 kernels); a device without refuses a job in f64
 //! ([`crate::renderer::Renderer::draws_in`]); double-single kernels are not built yet.
 
 use std::fmt;
@@ -12,7 +12,7 @@ pub enum Precision {
     /// Single precision: every backend.
     #[default]
     F32,
-    /// Double precision: the CPU renderer, and OpenCL where the device has `cl_khr_fp64`.
+    /// Double precision: the CPU renderer, and the GPU backends where the device has f64.
     F64,
 }
 

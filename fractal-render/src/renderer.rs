@@ -41,6 +41,8 @@ impl fmt::Debug for CpuKernel<'_> {
 pub struct KernelSources<'a> {
     /// WGSL module with entry `render` (see [`fractal_dsl::back::Entry::Render`]).
     pub wgsl: Option<&'a str>,
+    /// The same WGSL module in f64 ([`fractal_dsl::back::Scalar::F64`]), for a job in f64.
+    pub wgsl_f64: Option<&'a str>,
     /// OpenCL C program with kernel `render`.
     pub opencl: Option<&'a str>,
     /// The same OpenCL C program in f64 ([`fractal_dsl::back::Scalar::F64`]), for a job in f64.
@@ -53,6 +55,7 @@ impl<'a> KernelSources<'a> {
     pub fn compiled(kernels: &'a fractal_dsl::Kernels) -> Self {
         KernelSources {
             wgsl: Some(&kernels.wgsl),
+            wgsl_f64: Some(&kernels.wgsl_f64),
             opencl: Some(&kernels.opencl),
             opencl_f64: Some(&kernels.opencl_f64),
             cpu: None,
@@ -60,6 +63,11 @@ impl<'a> KernelSources<'a> {
     }
     pub fn with_wgsl(mut self, source: &'a str) -> Self {
         self.wgsl = Some(source);
+        self
+    }
+    /// The WGSL module in f64 ([`KernelSources::wgsl_f64`]).
+    pub fn with_wgsl_f64(mut self, source: &'a str) -> Self {
+        self.wgsl_f64 = Some(source);
         self
     }
     pub fn with_opencl(mut self, source: &'a str) -> Self {

@@ -93,8 +93,8 @@ pub struct BenchSpec<'a> {
     pub length: BenchLength,
     pub backend: BackendChoice,
     pub options: RendererOptions,
-    /// The number type of each frame: given, or chosen per frame by the view. The CPU and OpenCL with `cl_khr_fp64`
-    /// draw f64 frames; wgpu's kernels are f32 only, and the report says how many frames wanted more.
+    /// The number type of each frame: given, or chosen per frame by the view. The CPU, and a GPU backend whose device
+    /// has f64, draw f64 frames; elsewhere they are timed in f32 and the report says how many frames wanted more.
     pub precision: PrecisionChoice,
     /// Also run the hand-written baseline.
     pub baseline: bool,

@@ -32,7 +32,7 @@ pub struct Quality {
     /// `None` keeps the sweep's own choice, `--precise`).
     pub precise: Option<bool>,
     /// The number type (`None`: the one the view asks for, [`fractal_render::choose_precision`]); f64 renders on
-    /// OpenCL where the device has `cl_khr_fp64`, else on the CPU.
+    /// the backend where its device has f64, else on the CPU.
     pub precision: Option<Precision>,
 }
 

@@ -1,7 +1,8 @@
 //! Agreement: one meaning, many evaluators. The same points of every vocabulary item (and of the evaluation hard
 //! cases) go through the interpreter in f32, a point at a time and in packets of eight, the native evaluator in f64,
 //! f32 and packets of eight (`distance_slice`, `sample_slice`: the f32 tolerances), the WGSL probe kernel (wgpu;
-//! lavapipe without a GPU) and the OpenCL probe kernel (pocl without a GPU; precise, fast-math as a separate, looser
+//! lavapipe without a GPU; and in f64 where the adapter offers `SHADER_F64`, to the f32 its outputs hold) and the OpenCL
+//! probe kernel (pocl without a GPU; precise, fast-math as a separate, looser
 //! comparison, and in f64 where the device has `cl_khr_fp64`, to the f32 its outputs hold), and each must agree with the f64 interpreter within the tolerances of `agreement/tolerance.rs`.
 //!
 //! The suite is written once against [`harness::Subject`] and instantiated per evaluator (Fidget's
@@ -16,9 +17,7 @@ mod tolerance;
 use fractal_render::device::backends_required;
 use std::sync::Mutex;
 
-#[cfg(feature = "opencl")]
-use fractal::dsl::back::Scalar;
-use fractal::dsl::back::{self, Entry};
+use fractal::dsl::back::{self, Entry, Scalar};
 use fractal::dsl::eval::interp::Interpreter;
 use fractal::dsl::lower::lower;
 use fractal::dsl::number::math::V3;
@@ -170,18 +169,34 @@ fn widen(samples: Vec<ProbeSample>) -> Vec<Answer> {
     samples.into_iter().map(|s| s.map(f64::from)).collect()
 }
 
-struct WgslProbe(WgpuRenderer);
+/// The WGSL probe kernel in f32 or, on a device with `SHADER_F64`, in f64 (with the traced elementary functions).
+struct WgslProbe(WgpuRenderer, Scalar);
 impl Subject for WgslProbe {
     fn name(&self) -> &'static str {
-        "wgsl"
+        match self.1 {
+            Scalar::F32 => "wgsl",
+            Scalar::F64 => "wgsl f64",
+        }
     }
     fn class(&self) -> Class {
-        Class::Gpu
+        match self.1 {
+            Scalar::F32 => Class::Gpu,
+            Scalar::F64 => Class::GpuF64,
+        }
     }
     fn answers(&mut self, row: &Row, points: &[V3<f32>]) -> Result<Vec<Answer>, String> {
-        let source = back::wgsl::write(&lower(row.scene()), Entry::Probe);
+        let source = back::wgsl::write_in(&lower(row.scene()), Entry::Probe, self.1);
         let frame = probe_frame(row)?;
-        self.0.probe(&source, &frame, &probe_points(points)).map(widen).map_err(|e| e.to_string())
+        self.0.probe((&source, self.1), &frame, &probe_points(points)).map(widen).map_err(|e| e.to_string())
+    }
+}
+
+/// The wgpu renderer, where its adapter offers `SHADER_F64`.
+fn wgsl_f64() -> Result<Box<dyn Subject>, (&'static str, String)> {
+    match WgpuRenderer::new() {
+        Ok(r) if r.has_fp64() => Ok(Box::new(WgslProbe(r, Scalar::F64))),
+        Ok(r) => Err(("wgsl f64", format!("{} has no SHADER_F64", fractal::render::Renderer::device(&r)))),
+        Err(e) => Err(("wgsl f64", e.to_string())),
     }
 }
 
@@ -224,7 +239,7 @@ fn opencl_f64() -> Result<Box<dyn Subject>, (&'static str, String)> {
 // ---- the suite, instantiated per evaluator --------------------------------------------------------------------------
 
 /// How many columns the summary waits for: one per test below.
-const SUBJECTS: usize = if cfg!(feature = "opencl") { 9 } else { 6 };
+const SUBJECTS: usize = if cfg!(feature = "opencl") { 10 } else { 7 };
 
 static COLUMNS: Mutex<Vec<Column>> = Mutex::new(Vec::new());
 
@@ -270,8 +285,9 @@ agreement_tests! {
     interpreter_packets_agree_with_the_f64_interpreter => Ok(Box::new(InterpreterX8));
     native_packets_agree_with_the_f64_interpreter => Ok(Box::new(NativeX8));
     wgsl_probe_agrees_with_the_f64_interpreter => WgpuRenderer::new()
-        .map(|r| Box::new(WgslProbe(r)) as Box<dyn Subject>)
+        .map(|r| Box::new(WgslProbe(r, Scalar::F32)) as Box<dyn Subject>)
         .map_err(|e| ("wgsl", e.to_string()));
+    wgsl_f64_probe_agrees_with_the_f64_interpreter_to_the_f32_it_writes => wgsl_f64();
     #[cfg(feature = "opencl")]
     opencl_probe_agrees_with_the_f64_interpreter => fractal::render::OpenClRenderer::new(true)
         .map(|r| Box::new(OpenClProbe(r, Scalar::F32)) as Box<dyn Subject>)

@@ -7,8 +7,8 @@
 //! to RGBA8 would hide. The GPU backends' trace kernels (the render kernel that also keeps each pixel's depth, normal
 //! and steps, which the accuracy report reads) agree with the CPU's traces on a set of scenes chosen to cover the
 //! render algorithm's paths. Each frame is drawn in the precision its view asks for: the dive's last key in f64, which
-//! OpenCL draws with its f64 kernel where the device has `cl_khr_fp64` (against the CPU's f64 render) and wgpu leaves
-//! to the CPU.
+//! each GPU backend draws with its f64 kernel where the device computes in f64 (`SHADER_F64`, `cl_khr_fp64`), against
+//! the CPU's f64 render, and leaves to the CPU otherwise.
 //!
 //! Tolerance: a pixel "agrees" when every channel is within 8/255 of the CPU image. The kernels run the same algorithm
 //! in f32, but GPU built-ins (sqrt, pow, normalize, sin) may differ by a few ulps; near a silhouette or a shadow edge
@@ -102,7 +102,7 @@ fn check_frame(
     let frame = frame_at(scene, time);
     let native = compiled.native();
     // Each frame in the precision its view asks for. One in f64 that the backend does not compute in is drawn by the
-    // CPU (wgpu's kernels are f32 only): in f32 both draw rounding noise there, which need not agree
+    // CPU: in f32 both draw rounding noise there, which need not agree
     // (`tests/fractal/precision.rs` judges those frames).
     let chosen = decide(PrecisionChoice::Auto, scene, &frame, &native, &native).unwrap();
     let sources = kernels(name);
@@ -163,7 +163,9 @@ fn compiled(name: &str) -> &'static fractal::dsl::CompiledScene {
 #[test]
 fn wgpu_draws_what_the_cpu_draws() {
     match fractal::render::WgpuRenderer::new() {
-        Ok(r) => check_backend("wgpu", r, |name| KernelSources::default().with_wgsl(compiled(name).wgsl())),
+        Ok(r) => check_backend("wgpu", r, |name| {
+            KernelSources::default().with_wgsl(compiled(name).wgsl()).with_wgsl_f64(compiled(name).wgsl_f64())
+        }),
         Err(e) if !backends_required() => eprintln!("skipped: no wgpu adapter ({e})"),
         Err(e) => panic!("wgpu is required (FRACTAL_REQUIRE_GPU_BACKENDS=1) but unavailable: {e}"),
     }

@@ -18,6 +18,7 @@ fn every_built_in_scene_has_pinned_kernels() {
         snapshot("opencl", name, scene.opencl());
         snapshot("opencl_f64", name, scene.opencl_f64());
         snapshot("wgsl", name, scene.wgsl());
+        snapshot("wgsl_f64", name, scene.wgsl_f64());
         snapshot("rust", name, &rust::write(&lower(scene.scene()), "fractal_dsl"));
     }
 }
@@ -92,6 +93,7 @@ fn every_wgsl_f64_module_validates_and_calls_no_f32_only_built_in() {
                 assert!(!bare, "{name} {entry:?}: an f64 module calls the built-in `{built_in}`");
             }
         }
+        assert_eq!(scene.wgsl_f64(), wgsl::write_in(&program, Entry::Render, Scalar::F64), "{name}");
     }
 }
 

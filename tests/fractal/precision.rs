@@ -1,7 +1,8 @@
 //! Precision chosen by the view: close to a fractal's surface (the Mandelbulb's pole, an edge of the Menger sponge) f32
-//! fails the accuracy budget and the rule picks f64, which passes it; far from the origin the same scene draws the image it draws at the origin. Judged against the
-//! f64 truth (membership, never the estimate), at a small size and a truth step of 1/32 footprint so the test stays
-//! short; on the CPU, and on OpenCL with its f64 kernels where the device has `cl_khr_fp64` (pocl's CPU device does).
+//! fails the accuracy budget and the rule picks f64, which passes it; far from the origin the same scene draws the
+//! image it draws at the origin. Judged against the f64 truth (membership, never the estimate), at a small size and a
+//! truth step of 1/32 footprint so the test stays short; on the CPU, and on the GPU backends with their f64 kernels
+//! where the device computes in f64.
 
 use fractal::dsl::builder::*;
 use fractal::dsl::eval::interp::Interpreter;
@@ -110,13 +111,12 @@ fn the_menger_sponge_1e9_from_an_edge_asks_for_f64_which_is_within_budget_on_eve
     let f64_fails = violations_of(&interp, &s, (&frame, &truth), Precision::F64);
     assert!(f64_fails.is_empty(), "f64 1e-9 from the sponge's edge: {f64_fails:?}");
     assert!(!violations_of(&interp, &s, (&frame, &truth), Precision::F32).is_empty(), "f32 there is within budget");
-    #[cfg(feature = "opencl")]
-    if let Some(mut cl) = opencl_with_fp64() {
-        let tracing = fractal::dsl::compile(&s).unwrap().tracing();
+    let tracing = fractal::dsl::compile(&s).unwrap().tracing();
+    for (label, mut gpu) in gpus_with_f64() {
         let job = RenderJob::new(KernelSources::compiled(&tracing), &frame).with_precision(Precision::F64);
-        let traced = cl.trace(&job).unwrap();
+        let traced = gpu.trace(&job).unwrap();
         let fails = Budget::default().verdict(&measure(&s, &truth, Observed::Traced(&traced.pixels))).violations;
-        assert!(fails.is_empty(), "OpenCL in f64 1e-9 from the sponge's edge: {fails:?}");
+        assert!(fails.is_empty(), "{label} in f64 1e-9 from the sponge's edge: {fails:?}");
     }
 }
 
@@ -167,62 +167,66 @@ fn a_scene_a_million_units_out_draws_the_image_it_draws_at_the_origin() {
     assert!(f64_off < 0.002, "f64 1e6 out differs on {:.2} % of pixels", 100.0 * f64_off);
 }
 
-/// The OpenCL renderer (fast math, as the commands open it) where its device computes in f64, else `None` with a
-/// note; a required OpenCL that cannot be opened fails.
-#[cfg(feature = "opencl")]
-fn opencl_with_fp64() -> Option<fractal::render::OpenClRenderer> {
+/// The GPU renderers whose devices compute in f64, by name: wgpu where the adapter offers `SHADER_F64` (lavapipe does),
+/// OpenCL (fast math, as the commands open it) where the device has `cl_khr_fp64` (pocl's CPU device does). A
+/// required backend that cannot be opened fails; one without f64 is skipped with a note.
+fn gpus_with_f64() -> Vec<(&'static str, Box<dyn Renderer>)> {
+    let required = fractal_render::device::backends_required();
+    let mut out: Vec<(&'static str, Box<dyn Renderer>)> = Vec::new();
+    match fractal::render::WgpuRenderer::new() {
+        Ok(r) if r.has_fp64() => out.push(("wgpu", Box::new(r))),
+        Ok(r) => eprintln!("wgpu skipped: {} has no SHADER_F64", r.device()),
+        Err(e) if !required => eprintln!("wgpu skipped: no adapter ({e})"),
+        Err(e) => panic!("wgpu is required (FRACTAL_REQUIRE_GPU_BACKENDS=1) but unavailable: {e}"),
+    }
+    #[cfg(feature = "opencl")]
     match fractal::render::OpenClRenderer::new(false) {
-        Ok(r) if r.has_fp64() => Some(r),
-        Ok(r) => {
-            eprintln!("skipped: {} has no cl_khr_fp64", r.device());
-            None
-        }
-        Err(e) if !fractal_render::device::backends_required() => {
-            eprintln!("skipped: no OpenCL device ({e})");
-            None
-        }
+        Ok(r) if r.has_fp64() => out.push(("opencl", Box::new(r))),
+        Ok(r) => eprintln!("OpenCL skipped: {} has no cl_khr_fp64", r.device()),
+        Err(e) if !required => eprintln!("OpenCL skipped: no device ({e})"),
         Err(e) => panic!("OpenCL is required (FRACTAL_REQUIRE_GPU_BACKENDS=1) but unavailable: {e}"),
     }
+    out
 }
 
-#[cfg(feature = "opencl")]
 #[test]
-fn on_opencl_the_dive_1e9_from_the_pole_is_within_budget_in_f64_and_not_in_f32() {
-    let Some(mut cl) = opencl_with_fp64() else { return };
+fn on_the_gpus_the_dive_1e9_from_the_pole_is_within_budget_in_f64_and_not_in_f32() {
     let (scene, frame) = dive_frame(27.0);
     let tracing = fractal::dsl::compile(scene).unwrap().tracing();
     let truth = truth(scene, &frame);
-    let judged = |cl: &mut fractal::render::OpenClRenderer, precision| {
-        let job = RenderJob::new(KernelSources::compiled(&tracing), &frame).with_precision(precision);
-        assert!(cl.draws_in(&job), "a device with cl_khr_fp64 draws in {precision}");
-        let traced = cl.trace(&job).unwrap();
-        Budget::default().verdict(&measure(scene, &truth, Observed::Traced(&traced.pixels))).violations
-    };
-    let f64_fails = judged(&mut cl, Precision::F64);
-    assert!(f64_fails.is_empty(), "OpenCL in f64 1e-9 from the surface: {f64_fails:?}");
-    assert!(!judged(&mut cl, Precision::F32).is_empty(), "OpenCL in f32 1e-9 from the surface is within budget");
+    for (label, mut gpu) in gpus_with_f64() {
+        let mut judged = |precision| {
+            let job = RenderJob::new(KernelSources::compiled(&tracing), &frame).with_precision(precision);
+            assert!(gpu.draws_in(&job), "{label}: a device with f64 draws in {precision}");
+            let traced = gpu.trace(&job).unwrap();
+            Budget::default().verdict(&measure(scene, &truth, Observed::Traced(&traced.pixels))).violations
+        };
+        let f64_fails = judged(Precision::F64);
+        assert!(f64_fails.is_empty(), "{label} in f64 1e-9 from the surface: {f64_fails:?}");
+        assert!(!judged(Precision::F32).is_empty(), "{label} in f32 1e-9 from the surface is within budget");
+    }
 }
 
-#[cfg(feature = "opencl")]
 #[test]
-fn on_opencl_a_scene_a_million_units_out_draws_in_f64_the_image_at_the_origin() {
-    let Some(mut cl) = opencl_with_fp64() else { return };
+fn on_the_gpus_a_scene_a_million_units_out_draws_in_f64_the_image_at_the_origin() {
     let (here, pose_here) = far_scene(0.0);
     let (_, at_origin) = render_cpu(&here, &pose_here, PrecisionChoice::Auto);
     let (far, pose_far) = far_scene(1e6);
     let frame = Frame::new(&far, &pose_far, 0.0, 160, 90, &ParamValues::defaults(&far)).unwrap();
     let kernels = fractal::dsl::compile(&far).unwrap();
-    let mut draw = |precision| {
-        cl.render(&RenderJob::new(KernelSources::compiled(&kernels), &frame).with_precision(precision)).unwrap()
-    };
-    let (f32_off, f64_off) =
-        (differing(&at_origin, &draw(Precision::F32), 8), differing(&at_origin, &draw(Precision::F64), 8));
-    eprintln!(
-        "OpenCL 1e6 out against the CPU at the origin: f32 {:.2} %, f64 {:.3} % of pixels off by > 8 levels",
-        100.0 * f32_off,
-        100.0 * f64_off
-    );
-    assert!(f32_off > 0.05, "OpenCL in f32 1e6 out differs on only {:.2} % of pixels", 100.0 * f32_off);
-    // The backends' agreement tolerance (`tests/fractal/backends.rs`): 97 % of colours within 8 levels.
-    assert!(f64_off < 0.03, "OpenCL in f64 1e6 out differs on {:.2} % of pixels", 100.0 * f64_off);
+    for (label, mut gpu) in gpus_with_f64() {
+        let mut draw = |precision| {
+            gpu.render(&RenderJob::new(KernelSources::compiled(&kernels), &frame).with_precision(precision)).unwrap()
+        };
+        let (f32_off, f64_off) =
+            (differing(&at_origin, &draw(Precision::F32), 8), differing(&at_origin, &draw(Precision::F64), 8));
+        eprintln!(
+            "{label} 1e6 out against the CPU at the origin: f32 {:.2} %, f64 {:.3} % of pixels off by > 8 levels",
+            100.0 * f32_off,
+            100.0 * f64_off
+        );
+        assert!(f32_off > 0.05, "{label} in f32 1e6 out differs on only {:.2} % of pixels", 100.0 * f32_off);
+        // The backends' agreement tolerance (`tests/fractal/backends.rs`): 97 % of colours within 8 levels.
+        assert!(f64_off < 0.03, "{label} in f64 1e6 out differs on {:.2} % of pixels", 100.0 * f64_off);
+    }
 }

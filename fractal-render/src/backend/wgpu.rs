@@ -6,17 +6,19 @@
 //! kernel with a second pass ([`fractal_dsl::back::Pass`]) has its `refine` read the first pass's pixels at 3. Every
 //! wgpu call that can fail runs inside error scopes, so a kernel the driver refuses, or a device that cannot
 //! allocate, is a [`RenderError`] and never a panic. Pipelines are cached
-//! per source text; output buffers are reused while the image size stays the same.
+//! per source text; output buffers are reused while the image size stays the same. A job in f64 runs the scene's f64
+//! module where the adapter offers `SHADER_F64` (the device is opened with it).
 
 use std::sync::{mpsc, Arc, Mutex};
 
-use fractal_dsl::back::{has_refine, Entry, Pass};
+use fractal_dsl::back::{has_refine, Entry, Pass, Scalar};
 use wgpu::util::DeviceExt;
 
 use crate::device::{Backend, DeviceInfo};
 use crate::error::RenderError;
 use crate::frame::Frame;
 use crate::image::Image;
+use crate::precision::Precision;
 use crate::renderer::{PixelTrace, ProbeSample, RenderJob, Renderer, Traced};
 
 /// Workgroup edge of the `render` entry point (8×8).
@@ -95,7 +97,8 @@ impl WgpuRenderer {
         let info = adapter.get_info();
         let descriptor = wgpu::DeviceDescriptor {
             label: Some("fractal"),
-            required_features: adapter.features() & wanted,
+            // f64 where the adapter has it, for frames that ask for it.
+            required_features: adapter.features() & (wanted | wgpu::Features::SHADER_F64),
             // The adapter's own limits, so large images are limited by the device rather than by WebGPU defaults.
             required_limits: adapter.limits(),
             memory_hints: wgpu::MemoryHints::Performance,
@@ -201,8 +204,33 @@ impl WgpuRenderer {
         Ok(pipeline)
     }
 
-    /// Evaluates a probe kernel (entry `probe`) at `points` (xyz; w ignored): one [`ProbeSample`] per point.
-    pub fn probe(&mut self, source: &str, frame: &Frame, points: &[[f32; 4]]) -> Result<Vec<ProbeSample>, RenderError> {
+    /// Whether the device computes in f64 (`SHADER_F64`): then it draws jobs in f64 with their f64 modules.
+    pub fn has_fp64(&self) -> bool {
+        self.device.features().contains(wgpu::Features::SHADER_F64)
+    }
+
+    /// The job's module for its precision and the number type it computes in; a job in a precision the device lacks
+    /// is refused ([`Renderer::draws_in`]).
+    pub fn source_of<'j>(&self, job: &RenderJob<'j>) -> Result<(&'j str, Scalar), RenderError> {
+        if !self.draws_in(job) {
+            return Err(job.refused(Backend::Wgpu));
+        }
+        let (source, scalar) = match job.precision {
+            Precision::F32 => (job.kernels.wgsl, Scalar::F32),
+            Precision::F64 => (job.kernels.wgsl_f64, Scalar::F64),
+        };
+        let source = source.ok_or(RenderError::MissingKernel { backend: Backend::Wgpu, what: "WGSL kernel" })?;
+        Ok((source, scalar))
+    }
+
+    /// Evaluates a probe kernel (entry `probe`) computing in `scalar` at `points` (xyz; w ignored): one
+    /// [`ProbeSample`] per point.
+    pub fn probe(
+        &mut self,
+        (source, scalar): (&str, Scalar),
+        frame: &Frame,
+        points: &[[f32; 4]],
+    ) -> Result<Vec<ProbeSample>, RenderError> {
         if points.is_empty() {
             return Ok(Vec::new());
         }
@@ -220,7 +248,7 @@ impl WgpuRenderer {
         }
         let pipeline = self.pipeline((Entry::Probe, Pass::First), source)?;
         let (buffers, error) = capture(&self.device, || {
-            let uniform = self.uniform_buffer(frame);
+            let uniform = self.uniform_buffer(frame, scalar);
             let input = self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("probe points"),
                 contents: bytemuck::cast_slice(points),
@@ -247,10 +275,11 @@ impl WgpuRenderer {
         Ok(floats.chunks_exact(8).map(|c| std::array::from_fn(|i| c[i])).collect())
     }
 
-    fn uniform_buffer(&self, frame: &Frame) -> wgpu::Buffer {
+    /// The frame's slots as a module computing in `scalar` reads them.
+    fn uniform_buffer(&self, frame: &Frame, scalar: Scalar) -> wgpu::Buffer {
         self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("frame"),
-            contents: frame.as_bytes(),
+            contents: &frame.bytes_in(scalar),
             usage: wgpu::BufferUsages::UNIFORM,
         })
     }
@@ -470,8 +499,7 @@ impl WgpuRenderer {
     /// Runs the job's `entry` kernel (`render` or `trace`) over the frame's pixels: the image, and the trace
     /// kernel's [`PixelTrace::KERNEL_WORDS`] words per pixel.
     fn run_pixels(&mut self, job: &RenderJob, entry: Entry) -> Result<(Image, Vec<f32>), RenderError> {
-        let source =
-            job.kernels.wgsl.ok_or(RenderError::MissingKernel { backend: Backend::Wgpu, what: "WGSL kernel" })?;
+        let (source, scalar) = self.source_of(job)?;
         let (width, height) = (job.width(), job.height());
         let bytes = width as u64 * height as u64 * 4;
         let trace_bytes = if entry == Entry::Trace { bytes * PixelTrace::KERNEL_WORDS as u64 } else { 0 };
@@ -506,7 +534,7 @@ impl WgpuRenderer {
         };
         // The traces are rare (accuracy and depth images): their buffers are made per call, not kept.
         let (traces, error) = capture(&self.device, || {
-            let uniform = self.uniform_buffer(job.frame);
+            let uniform = self.uniform_buffer(job.frame, scalar);
             let traces = (trace_bytes > 0)
                 .then(|| (self.storage_buffer("traces", trace_bytes), self.readback_buffer(trace_bytes)));
             let mut encoder = self.encoder();
@@ -528,16 +556,10 @@ impl WgpuRenderer {
 
 impl Renderer for WgpuRenderer {
     fn render(&mut self, job: &RenderJob) -> Result<Image, RenderError> {
-        if !self.draws_in(job) {
-            return Err(job.refused(Backend::Wgpu));
-        }
         Ok(self.run_pixels(job, Entry::Render)?.0)
     }
 
     fn trace(&mut self, job: &RenderJob) -> Result<Traced, RenderError> {
-        if !self.draws_in(job) {
-            return Err(job.refused(Backend::Wgpu));
-        }
         let (image, words) = self.run_pixels(job, Entry::Trace)?;
         Ok(Traced::from_kernel(image, &words))
     }
@@ -556,6 +578,13 @@ impl Renderer for WgpuRenderer {
             device_type: format!("{:?}", self.info.device_type),
         }
     }
+
+    fn draws_in(&self, job: &RenderJob) -> bool {
+        match job.precision {
+            Precision::F32 => true,
+            Precision::F64 => self.has_fp64() && job.kernels.wgsl_f64.is_some(),
+        }
+    }
 }
 
 /// Evaluates a WGSL probe kernel at `points` on `renderer`'s device; see [`WgpuRenderer::probe`].
@@ -565,5 +594,5 @@ pub fn probe_wgsl(
     frame: &Frame,
     points: &[[f32; 4]],
 ) -> Result<Vec<ProbeSample>, RenderError> {
-    renderer.probe(source, frame, points)
+    renderer.probe((source, Scalar::F32), frame, points)
 }

@@ -132,7 +132,9 @@ fn compiled_probes_match_the_interpreter() {
         let program = fractal_dsl::lower::lower(&s);
         let frame = frame(&s);
         if let Some(gpu) = gpu.as_mut() {
-            let got = gpu.probe(&wgsl::write(&program, Entry::Probe), &frame, &points).expect("wgpu probe");
+            let kernel = wgsl::write(&program, Entry::Probe);
+            let got =
+                gpu.probe((kernel.as_str(), fractal_dsl::back::Scalar::F32), &frame, &points).expect("wgpu probe");
             check_probe(name, "wgpu", &s, &frame, &points, &got);
         }
         #[cfg(feature = "opencl")]

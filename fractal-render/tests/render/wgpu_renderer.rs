@@ -87,5 +87,6 @@ fn probes_return_the_sphere_distance() {
         let samples = probe_wgsl(&mut r, &source, &sphere_probe_frame(radius), &points).expect("probe");
         check_sphere_probe(&samples, &points, radius);
     }
-    assert!(r.probe(&source, &sphere_probe_frame(1.0), &[]).expect("empty probe").is_empty());
+    let f32_source = (source.as_str(), fractal_dsl::back::Scalar::F32);
+    assert!(r.probe(f32_source, &sphere_probe_frame(1.0), &[]).expect("empty probe").is_empty());
 }

@@ -376,7 +376,7 @@ pub fn with_precision(scene: &Scene, quality: &Quality, frame: &Frame) -> Result
 }
 
 /// Measures every setting of `qualities` on `backend` against `truth`. `renderer` is the opened GPU renderer (unused
-/// for the CPU). A setting in f64 the backend does not compute in (wgpu; OpenCL without `cl_khr_fp64`) is measured on
+/// for the CPU). A setting in f64 the backend does not compute in (a device without f64) is measured on
 /// the CPU, as the auto renderer would draw it. `progress` is told each finished point.
 pub fn run(
     scene: &Scene,

@@ -76,8 +76,8 @@ pub struct DeviceArgs {
     #[arg(long)]
     pub precise: bool,
     /// Number type of each frame: auto picks f32 unless f32's rounding at the frame's hits is too coarse for the
-    /// view (a close zoom, a scene far from the origin), then f64, which OpenCL draws where the device has
-    /// cl_khr_fp64 and the CPU renderer otherwise
+    /// view (a close zoom, a scene far from the origin), then f64, which the backend draws where its device has
+    /// f64 (OpenCL cl_khr_fp64, wgpu SHADER_F64) and the CPU renderer otherwise
     #[arg(long, value_name = "auto|f32|f64", default_value = "auto", value_parser = parse_precision)]
     pub precision: PrecisionChoice,
 }
@@ -268,8 +268,8 @@ pub struct AccuracyArgs {
     /// OpenCL: build without -cl-fast-relaxed-math
     #[arg(long)]
     pub precise: bool,
-    /// Number type of every setting measured: auto takes the one each view asks for (f64 renders on OpenCL where the
-    /// device has cl_khr_fp64, else on the CPU)
+    /// Number type of every setting measured: auto takes the one each view asks for (f64 renders on the backend where
+    /// its device has f64, else on the CPU)
     #[arg(long, value_name = "auto|f32|f64", default_value = "auto", value_parser = parse_precision)]
     pub precision: PrecisionChoice,
     /// After the sweep, measure the scene's default on these backends too, against the same truth (wgpu,opencl);

@@ -99,6 +99,7 @@ impl<'a> LoadedScene<'a> {
         match &self.forms {
             Forms::BuiltIn { compiled, kernels: None, .. } => KernelSources::default()
                 .with_wgsl(compiled.wgsl())
+                .with_wgsl_f64(compiled.wgsl_f64())
                 .with_opencl(compiled.opencl())
                 .with_opencl_f64(compiled.opencl_f64())
                 .with_cpu(self.evaluator(), &self.scene)

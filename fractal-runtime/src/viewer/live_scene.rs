@@ -31,6 +31,7 @@ pub struct LiveScene {
     /// What is rendered: `authored` with the overrides applied.
     pub scene: Scene,
     wgsl: String,
+    wgsl_f64: String,
     opencl: String,
     opencl_f64: String,
     evaluator: CpuEvaluator,
@@ -45,6 +46,7 @@ impl LiveScene {
                 authored: scene.scene().clone(),
                 scene: scene.scene().clone(),
                 wgsl: scene.wgsl().to_string(),
+                wgsl_f64: scene.wgsl_f64().to_string(),
                 opencl: scene.opencl().to_string(),
                 opencl_f64: scene.opencl_f64().to_string(),
                 evaluator: CpuEvaluator::Native(scene.native()),
@@ -72,6 +74,7 @@ impl LiveScene {
             authored: scene.clone(),
             scene,
             wgsl: kernels.wgsl,
+            wgsl_f64: kernels.wgsl_f64,
             opencl: kernels.opencl,
             opencl_f64: kernels.opencl_f64,
         })
@@ -92,8 +95,9 @@ impl LiveScene {
         let mut scene = self.authored.clone();
         scene.settings = settings;
         let kernels = fractal_dsl::compile(&scene).map_err(|e| e.to_string())?;
-        let (wgsl, opencl, opencl_f64) = (kernels.wgsl, kernels.opencl, kernels.opencl_f64);
-        Ok(LiveScene { scene, wgsl, opencl, opencl_f64, ..self.clone() })
+        let (wgsl, wgsl_f64) = (kernels.wgsl, kernels.wgsl_f64);
+        let (opencl, opencl_f64) = (kernels.opencl, kernels.opencl_f64);
+        Ok(LiveScene { scene, wgsl, wgsl_f64, opencl, opencl_f64, ..self.clone() })
     }
 
     pub fn wgsl(&self) -> &str {
@@ -104,6 +108,7 @@ impl LiveScene {
     pub fn kernels(&self) -> KernelSources<'_> {
         KernelSources::default()
             .with_wgsl(&self.wgsl)
+            .with_wgsl_f64(&self.wgsl_f64)
             .with_opencl(&self.opencl)
             .with_opencl_f64(&self.opencl_f64)
             .with_cpu(self.evaluator(), &self.scene)

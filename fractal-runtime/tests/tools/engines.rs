@@ -168,8 +168,11 @@ fn the_wgsl_library_agrees_with_the_probe_kernel_on_wgpu() {
             })
             .collect();
         let program = fractal_dsl::lower::lower(scene);
-        let got = gpu.probe(&probe, &frame, &points).unwrap_or_else(|e| panic!("{name}: the library: {e}"));
-        let want = gpu.probe(&wgsl::write(&program, Entry::Probe), &frame, &points).expect("the probe kernel");
+        let f32 = fractal_dsl::back::Scalar::F32;
+        let got =
+            gpu.probe((probe.as_str(), f32), &frame, &points).unwrap_or_else(|e| panic!("{name}: the library: {e}"));
+        let kernel = wgsl::write(&program, Entry::Probe);
+        let want = gpu.probe((kernel.as_str(), f32), &frame, &points).expect("the probe kernel");
         let perturbed = program.reference.is_some();
         let (mut worst_distance, mut worst_colour) = (0.0f64, 0.0f32);
         for (i, (g, w)) in got.iter().zip(&want).enumerate() {

@@ -209,7 +209,7 @@ fn export_compiled_exports_the_build_time_kernels() {
     let compiled = CompiledScene::new(
         leak(&kernels.source),
         (leak(&kernels.opencl), leak(&kernels.opencl_f64)),
-        leak(&kernels.wgsl),
+        (leak(&kernels.wgsl), leak(&kernels.wgsl_f64)),
         native,
         unused_scene,
         DefaultParams::NONE,

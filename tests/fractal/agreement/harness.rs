@@ -554,8 +554,19 @@ pub fn skipped(subject: &'static str, rows: &[Row], why: &str) -> Column {
 
 /// Summary column order: CPU evaluators first, then the kernels.
 pub fn order_of(subject: &str) -> usize {
-    ["interp f32", "interp x8", "native f64", "native f32", "native x8", "wgsl", "opencl", "opencl fast", "opencl f64"]
-        .iter()
-        .position(|s| *s == subject)
-        .unwrap_or(usize::MAX)
+    [
+        "interp f32",
+        "interp x8",
+        "native f64",
+        "native f32",
+        "native x8",
+        "wgsl",
+        "wgsl f64",
+        "opencl",
+        "opencl fast",
+        "opencl f64",
+    ]
+    .iter()
+    .position(|s| *s == subject)
+    .unwrap_or(usize::MAX)
 }

@@ -37,8 +37,8 @@ pub enum Class {
     /// The OpenCL kernel built with `-cl-fast-relaxed-math`.
     #[cfg_attr(not(feature = "opencl"), allow(dead_code))]
     FastMath,
-    /// The OpenCL kernel in f64 (`cl_khr_fp64`), its answers rounded to the probe's f32 outputs.
-    #[cfg_attr(not(feature = "opencl"), allow(dead_code))]
+    /// The WGSL (`SHADER_F64`) and OpenCL (`cl_khr_fp64`) kernels in f64, their answers rounded to the probe's f32
+    /// outputs.
     GpuF64,
 }
 
@@ -71,8 +71,9 @@ pub fn distance_tolerance(family: Family, class: Class) -> Tol {
         // only exact identities such as x + 0 and x · 1), so in f64 the two are bit-identical: measured 0 on every
         // row. Any difference means the generated Rust and the interpreter do different arithmetic somewhere.
         (Twin, _) => Tol { abs: 0.0, rel: 0.0 },
-        // The same arithmetic in f64 with the device's f64 built-ins, then rounded to the f32 the probe writes: at
-        // most 1 u·s (measured ≤ 0.92 on pocl); the built-ins' f64 differences, amplified by an orbit by at most ~1e7
+        // The same arithmetic in f64 — with the device's f64 built-ins (OpenCL) or the traced ones of
+        // `number::portable`, within 2 f64 ulps (WGSL) — then rounded to the f32 the probe writes: at most 1 u·s
+        // (measured ≤ 0.92 on pocl); the built-ins' f64 differences, amplified by an orbit by at most ~1e7
         // (1e-13, see `TWO_FORMS_F64`), are far below it. A kernel that computed in f32 is caught by its text
         // (`tests/fractal/kernels.rs`), not here: on exact rows its error is as small.
         (GpuF64, _) => ulps(1.5),

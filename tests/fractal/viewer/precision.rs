@@ -1,7 +1,7 @@
 //! The viewer 1e-9 from the Mandelbulb's pole (`mandelbulb_dive` at its last key, paused), on the default backend:
-//! the view asks for f64, so the window shows an f64 frame of the same pose (the CPU renderer's where the backend does
-//! not compute in f64: wgpu; OpenCL's f64 kernel with `cl_khr_fp64`), and that is not the f32 frame, which is rounding
-//! noise there.
+//! the view asks for f64, so the window shows an f64 frame of the same pose (the backend's f64 kernel where its device
+//! has f64, lavapipe's included; the CPU renderer's otherwise), and that is not the f32 frame, which is rounding noise
+//! there.
 
 use std::path::Path;
 

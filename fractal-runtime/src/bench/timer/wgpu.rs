@@ -154,14 +154,15 @@ impl Timer for WgpuTimer {
         }
     }
 
+    fn computes_f64(&self) -> bool {
+        self.renderer.has_fp64()
+    }
+
     fn run(&mut self, work: &Work) -> Result<Timed, RenderError> {
         let (source, entry, uniform, width, height) = match work {
             Work::Generated(job) => {
-                let source = job
-                    .kernels
-                    .wgsl
-                    .ok_or(RenderError::MissingKernel { backend: Backend::Wgpu, what: "WGSL kernel" })?;
-                (source, "render", job.frame.as_bytes().to_vec(), job.width(), job.height())
+                let (source, scalar) = self.renderer.source_of(job)?;
+                (source, "render", job.frame.bytes_in(scalar), job.width(), job.height())
             }
             Work::Baseline { width, height } => {
                 // `{w: u32, h: u32}`, padded to the 16 bytes of a uniform block.

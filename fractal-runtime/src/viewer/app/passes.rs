@@ -1,8 +1,8 @@
 //! A frame of a view standing still: the next progressive pass (module `still` says when and why), drawn by whichever
 //! renderer draws and shown through either presenter as a host image, or the picture shown already, again. The game
 //! loop (`app.rs`) picks this over the usual frame. A frame in f64 (`--precision`) is drawn here too, by the
-//! engine's renderer where it computes in f64 (OpenCL with `cl_khr_fp64`), else by the CPU renderer, and shown the
-//! same way.
+//! engine's renderer where it computes in f64 (OpenCL `cl_khr_fp64`, wgpu `SHADER_F64`), else by the CPU renderer,
+//! and shown the same way.
 
 use fractal_render::backend::cpu::CpuRenderer;
 use fractal_render::device::Backend;
