@@ -8,6 +8,7 @@
 
 use std::fmt;
 
+use fractal_dsl::back::Scalar;
 use fractal_dsl::eval::Evaluator;
 use fractal_dsl::Scene;
 
@@ -108,6 +109,31 @@ impl<'a> RenderJob<'a> {
     pub fn with_precision(mut self, precision: Precision) -> Self {
         self.precision = precision;
         self
+    }
+    /// Whether a GPU device draws this job from its program `forms` (f32, f64): in f32 always, in f64 where the
+    /// device computes in it (`fp64`) and the job carries the f64 program.
+    pub fn gpu_draws(&self, forms: [Option<&'a str>; 2], fp64: bool) -> bool {
+        match self.precision {
+            Precision::F32 => true,
+            Precision::F64 => fp64 && forms[1].is_some(),
+        }
+    }
+    /// The program of the job's precision among `forms` (f32, f64) for a GPU `backend` (whose program is named
+    /// `what`), and the number type it computes in; refused where the device lacks the precision ([`Self::gpu_draws`]).
+    pub fn gpu_program(
+        &self,
+        (backend, what): (Backend, &'static str),
+        forms: [Option<&'a str>; 2],
+        fp64: bool,
+    ) -> Result<(&'a str, Scalar), RenderError> {
+        if !self.gpu_draws(forms, fp64) {
+            return Err(self.refused(backend));
+        }
+        let (source, scalar) = match self.precision {
+            Precision::F32 => (forms[0], Scalar::F32),
+            Precision::F64 => (forms[1], Scalar::F64),
+        };
+        Ok((source.ok_or(RenderError::MissingKernel { backend, what })?, scalar))
     }
     /// What `backend` says of a job it does not draw in the job's precision ([`Renderer::draws_in`]).
     pub fn refused(&self, backend: Backend) -> RenderError {

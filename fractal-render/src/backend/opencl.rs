@@ -16,7 +16,6 @@ use crate::device::{Backend, DeviceInfo};
 use crate::error::RenderError;
 use crate::frame::Frame;
 use crate::image::Image;
-use crate::precision::Precision;
 use crate::renderer::{PixelTrace, ProbeSample, RenderJob, Renderer, Traced};
 
 /// The build option that trades strict IEEE semantics for speed; off in precise mode.
@@ -206,15 +205,7 @@ impl OpenClRenderer {
     /// The job's program for its precision and the number type that program computes in; a job in a precision the
     /// device lacks is refused ([`Renderer::draws_in`]).
     pub fn source_of<'j>(&self, job: &RenderJob<'j>) -> Result<(&'j str, Scalar), RenderError> {
-        if !self.draws_in(job) {
-            return Err(job.refused(Backend::OpenCl));
-        }
-        let (source, scalar) = match job.precision {
-            Precision::F32 => (job.kernels.opencl, Scalar::F32),
-            Precision::F64 => (job.kernels.opencl_f64, Scalar::F64),
-        };
-        let source = source.ok_or(RenderError::MissingKernel { backend: Backend::OpenCl, what: "OpenCL kernel" })?;
-        Ok((source, scalar))
+        job.gpu_program((Backend::OpenCl, "OpenCL kernel"), [job.kernels.opencl, job.kernels.opencl_f64], self.fp64)
     }
 
     /// Evaluates a probe kernel (`probe(points, out, frame, n)`) computing in `scalar` at `points` (xyz; w ignored).
@@ -349,10 +340,7 @@ impl Renderer for OpenClRenderer {
     }
 
     fn draws_in(&self, job: &RenderJob) -> bool {
-        match job.precision {
-            Precision::F32 => true,
-            Precision::F64 => self.fp64 && job.kernels.opencl_f64.is_some(),
-        }
+        job.gpu_draws([job.kernels.opencl, job.kernels.opencl_f64], self.fp64)
     }
 }
 

@@ -18,7 +18,6 @@ use crate::device::{Backend, DeviceInfo};
 use crate::error::RenderError;
 use crate::frame::Frame;
 use crate::image::Image;
-use crate::precision::Precision;
 use crate::renderer::{PixelTrace, ProbeSample, RenderJob, Renderer, Traced};
 
 /// Workgroup edge of the `render` entry point (8×8).
@@ -212,15 +211,7 @@ impl WgpuRenderer {
     /// The job's module for its precision and the number type it computes in; a job in a precision the device lacks
     /// is refused ([`Renderer::draws_in`]).
     pub fn source_of<'j>(&self, job: &RenderJob<'j>) -> Result<(&'j str, Scalar), RenderError> {
-        if !self.draws_in(job) {
-            return Err(job.refused(Backend::Wgpu));
-        }
-        let (source, scalar) = match job.precision {
-            Precision::F32 => (job.kernels.wgsl, Scalar::F32),
-            Precision::F64 => (job.kernels.wgsl_f64, Scalar::F64),
-        };
-        let source = source.ok_or(RenderError::MissingKernel { backend: Backend::Wgpu, what: "WGSL kernel" })?;
-        Ok((source, scalar))
+        job.gpu_program((Backend::Wgpu, "WGSL kernel"), [job.kernels.wgsl, job.kernels.wgsl_f64], self.has_fp64())
     }
 
     /// Evaluates a probe kernel (entry `probe`) computing in `scalar` at `points` (xyz; w ignored): one
@@ -580,10 +571,7 @@ impl Renderer for WgpuRenderer {
     }
 
     fn draws_in(&self, job: &RenderJob) -> bool {
-        match job.precision {
-            Precision::F32 => true,
-            Precision::F64 => self.has_fp64() && job.kernels.wgsl_f64.is_some(),
-        }
+        job.gpu_draws([job.kernels.wgsl, job.kernels.wgsl_f64], self.has_fp64())
     }
 }
 
