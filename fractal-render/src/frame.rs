@@ -159,6 +159,19 @@ fn f32x3(v: DVec3) -> [f32; 3] {
     v.as_vec3().to_array()
 }
 
+/// How far from the origin (on some axis) a camera may stand with the frame anchored at the origin; beyond, the
+/// frame is anchored at the camera ([`Frame::anchor`]). Nearer cameras keep the origin so that a scene's own view
+/// computes what it computed before anchors existed; out there f32's spacing is 7.6e-6.
+pub const ANCHOR_BEYOND: f64 = 64.0;
+
+/// The anchor of a frame seen from `position`: the origin, or the camera's position rounded to f32.
+fn anchor_of(position: DVec3) -> DVec3 {
+    if position.abs().max_element() <= ANCHOR_BEYOND {
+        return DVec3::ZERO;
+    }
+    DVec3::from_array(f32x3(position).map(f64::from))
+}
+
 /// `v` as a high f32 part and the low f32 part the rounding left: their sum holds about 48 bits of each coordinate.
 fn split(v: DVec3) -> ([f32; 3], [f32; 3]) {
     let high = f32x3(v);
@@ -195,8 +208,11 @@ impl Frame {
         let (w, h) = (width as f32, height as f32);
 
         let mut slots = vec![[0.0f32; 4]; layout.slots()];
-        let (p, origin_low) = split(pose.position);
+        let anchor = anchor_of(pose.position);
+        let (p, origin_low) = split(pose.position - anchor);
         slots[0] = [p[0], p[1], p[2], time as f32];
+        let a = f32x3(anchor);
+        slots[4] = [a[0], a[1], a[2], 0.0];
         let r = f32x3(right * tan_half);
         slots[1] = [r[0], r[1], r[2], w];
         let u = f32x3(up * tan_half);
@@ -222,7 +238,7 @@ impl Frame {
                     if !finite3(pos) {
                         return Err(FrameError::NonFiniteLight { index, what: "position", time });
                     }
-                    (DVec3::from_array(pos), 1.0)
+                    (DVec3::from_array(pos) - anchor, 1.0)
                 }
             };
             let colour = DVec3::from_array(light.color.eval(time, &lookup));
@@ -318,12 +334,33 @@ impl Frame {
         frame.slots[0][3] = time;
         frame
     }
-    /// Camera position, right·tan(fov/2), up·tan(fov/2) and forward, as the kernels read them.
+    /// The frame's anchor: the origin, or (for a camera more than [`ANCHOR_BEYOND`] from it) the camera's position
+    /// rounded to f32. The kernels compute positions relative to it and the scene functions add it back, subtracting
+    /// the scene's translations from it first ([`fractal_dsl::eval::Env::anchor`]), so a scene far from the origin
+    /// seen from nearby draws in f32 as it does at the origin.
+    pub fn anchor(&self) -> [f64; 3] {
+        let a = self.slots[4];
+        [0, 1, 2].map(|i| f64::from(a[i]))
+    }
+    /// Points of the scene (xyz; w kept) relative to the anchor, as the kernels' scene functions take them.
+    pub fn relative_to_anchor(&self, points: &[[f32; 4]]) -> Vec<[f32; 4]> {
+        let a = self.anchor();
+        points
+            .iter()
+            .map(|p| {
+                let r = [0, 1, 2].map(|i| (f64::from(p[i]) - a[i]) as f32);
+                [r[0], r[1], r[2], p[3]]
+            })
+            .collect()
+    }
+    /// Camera position (relative to the anchor), right·tan(fov/2), up·tan(fov/2) and forward, as the kernels read
+    /// them.
     pub fn camera(&self) -> [[f32; 3]; 4] {
         [0, 1, 2, 3].map(|i| [self.slots[i][0], self.slots[i][1], self.slots[i][2]])
     }
-    /// The camera position to about 48 bits: the f32 the kernels read plus what its rounding lost. A close zoom
-    /// needs it: near 1 the f32 position is 6e-8 off, and a camera 1e-9 from a surface would stand inside it.
+    /// The camera position relative to the anchor to about 48 bits: the f32 the kernels read plus what its rounding
+    /// lost. A close zoom needs it: near 1 the f32 position is 6e-8 off, and a camera 1e-9 from a surface would stand
+    /// inside it.
     pub fn camera_origin(&self) -> [f64; 3] {
         [0, 1, 2].map(|i| f64::from(self.slots[0][i]) + f64::from(self.origin_low[i]))
     }
@@ -331,7 +368,7 @@ impl Frame {
     pub fn pixel_footprint(&self) -> f32 {
         self.slots[3][3]
     }
-    /// The lights, as the kernels read them.
+    /// The lights, as the kernels read them (a point light's position relative to the anchor).
     pub fn lights(&self) -> Vec<LightSlot> {
         (0..self.layout.lights)
             .map(|i| {
@@ -418,8 +455,8 @@ mod tests {
         let s = scene(sphere(1.0));
         let f = Frame::new(&s, &pose(), 2.5, 200, 100, &ParamValues::defaults(&s)).unwrap();
         assert_eq!(f.layout(), FrameLayout { lights: 1, params: 0, orbit: 0 });
-        assert_eq!(f.slots().len(), 6);
-        assert_eq!(f.as_bytes().len(), 6 * 16);
+        assert_eq!(f.slots().len(), 7);
+        assert_eq!(f.as_bytes().len(), 7 * 16);
         let s0 = f.slots()[0];
         assert_eq!(s0, [0.0, 0.0, -3.0, 2.5]);
         // fov 90°: tan(45°) = 1, so right and up are unit vectors.
@@ -427,10 +464,32 @@ mod tests {
         assert!(close(f.slots()[1], [1.0, 0.0, 0.0, 200.0]), "{:?}", f.slots()[1]);
         assert!(close(f.slots()[2], [0.0, 1.0, 0.0, 100.0]), "{:?}", f.slots()[2]);
         assert!(close(f.slots()[3], [0.0, 0.0, 1.0, 0.02]), "{:?}", f.slots()[3]);
+        // A camera near the origin anchors the frame there.
+        assert_eq!(f.slots()[4], [0.0; 4]);
         // The default key light, normalised.
         let l = DVec3::new(0.6, 0.8, -0.4).normalize().as_vec3();
-        assert!(close(f.slots()[4], [l.x, l.y, l.z, 0.0]));
-        assert_eq!(f.slots()[5], [1.0, 1.0, 1.0, 0.0]);
+        assert!(close(f.slots()[5], [l.x, l.y, l.z, 0.0]));
+        assert_eq!(f.slots()[6], [1.0, 1.0, 1.0, 0.0]);
+    }
+
+    #[test]
+    fn a_camera_far_out_anchors_its_frame_and_positions_are_taken_from_the_anchor() {
+        let far = DVec3::new(1e6 + 0.3, -2.0e6, 5.0);
+        let s = scene(sphere(1.0)).light(point_light(vec3(1e6 + 2.0, -2.0e6, 5.0), rgb(1.0, 1.0, 1.0)));
+        let pose = Pose::look_at(far, far + DVec3::Z, 60.0).unwrap();
+        let f = Frame::new(&s, &pose, 0.0, 8, 8, &ParamValues::defaults(&s)).unwrap();
+        let anchor = DVec3::from_array(f.anchor());
+        assert_eq!(anchor, DVec3::from_array(f32x3(far).map(f64::from)));
+        // The camera relative to the anchor keeps what f32 rounded away: 0.3 at a million is 0.0625 apart in f32.
+        let origin = DVec3::from_array(f.camera_origin());
+        assert!((anchor + origin - far).abs().max_element() < 1e-9, "{origin}");
+        let LightSlot::Point { position, .. } = f.lights()[0] else { panic!("a point light") };
+        assert_eq!(position.map(f64::from), [1e6 + 2.0 - anchor.x, 0.0, 0.0]);
+        let points = f.relative_to_anchor(&[[1e6, -2.0e6, 5.0, 7.0]]);
+        assert_eq!(points[0], [(1e6 - anchor.x) as f32, 0.0, 0.0, 7.0]);
+        let near = Pose::look_at(DVec3::new(ANCHOR_BEYOND, 0.0, 0.0), DVec3::ZERO, 60.0).unwrap();
+        let f = Frame::new(&s, &near, 0.0, 8, 8, &ParamValues::defaults(&s)).unwrap();
+        assert_eq!(f.anchor(), [0.0; 3]);
     }
 
     #[test]
@@ -444,12 +503,12 @@ mod tests {
         params.set("glow", 4.0).unwrap();
         let f = Frame::new(&s, &pose(), 0.5, 8, 8, &params).unwrap();
         assert_eq!(f.layout(), FrameLayout { lights: 2, params: 2, orbit: 0 });
-        assert_eq!(f.slots()[4], [0.5, 2.0, 0.0, 1.0]);
-        assert_eq!(f.slots()[5], [12.0, 6.0, 3.0, 0.0]);
-        assert_eq!(f.slots()[6], [0.0, 1.0, 0.0, 0.0]);
-        let s7 = (0.5f64.sin() * 0.5) as f32;
-        assert_eq!(f.slots()[7], [s7, s7, s7, 0.0]);
-        assert_eq!(f.slots()[8], [1.0, 4.0, 0.0, 0.0]);
+        assert_eq!(f.slots()[5], [0.5, 2.0, 0.0, 1.0]);
+        assert_eq!(f.slots()[6], [12.0, 6.0, 3.0, 0.0]);
+        assert_eq!(f.slots()[7], [0.0, 1.0, 0.0, 0.0]);
+        let s8 = (0.5f64.sin() * 0.5) as f32;
+        assert_eq!(f.slots()[8], [s8, s8, s8, 0.0]);
+        assert_eq!(f.slots()[9], [1.0, 4.0, 0.0, 0.0]);
         assert_eq!(f.params(), vec![1.0, 4.0]);
         assert!(matches!(f.lights()[0], LightSlot::Point { position: [0.5, 2.0, 0.0], .. }));
     }
@@ -462,9 +521,9 @@ mod tests {
         let values = [0.1, 0.2, 0.3, 0.4, 0.5];
         let f = Frame::new(&s, &pose(), 0.0, 4, 4, &ParamValues::from_values(&s, &values).unwrap()).unwrap();
         assert_eq!(f.layout().param_slots(), 2);
-        assert_eq!(f.slots().len(), 4 + 2 + 2);
-        assert_eq!(f.slots()[6], [0.1, 0.2, 0.3, 0.4]);
-        assert_eq!(f.slots()[7], [0.5, 0.0, 0.0, 0.0]);
+        assert_eq!(f.slots().len(), 5 + 2 + 2);
+        assert_eq!(f.slots()[7], [0.1, 0.2, 0.3, 0.4]);
+        assert_eq!(f.slots()[8], [0.5, 0.0, 0.0, 0.0]);
     }
 
     #[test]

@@ -175,13 +175,14 @@ impl Truth {
 
     /// The truth of `scene` (its iterations already scaled) without its pixels.
     fn unfilled(scene: &Scene, frame: &Frame, settings: TruthSettings) -> Result<Truth, RenderError> {
-        let view = View::<f64>::new(scene, frame, None)?;
+        let view = View::<f64>::in_scene_coordinates(scene, frame, None)?;
         let time = Member(frame.time() as f64);
         let params: Vec<Member> = frame.params().into_iter().map(|p| Member(p as f64)).collect();
         let at_camera = {
             use fractal_dsl::eval::Evaluator;
             let values: Vec<f64> = frame.params().into_iter().map(f64::from).collect();
-            let [x, y, z] = frame.camera_origin();
+            let ([x, y, z], a) = (frame.camera_origin(), frame.anchor());
+            let (x, y, z) = (x + a[0], y + a[1], z + a[2]);
             Interpreter::new(scene)?.distance(v3(x, y, z), &Env::new(frame.time() as f64, &values)).abs()
         };
         let near = if at_camera > 0.0 { (NEAR_SHARE * at_camera).min(NEAR) } else { NEAR };

@@ -122,10 +122,12 @@ fn opencl_scene_de(text: &str) -> &str {
 #[test]
 fn literals_fold_and_params_become_uniforms() {
     let k = compile(&parse_str("sphere(0.25 + 0.75).translate(vec3(2.0 * 0.5, 0.0, 0.0))").unwrap()).unwrap();
-    // Radius 0.25 + 0.75 and offset 2.0 · 0.5 arrive as single literals; the zero offsets cost nothing.
+    // Radius 0.25 + 0.75 and offset 2.0 · 0.5 arrive as single literals; the zero offsets cost nothing. The offset
+    // moves the frame's anchor before the point relative to it is added (a scene far out keeps its precision).
     assert_eq!(
         opencl_scene_de(&k.opencl),
-        "float scene_de(float3 p) {\n    return sd_sphere((float3)(p.x - 1.0f, p.y, p.z), 1.0f);",
+        "float scene_de(float3 p, __constant const Frame* frame) {\n    const float3 v4 = frame->anchor.xyz;\n    \
+         return sd_sphere((float3)(v4.x - 1.0f + p.x, v4.y + p.y, v4.z + p.z), 1.0f);",
         "{}",
         k.opencl
     );

@@ -108,7 +108,10 @@ pub struct FrameLayout {
 }
 
 impl FrameLayout {
-    pub const CAMERA_SLOTS: usize = 4;
+    /// The camera's slots, in order: its position (relative to the anchor; w: the time), right, up and forward axes
+    /// (w: width, height, footprint) and the anchor ([`crate::ray::View`]).
+    pub const CAMERA_FIELDS: [&'static str; 5] = ["origin", "right", "up", "forward", "anchor"];
+    pub const CAMERA_SLOTS: usize = Self::CAMERA_FIELDS.len();
     pub fn light_slot(&self, i: usize) -> usize {
         Self::CAMERA_SLOTS + 2 * i
     }

@@ -30,6 +30,10 @@ pub struct Env<'a, F> {
     /// reference point 0, which is the plain iteration
     /// ([`crate::formula::mandelbrot`](mod@crate::formula::mandelbrot)).
     pub reference: Option<Reference<'a, F>>,
+    /// The frame's anchor A where the point is given relative to it: the scene is evaluated at A + p, and a
+    /// translation by T met before any other operation subtracts T from A first, so a scene far from the origin
+    /// seen from nearby keeps the precision it has at the origin (`None`: the point is the scene's own).
+    pub anchor: Option<V3<F>>,
 }
 
 /// A frame's perturbation reference, as the sample at one point reads it. The reference point is the camera's
@@ -47,7 +51,7 @@ pub struct Reference<'a, F> {
 impl<'a, F: Num> Env<'a, F> {
     /// An environment with these time and parameter values and no perturbation reference.
     pub fn new(time: F, params: &'a [F]) -> Env<'a, F> {
-        Env { time, params, reference: None }
+        Env { time, params, reference: None, anchor: None }
     }
     /// Time 0 and no parameters.
     pub fn still() -> Env<'static, F> {
@@ -58,6 +62,11 @@ impl<'a, F: Num> Env<'a, F> {
     #[inline]
     pub fn reference_offset(&self, p: V3<F>) -> V3<F> {
         self.reference.map_or(p, |r| r.offset)
+    }
+    /// The anchor, or the origin (what the native evaluator reads for [`crate::lower::code::FrameField::Anchor`]).
+    #[inline]
+    pub fn anchor(&self) -> V3<F> {
+        self.anchor.unwrap_or(V3::splat(F::lit(0.0)))
     }
     /// The perturbation reference orbit, or the orbit of 0.
     #[inline]

@@ -258,6 +258,28 @@ impl OpStep {
             _ => V3::splat(self.num(i, env)),
         }
     }
+    /// The argument at `i` as a vector split into the part an f32 holds and, where that is not all of it, the rest:
+    /// each literal component x as f32(x) and x − f32(x) (other components whole, with no rest). Subtracted in
+    /// turn from an anchor near x, the two keep x to about 48 bits where x alone would be rounded to 24.
+    pub fn vec_split<F: CallLeaf>(&self, i: usize, env: &Env<F>) -> (V3<F>, Option<V3<F>>) {
+        let terms = match &self.args[i] {
+            ArgTerm::Vec(v) => [&v.0[0], &v.0[1], &v.0[2]],
+            ArgTerm::Num(t) => [t; 3],
+            ArgTerm::Count(_) => return (self.vec(i, env), None),
+        };
+        let high = |t: &Term| match t {
+            Term::Lit(x) => Some(f64::from(*x as f32)),
+            _ => None,
+        };
+        let rest = terms.map(|t| match t {
+            Term::Lit(x) => x - f64::from(*x as f32),
+            _ => 0.0,
+        });
+        let part = |k: usize| high(terms[k]).map_or_else(|| terms[k].eval(env), F::lit);
+        let whole = V3 { x: part(0), y: part(1), z: part(2) };
+        let rest = (rest != [0.0; 3]).then(|| V3 { x: F::lit(rest[0]), y: F::lit(rest[1]), z: F::lit(rest[2]) });
+        (whole, rest)
+    }
     /// The argument at `i` as a vector, with `None` on axes whose expression folded to the literal 0.
     pub fn per_axis(&self, i: usize) -> [Option<&Term>; 3] {
         match &self.args[i] {

@@ -84,6 +84,50 @@ impl<F: CallLeaf> Post<F> {
     }
 }
 
+/// A point as the walker carries it: `rel` from the frame's anchor where there is one ([`Env::anchor`]), else the
+/// point itself. Translations move the anchor, so the large parts of a far scene's coordinates cancel before the
+/// small offset is added; any other operation, a guard and a leaf take the whole point.
+#[derive(Clone, Copy, Debug)]
+struct At<F> {
+    anchor: Option<V3<F>>,
+    rel: V3<F>,
+}
+
+impl<F: CallLeaf> At<F> {
+    #[inline(always)]
+    fn of(p: V3<F>, env: &Env<F>) -> At<F> {
+        At { anchor: env.anchor, rel: p }
+    }
+    #[inline(always)]
+    fn own(p: V3<F>) -> At<F> {
+        At { anchor: None, rel: p }
+    }
+    /// The point moved by −t (a box's centre).
+    #[inline(always)]
+    fn minus(self, t: V3<F>) -> At<F> {
+        match self.anchor {
+            Some(a) => At { anchor: Some(a - t), rel: self.rel },
+            None => At::own(self.rel - t),
+        }
+    }
+    /// The point moved by a translation's −t, the anchor by both parts of [`OpStep::vec_split`].
+    #[inline(always)]
+    fn translated(self, op: &OpStep, env: &Env<F>) -> At<F> {
+        match self.anchor {
+            Some(a) => {
+                let (high, rest) = op.vec_split(0, env);
+                let a = a - high;
+                At { anchor: Some(rest.map_or(a, |rest| a - rest)), rel: self.rel }
+            }
+            None => At::own(self.rel - op.vec(0, env)),
+        }
+    }
+    #[inline(always)]
+    fn whole(self) -> V3<F> {
+        self.anchor.map_or(self.rel, |a| a + self.rel)
+    }
+}
+
 /// Evaluates a [`Plan`] in any [`Num`].
 #[derive(Clone, Copy, Debug)]
 pub struct Walk<'a> {
@@ -96,13 +140,14 @@ impl Walk<'_> {
     /// Signed distance at `p`.
     #[inline]
     pub fn distance<F: CallLeaf>(&self, p: V3<F>, env: &Env<F>) -> F {
-        self.dist(&self.plan.root, p, env)
+        self.dist(&self.plan.root, At::of(p, env), env)
     }
 
     /// Distance and material at `p`.
     #[inline]
     pub fn sample<F: CallLeaf>(&self, p: V3<F>, env: &Env<F>) -> Sample<F> {
-        let (distance, f) = self.surf(&self.plan.root, p, env, &self.plan.default_material, p);
+        let at = At::of(p, env);
+        let (distance, f) = self.surf(&self.plan.root, at, env, &self.plan.default_material, at);
         Sample {
             distance,
             albedo: f.albedo,
@@ -115,18 +160,18 @@ impl Walk<'_> {
 
     /// Whether a guarded child is worth evaluating: its box is nearer than `nearest` (the kernels' comparison).
     #[inline]
-    fn guard<F: CallLeaf>(&self, guard: &Option<Guard>, p: V3<F>, nearest: F) -> Option<F::Mask> {
+    fn guard<F: CallLeaf>(&self, guard: &Option<Guard>, p: At<F>, nearest: F) -> Option<F::Mask> {
         let g = guard.as_ref().filter(|_| self.guards)?;
         let center = v3(c(g.center[0]), c(g.center[1]), c(g.center[2]));
         let half = v3(c(g.half[0]), c(g.half[1]), c(g.half[2]));
-        let to_box = F::leaf(Leaf::SdBox, &[LeafArg::V3(p - center), LeafArg::V3(half)]).distance();
+        let to_box = F::leaf(Leaf::SdBox, &[LeafArg::V3(p.minus(center).whole()), LeafArg::V3(half)]).distance();
         Some(lt(to_box, nearest))
     }
 
-    fn dist<F: CallLeaf>(&self, step: &Step, p: V3<F>, env: &Env<F>) -> F {
+    fn dist<F: CallLeaf>(&self, step: &Step, p: At<F>, env: &Env<F>) -> F {
         let op = match step {
-            Step::Leaf(call) => return leaf(call, p, env).distance(),
-            Step::Fractal { call, step } => return leaf(call, p, env).distance() * c(*step),
+            Step::Leaf(call) => return leaf(call, p.whole(), env).distance(),
+            Step::Fractal { call, step } => return leaf(call, p.whole(), env).distance() * c(*step),
             Step::Empty => return c(f64::INFINITY),
             Step::Material(child, _) => return self.dist(child, p, env),
             Step::Op(op) => op,
@@ -161,21 +206,21 @@ impl Walk<'_> {
             }
             // The commonest operation, without `domain`'s general result (a tenth of the interpreter's time on a
             // union of translated primitives).
-            Meaning::Translate => self.dist(op.shape(0), p - op.vec(0, env), env),
+            Meaning::Translate => self.dist(op.shape(0), p.translated(op, env), env),
             _ => {
-                let (q, post) = domain(op, p, env);
-                post.apply(self.dist(op.shape(0), q, env))
+                let (q, post) = domain(op, p.whole(), env);
+                post.apply(self.dist(op.shape(0), At::own(q), env))
             }
         }
     }
 
     /// Distance and material at `p` under the material `m`, whose expressions read the point `mp` (where `m` was
     /// applied, in that node's coordinates: a pattern moves with its shape).
-    fn surf<F: CallLeaf>(&self, step: &Step, p: V3<F>, env: &Env<F>, m: &Mat, mp: V3<F>) -> (F, Fields<F>) {
+    fn surf<F: CallLeaf>(&self, step: &Step, p: At<F>, env: &Env<F>, m: &Mat, mp: At<F>) -> (F, Fields<F>) {
         let op = match step {
-            Step::Leaf(call) => return (leaf(call, p, env).distance(), leaf_fields(m, env, None, mp)),
+            Step::Leaf(call) => return (leaf(call, p.whole(), env).distance(), leaf_fields(m, env, None, mp)),
             Step::Fractal { call, step } => {
-                let out = leaf(call, p, env);
+                let out = leaf(call, p.whole(), env);
                 return (out.distance() * c(*step), leaf_fields(m, env, out.trap(), mp));
             }
             Step::Empty => return (c(f64::INFINITY), leaf_fields(m, env, None, mp)),
@@ -224,9 +269,10 @@ impl Walk<'_> {
                 let (d, f) = self.surf(op.shape(0), p, env, m, mp);
                 (leaf3(Leaf::SmoothMax, d, -self.dist(op.shape(1), p, env), k), f)
             }
+            Meaning::Translate => self.surf(op.shape(0), p.translated(op, env), env, m, mp),
             _ => {
-                let (q, post) = domain(op, p, env);
-                let (d, f) = self.surf(op.shape(0), q, env, m, mp);
+                let (q, post) = domain(op, p.whole(), env);
+                let (d, f) = self.surf(op.shape(0), At::own(q), env, m, mp);
                 (post.apply(d), f)
             }
         }
@@ -255,8 +301,8 @@ fn leaf3<F: CallLeaf>(leaf: Leaf, a: F, b: F, k: F) -> F {
 /// The material of a leaf under `m`, its expressions reading the point `mp`; `trap` is the fractal's orbit trap, for
 /// fractal leaves.
 #[inline]
-fn leaf_fields<F: CallLeaf>(m: &Mat, env: &Env<F>, trap: Option<F>, mp: V3<F>) -> Fields<F> {
-    let at = Some(mp);
+fn leaf_fields<F: CallLeaf>(m: &Mat, env: &Env<F>, trap: Option<F>, mp: At<F>) -> Fields<F> {
+    let at = Some(mp.whole());
     let albedo = match (&m.albedo, trap) {
         (Paint::Rgb(c), _) => c.eval_at(env, at),
         (Paint::OrbitTrap(a, _), None) => a.eval_at(env, at),

@@ -71,7 +71,7 @@ pub const SAMPLE_FIELDS: [(&str, Ty); 6] = [
 /// What the ray program reads of a kernel's frame ([`crate::back::FrameLayout`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum FrameField {
-    /// The camera's position, and its right, up and forward axes (V3).
+    /// The camera's position relative to the anchor, and its right, up and forward axes (V3).
     Origin,
     Right,
     Up,
@@ -81,8 +81,11 @@ pub enum FrameField {
     Height,
     /// The pixel footprint per unit distance along a ray (F).
     Footprint,
-    /// Light i's unit direction towards it (directional) or position (point) (V3).
+    /// Light i's unit direction towards it (directional) or position relative to the anchor (point) (V3).
     LightPosition(usize),
+    /// The frame's anchor: positions the ray program computes are relative to it, and the scene functions add it
+    /// back ([`crate::eval::Env::anchor`]) (V3).
+    Anchor,
     /// Light i's colour times intensity (V3).
     LightRadiance(usize),
 }
@@ -104,6 +107,7 @@ impl FrameField {
             FrameField::Width => "right.w".into(),
             FrameField::Height => "up.w".into(),
             FrameField::Footprint => "forward.w".into(),
+            FrameField::Anchor => "anchor.xyz".into(),
             FrameField::LightPosition(i) => format!("lights[{}].xyz", 2 * i),
             FrameField::LightRadiance(i) => format!("lights[{}].xyz", 2 * i + 1),
         }

@@ -92,20 +92,22 @@ pub fn lower_library(scene: &Scene) -> Program {
     lower_with(scene, false)
 }
 
-fn lower_with(scene: &Scene, perturb: bool) -> Program {
+/// `kernel`: for a kernel with a frame, whose scene functions take points relative to the frame's anchor and whose
+/// Mandelbrot patterns perturb around the frame's reference; a library's take the scene's own points.
+fn lower_with(scene: &Scene, kernel: bool) -> Program {
     let folded = fold::fold_scene(scene);
-    let plan = Plan::folded_with(&folded, scene.params(), perturb);
+    let plan = Plan::folded_with(&folded, scene.params(), kernel);
     let walk = Walk { plan: &plan, guards: true };
     let params = plan.params.clone();
 
     let (distance, distance_result) = trace(|| {
         let (p, slots) = scene_inputs(params.len());
-        walk.distance(p, &Env::new(Sym::time(), &slots)).0
+        walk.distance(p, &Env { anchor: kernel.then(anchor), ..Env::new(Sym::time(), &slots) }).0
     });
     let distance = distance.pruned(&[distance_result]);
     let (sample, sample_result) = trace(|| {
         let (p, slots) = scene_inputs(params.len());
-        let mut env = Env::new(Sym::time(), &slots);
+        let mut env = Env { anchor: kernel.then(anchor), ..Env::new(Sym::time(), &slots) };
         if plan.reference.is_some() {
             // The point relative to the reference, which the kernels pass beside the point (`dp`).
             let offset = Sym::components(Sym::arg_of(REFERENCE_OFFSET, Ty::V3));
@@ -130,7 +132,7 @@ fn lower_with(scene: &Scene, perturb: bool) -> Program {
             Op::Call(leaf, _) => {
                 used.insert(*leaf);
             }
-            Op::Time | Op::Param(_) | Op::Orbit | Op::OrbitEntry(_) | Op::OrbitLast => reads[i] = true,
+            Op::Time | Op::Param(_) | Op::Orbit | Op::OrbitEntry(_) | Op::OrbitLast | Op::Frame(_) => reads[i] = true,
             _ => {}
         });
     }
@@ -159,6 +161,11 @@ fn lower_with(scene: &Scene, perturb: bool) -> Program {
         sample,
         sample_result,
     }
+}
+
+/// The frame's anchor, as the scene functions of a kernel read it.
+fn anchor() -> crate::number::math::V3<Sym> {
+    Sym::components(Sym::frame(code::FrameField::Anchor))
 }
 
 /// The scene functions' inputs while tracing: the point `p` and a value per parameter slot.

@@ -149,6 +149,7 @@ fn frame_view(program: &Program) -> View<Sym> {
         })
         .collect();
     View {
+        anchor: frame(FrameField::Anchor),
         origin: frame(FrameField::Origin),
         right: frame(FrameField::Right),
         up: frame(FrameField::Up),
@@ -255,6 +256,7 @@ pub fn raymarch(program: &Program, lights: &[([f64; 3], [f64; 3])]) -> (Body, [V
         let zero = lit3([0.0; 3]);
         // A library's caller makes the ray: only the footprint and lights of the view are read.
         let view = View {
+            anchor: zero,
             origin: zero,
             right: zero,
             up: zero,

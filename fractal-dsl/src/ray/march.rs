@@ -93,9 +93,9 @@ impl<N: Num> March<N> {
 }
 
 /// Step 2: the part of the ray (ro, rd) to march, inside the bound and before max_distance: (t_near, t_far, whether
-/// the ray enters). An unbounded scene marches from 0.
+/// the ray enters). An unbounded scene marches from 0. `ro` is relative to `anchor` ([`View`]).
 #[inline(always)]
-pub fn clip<N: Num>(rules: &Rules, ro: V3<N>, rd: V3<N>) -> (N, N, N::Mask) {
+pub fn clip<N: Num>(rules: &Rules, anchor: V3<N>, ro: V3<N>, rd: V3<N>) -> (N, N, N::Mask) {
     let (zero, max_distance) = (N::lit(0.0), N::lit(rules.max_distance));
     let Some(b) = rules.bound else {
         return (zero, max_distance, N::Mask::splat(true));
@@ -106,8 +106,8 @@ pub fn clip<N: Num>(rules: &Rules, ro: V3<N>, rd: V3<N>) -> (N, N, N::Mask) {
         let m = N::max(N::abs(d), min_dir);
         N::select(N::le(zero, d), m, -m)
     });
-    let t0 = (super::lit3::<N>(b.min) - ro) / safe;
-    let t1 = (super::lit3::<N>(b.max) - ro) / safe;
+    let t0 = ((super::lit3::<N>(b.min) - anchor) - ro) / safe;
+    let t1 = ((super::lit3::<N>(b.max) - anchor) - ro) / safe;
     let entry = t0.zip(t1, N::min).max_element();
     let exit = t0.zip(t1, N::max).min_element();
     let t_near = N::max(entry, zero);
@@ -213,7 +213,7 @@ pub fn march<N: Num, S: SceneFns<N>>(
     ro: V3<N>,
     rd: V3<N>,
 ) -> (March<N>, N::Mask) {
-    let (t_near, t_far, enters) = clip(rules, ro, rd);
+    let (t_near, t_far, enters) = clip(rules, view.anchor, ro, rd);
     let end = N::iterate(
         N::count(rules.max_steps),
         start(rules, t_near, t_far),

@@ -127,9 +127,13 @@ pub enum Light<N> {
 }
 
 /// A frame's camera and lights: the camera's position and its right, up and forward axes (scaled by the field of
-/// view), the image size, the pixel footprint per unit distance along a ray, and the lights.
+/// view), the image size, the pixel footprint per unit distance along a ray, and the lights. Positions (the camera's,
+/// point lights', every point the program computes) are relative to `anchor`, which the scene functions add back
+/// ([`crate::eval::Env::anchor`]): a scene far from the origin seen from nearby keeps the precision it has at the
+/// origin.
 #[derive(Clone, Debug, PartialEq)]
 pub struct View<N> {
+    pub anchor: V3<N>,
     pub origin: V3<N>,
     pub right: V3<N>,
     pub up: V3<N>,

@@ -188,7 +188,7 @@ pub fn render_packets(packets: &dyn PacketEvaluator, scene: &Scene, frame: &Fram
     let sampling = view.rules.sampling;
     let mut pixels = vec![0u32; width * frame.height() as usize];
     pixels.par_chunks_mut(width).enumerate().for_each(|(y, row)| {
-        let on = Packets { packets, env: Env::new(F32x8::splat(view.time), &params), orbit: &view.orbit };
+        let on = Packets { packets, env: packet_env(&view, &params), orbit: &view.orbit };
         let (fy, half) = (y as f32, 0.5);
         let centres: Vec<(V3<f32>, V3<f32>)> = (0..width).map(|x| view.view.ray(x as f32 + half, fy + half)).collect();
         for (px, colour) in row.iter_mut().zip(view.shade_row(&view8, &on, &centres)) {
@@ -200,7 +200,7 @@ pub fn render_packets(packets: &dyn PacketEvaluator, scene: &Scene, frame: &Fram
     }
     let first = FirstPass::<f32>::new(&view.rules, pixels.clone(), frame);
     pixels.par_chunks_mut(width).enumerate().for_each(|(y, row)| {
-        let on = Packets { packets, env: Env::new(F32x8::splat(view.time), &params), orbit: &view.orbit };
+        let on = Packets { packets, env: packet_env(&view, &params), orbit: &view.orbit };
         // The second pass's samples, in the rounds `pixel::refine` decides at: each round's rays of every pixel
         // that wants more, shaded together, then added to their pixels in sample order.
         let mut sums: Vec<Option<Accumulated<f32>>> = (0..width)
@@ -380,6 +380,8 @@ pub struct View<F> {
     params: Vec<F>,
     /// The frame's perturbation reference orbit (empty without one).
     orbit: Vec<[f32; 2]>,
+    /// The anchor the scene functions add to the view's positions, where it is not the origin.
+    anchor: Option<V3<F>>,
 }
 
 fn f3<F: Real>(v: [f32; 3]) -> V3<F> {
@@ -387,12 +389,30 @@ fn f3<F: Real>(v: [f32; 3]) -> V3<F> {
 }
 
 impl<F: Real> View<F> {
+    /// The frame's view as the kernels compute it: positions relative to the frame's anchor ([`Frame::anchor`]).
     pub fn new(scene: &Scene, frame: &Frame, scene_bound: Option<Aabb>) -> Result<View<F>, RenderError> {
+        View::build(scene, frame, scene_bound, true)
+    }
+
+    /// The frame's view in the scene's own coordinates (the anchor added back in `F`), for tools that evaluate the
+    /// scene at the points they march (the ground truth).
+    pub fn in_scene_coordinates(
+        scene: &Scene,
+        frame: &Frame,
+        scene_bound: Option<Aabb>,
+    ) -> Result<View<F>, RenderError> {
+        View::build(scene, frame, scene_bound, false)
+    }
+
+    fn build(scene: &Scene, frame: &Frame, scene_bound: Option<Aabb>, anchored: bool) -> Result<View<F>, RenderError> {
         let expected = Frame::layout_of(scene);
         if frame.layout() != expected {
             return Err(FrameError::SlotCount { expected: expected.slots(), got: frame.layout().slots() }.into());
         }
         let [_, right, up, forward] = frame.camera();
+        let anchor = frame.anchor().map(F::c);
+        let anchor = v3(anchor[0], anchor[1], anchor[2]);
+        let shift = if anchored { V3::splat(F::c(0.0)) } else { anchor };
         // In f32 the same position the kernels read; in f64 the one the pose had, to about 48 bits.
         let [ox, oy, oz] = frame.camera_origin();
         let lights = frame
@@ -403,14 +423,17 @@ impl<F: Real> View<F> {
                     Light::Directional { direction: f3(direction), radiance: f3(radiance) }
                 }
                 LightSlot::Point { position, radiance } => {
-                    Light::Point { position: f3(position), radiance: f3(radiance) }
+                    Light::Point { position: f3(position) + shift, radiance: f3(radiance) }
                 }
             })
             .collect();
+        let at_origin = frame.anchor() == [0.0; 3];
         Ok(View {
+            anchor: (anchored && !at_origin).then_some(anchor),
             rules: Rules::with_bound(scene, scene_bound),
             view: ray::View {
-                origin: v3(F::c(ox), F::c(oy), F::c(oz)),
+                anchor: if anchored { anchor } else { V3::splat(F::c(0.0)) },
+                origin: v3(F::c(ox), F::c(oy), F::c(oz)) + shift,
                 right: f3(right),
                 up: f3(up),
                 forward: f3(forward),
@@ -427,7 +450,7 @@ impl<F: Real> View<F> {
 
     /// The scene through `eval` at this frame's time and parameters.
     pub fn on<'a, E: Evaluator<F> + ?Sized>(&'a self, eval: &'a E) -> Scalar<'a, F, E> {
-        Scalar { eval, env: Env::new(self.time, &self.params), orbit: &self.orbit }
+        Scalar { eval, env: Env { anchor: self.anchor, ..Env::new(self.time, &self.params) }, orbit: &self.orbit }
     }
 
     /// Pixel footprint per unit distance along a ray.
@@ -556,7 +579,7 @@ impl View<f32> {
         let rules = &self.rules;
         let mut out: Vec<(March<f32>, bool)> = Vec::with_capacity(rays.len());
         for &(ro, rd) in rays {
-            let (t_near, t_far, enters) = march::clip(rules, ro, rd);
+            let (t_near, t_far, enters) = march::clip(rules, self.view.anchor, ro, rd);
             out.push((march::start(rules, t_near, t_far), enters));
         }
         let zero = V3::splat(F32x8::splat(0.0));
@@ -605,10 +628,17 @@ impl View<f32> {
     }
 }
 
+/// The packets' environment of a view: its time, `params` (splatted) and anchor.
+fn packet_env<'a>(view: &View<f32>, params: &'a [F32x8]) -> Env<'a, F32x8> {
+    let anchor = view.anchor.map(|a| v3(F32x8::splat(a.x), F32x8::splat(a.y), F32x8::splat(a.z)));
+    Env { anchor, ..Env::new(F32x8::splat(view.time), params) }
+}
+
 /// A frame's view with every number in all eight lanes.
 fn splat_view(v: &ray::View<f32>) -> ray::View<F32x8> {
     let s = |v: V3<f32>| v3(F32x8::splat(v.x), F32x8::splat(v.y), F32x8::splat(v.z));
     ray::View {
+        anchor: s(v.anchor),
         origin: s(v.origin),
         right: s(v.right),
         up: s(v.up),

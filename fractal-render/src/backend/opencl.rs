@@ -162,9 +162,17 @@ impl OpenClRenderer {
         }
     }
 
-    /// Builds (or finds in the cache) `source`; a failed build returns the build log.
-    pub fn program(&mut self, source: &str) -> Result<Program, RenderError> {
-        let precise = self.precise;
+    /// Whether `frame` must be drawn without fast math whatever the renderer's mode: an anchored frame
+    /// ([`Frame::anchor`]) subtracts the scene's translations from the anchor before adding the point, and fast
+    /// math's reassociation would add the point first and lose what the anchor keeps.
+    pub fn strict_for(frame: &Frame) -> bool {
+        frame.anchor() != [0.0; 3]
+    }
+
+    /// Builds (or finds in the cache) `source`, without fast math where the renderer is precise or `strict`; a failed
+    /// build returns the build log.
+    pub fn program(&mut self, (source, strict): (&str, bool)) -> Result<Program, RenderError> {
+        let precise = self.precise || strict;
         if let Some(i) = self.programs.iter().position(|(s, p, _)| *p == precise && s == source) {
             let hit = self.programs.remove(i);
             let program = hit.2.clone();
@@ -208,7 +216,8 @@ impl OpenClRenderer {
         job.gpu_program((Backend::OpenCl, "OpenCL kernel"), [job.kernels.opencl, job.kernels.opencl_f64], self.fp64)
     }
 
-    /// Evaluates a probe kernel (`probe(points, out, frame, n)`) computing in `scalar` at `points` (xyz; w ignored).
+    /// Evaluates a probe kernel (`probe(points, out, frame, n)`) computing in `scalar` at `points` of the scene (xyz;
+    /// w ignored; the kernel takes them relative to the frame's anchor).
     pub fn probe(
         &mut self,
         (source, scalar): (&str, Scalar),
@@ -223,8 +232,9 @@ impl OpenClRenderer {
             what: format!("{} probe points", points.len()),
             detail: "at most 2^32 - 1".to_string(),
         })?;
-        let program = self.program(source)?;
-        let flat: &[f32] = bytemuck::cast_slice(points);
+        let program = self.program((source, Self::strict_for(frame)))?;
+        let relative = frame.relative_to_anchor(points);
+        let flat: &[f32] = bytemuck::cast_slice(&relative);
         let input = Buffer::<f32>::builder()
             .queue(self.queue.clone())
             .flags(flags::MEM_READ_ONLY)
@@ -263,12 +273,12 @@ impl OpenClRenderer {
     pub fn pixel_kernels(
         &mut self,
         entry: Entry,
-        source: &str,
+        source: (&str, bool),
         (width, height): (u32, u32),
         (out, frame, traces): (&Buffer<u32>, &Buffer<u8>, Option<&Buffer<f32>>),
     ) -> Result<Vec<Kernel>, RenderError> {
         let program = self.program(source)?;
-        let first = has_refine(source).then(|| image_buffer(&self.queue, width, height)).transpose()?;
+        let first = has_refine(source.0).then(|| image_buffer(&self.queue, width, height)).transpose()?;
         let kernel = |pass: Pass, target: &Buffer<u32>| {
             let mut builder = Kernel::builder();
             builder
@@ -309,7 +319,9 @@ impl OpenClRenderer {
                 what: format!("the trace buffer of a {width}x{height} image"),
                 detail: brief(&e),
             })?;
-        let passes = self.pixel_kernels(entry, source, (width, height), (&out, &frame_buffer, traces.as_ref()))?;
+        let strict = Self::strict_for(job.frame);
+        let passes =
+            self.pixel_kernels(entry, (source, strict), (width, height), (&out, &frame_buffer, traces.as_ref()))?;
         for kernel in passes {
             // Safety: `out` and `first` hold one u32 per pixel, `traces` (the trace kernel's) twelve floats per
             // pixel, and the kernels write only pixels inside the frame's size.

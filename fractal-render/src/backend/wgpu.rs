@@ -214,8 +214,8 @@ impl WgpuRenderer {
         job.gpu_program((Backend::Wgpu, "WGSL kernel"), [job.kernels.wgsl, job.kernels.wgsl_f64], self.has_fp64())
     }
 
-    /// Evaluates a probe kernel (entry `probe`) computing in `scalar` at `points` (xyz; w ignored): one
-    /// [`ProbeSample`] per point.
+    /// Evaluates a probe kernel (entry `probe`) computing in `scalar` at `points` of the scene (xyz; w ignored; the
+    /// kernel takes them relative to the frame's anchor): one [`ProbeSample`] per point.
     pub fn probe(
         &mut self,
         (source, scalar): (&str, Scalar),
@@ -242,7 +242,7 @@ impl WgpuRenderer {
             let uniform = self.uniform_buffer(frame, scalar);
             let input = self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("probe points"),
-                contents: bytemuck::cast_slice(points),
+                contents: bytemuck::cast_slice(&frame.relative_to_anchor(points)),
                 usage: wgpu::BufferUsages::STORAGE,
             });
             let out = self.storage_buffer("probe out", out_bytes);

@@ -1,7 +1,7 @@
 // Test fixture (hand-written, not generated): a `probe` kernel for a sphere whose radius is param 0
 // (layout: 1 light, 1 param), with the default surface material.
 typedef struct {
-    float4 camera[4];
+    float4 camera[5];
     float4 lights[2];
     float4 params[1];
 } Frame;

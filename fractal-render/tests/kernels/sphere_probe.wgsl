@@ -1,7 +1,7 @@
 // Test fixture (hand-written, not generated): a `probe` entry for a sphere whose radius is param 0
 // (layout: 1 light, 1 param), with the default surface material.
 struct Frame {
-    camera: array<vec4<f32>, 4>,
+    camera: array<vec4<f32>, 5>,
     lights: array<vec4<f32>, 2>,
     params: array<vec4<f32>, 1>,
 }

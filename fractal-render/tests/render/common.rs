@@ -41,7 +41,7 @@ pub fn mandelbulb_fixture(language: &str) -> String {
             (
                 "struct Params { w: u32, h: u32 }",
                 "struct Frame {\n    camera_position: vec4<f32>,\n    camera_right: vec4<f32>,\n    camera_up: vec4<f32>,\n    \
-                 camera_forward: vec4<f32>,\n    lights: array<vec4<f32>, 2>,\n}",
+                 camera_forward: vec4<f32>,\n    camera_anchor: vec4<f32>,\n    lights: array<vec4<f32>, 2>,\n}",
             ),
             ("var<uniform> params: Params;", "var<uniform> frame: Frame;"),
             ("fn main(", "fn render("),
@@ -62,7 +62,7 @@ pub fn mandelbulb_fixture(language: &str) -> String {
             (
                 "__kernel void render(__global uint* out, int w, int h) {",
                 "typedef struct {\n    float4 camera_position;\n    float4 camera_right;\n    float4 camera_up;\n    \
-                 float4 camera_forward;\n    float4 lights[2];\n} Frame;\n\n\
+                 float4 camera_forward;\n    float4 camera_anchor;\n    float4 lights[2];\n} Frame;\n\n\
                  __kernel void render(__global uint* out, __constant Frame* frame) {\n    \
                  int w = (int)frame->camera_right.w;\n    int h = (int)frame->camera_up.w;",
             ),

@@ -130,7 +130,7 @@ impl KernelDialect for OpenCl {
         }
         let slot = self.vec4_type();
         out.push_str("typedef struct {\n");
-        for field in ["origin", "right", "up", "forward"] {
+        for field in FrameLayout::CAMERA_FIELDS {
             let _ = writeln!(out, "    {slot} {field};");
         }
         let _ = writeln!(out, "    {slot} lights[{}];", 2 * layout.lights);

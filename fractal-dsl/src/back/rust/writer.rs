@@ -45,6 +45,11 @@ impl Syntax for RustSyntax {
     fn param(&self, slot: usize) -> String {
         format!("env.params[{slot}]")
     }
+    fn frame(&self, field: crate::lower::code::FrameField) -> String {
+        // The scene functions read only the anchor; the ray program is run natively, not spelled.
+        assert_eq!(field, crate::lower::code::FrameField::Anchor, "a scene function reads only the frame's anchor");
+        "env.anchor()".to_string()
+    }
     fn orbit(&self) -> Option<String> {
         Some("env.reference_orbit()".to_string())
     }

@@ -159,7 +159,7 @@ impl KernelDialect for Wgsl {
     fn declarations(&self, out: &mut String, layout: FrameLayout, entry: Entry, refine: bool) {
         let slot = self.vec4_type();
         out.push_str("struct Frame {\n");
-        for field in ["origin", "right", "up", "forward"] {
+        for field in FrameLayout::CAMERA_FIELDS {
             let _ = writeln!(out, "    {field}: {slot},");
         }
         let _ = writeln!(out, "    lights: array<{slot}, {}>,", 2 * layout.lights);

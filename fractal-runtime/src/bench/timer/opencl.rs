@@ -74,10 +74,11 @@ impl Timer for OpenClTimer {
         let kernels = match work {
             Work::Generated(job) => {
                 let frame = self.renderer.frame_buffer(job.frame, scalar)?;
-                self.renderer.pixel_kernels(Entry::Render, source, (width, height), (&out, &frame, None))?
+                let strict = OpenClRenderer::strict_for(job.frame);
+                self.renderer.pixel_kernels(Entry::Render, (source, strict), (width, height), (&out, &frame, None))?
             }
             Work::Baseline { .. } => {
-                let program = self.renderer.program(source)?;
+                let program = self.renderer.program((source, false))?;
                 let mut builder = Kernel::builder();
                 builder.program(&program).name("render").queue(self.renderer.queue().clone());
                 builder.global_work_size((width, height)).arg(&out).arg(width as i32).arg(height as i32);
