@@ -160,7 +160,8 @@ fn f32x3(v: DVec3) -> [f32; 3] {
 }
 
 /// How far from the origin (on some axis) a camera may stand with the frame anchored at the origin; beyond, the
-/// frame is anchored at the camera ([`Frame::anchor`]). Nearer cameras keep the origin so that a scene's own view
+/// frame of a scene whose kernels read the anchor ([`fractal_dsl::lower::reads_anchor`]) is anchored at the camera
+/// ([`Frame::anchor`]). Nearer cameras keep the origin so that a scene's own view
 /// computes what it computed before anchors existed; out there f32's spacing is 7.6e-6.
 pub const ANCHOR_BEYOND: f64 = 64.0;
 
@@ -208,7 +209,7 @@ impl Frame {
         let (w, h) = (width as f32, height as f32);
 
         let mut slots = vec![[0.0f32; 4]; layout.slots()];
-        let anchor = anchor_of(pose.position);
+        let anchor = if fractal_dsl::lower::reads_anchor(scene) { anchor_of(pose.position) } else { DVec3::ZERO };
         let (p, origin_low) = split(pose.position - anchor);
         slots[0] = [p[0], p[1], p[2], time as f32];
         let a = f32x3(anchor);
@@ -475,8 +476,13 @@ mod tests {
     #[test]
     fn a_camera_far_out_anchors_its_frame_and_positions_are_taken_from_the_anchor() {
         let far = DVec3::new(1e6 + 0.3, -2.0e6, 5.0);
-        let s = scene(sphere(1.0)).light(point_light(vec3(1e6 + 2.0, -2.0e6, 5.0), rgb(1.0, 1.0, 1.0)));
+        let s = scene(sphere(1.0).translate([1e6, -2.0e6, 5.0]))
+            .light(point_light(vec3(1e6 + 2.0, -2.0e6, 5.0), rgb(1.0, 1.0, 1.0)));
         let pose = Pose::look_at(far, far + DVec3::Z, 60.0).unwrap();
+        // A scene that takes the whole point at once gains nothing from an anchor: its frames keep the origin.
+        let unmoved = scene(sphere(1.0));
+        let f = Frame::new(&unmoved, &pose, 0.0, 8, 8, &ParamValues::defaults(&unmoved)).unwrap();
+        assert_eq!(f.anchor(), [0.0; 3]);
         let f = Frame::new(&s, &pose, 0.0, 8, 8, &ParamValues::defaults(&s)).unwrap();
         let anchor = DVec3::from_array(f.anchor());
         assert_eq!(anchor, DVec3::from_array(f32x3(far).map(f64::from)));

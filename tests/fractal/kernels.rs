@@ -216,3 +216,21 @@ fn opencl_render_probe_and_trace_kernels_exist_for_every_scene() {
         );
     }
 }
+
+/// A frame's anchor keeps precision only where the scene meets a translation before anything that takes the whole
+/// point, so only such a scene's kernels read it (the others compute relative to the origin, as before anchors).
+#[test]
+fn only_a_scene_that_meets_a_translation_first_reads_the_anchor() {
+    let kernels = |text: &str| compile(&parse_str(text).unwrap()).unwrap();
+    for (text, reads) in [
+        ("sphere(1.0)", false),
+        ("sphere(1.0).translate(vec3(1e6, 0.0, 0.0)).scale(2.0)", false),
+        ("sphere(1.0).translate(vec3(1e6, 0.0, 0.0))", true),
+        ("union(sphere(1.0), box3(vec3(1.0, 1.0, 1.0)).translate(vec3(3.0, 0.0, 0.0)))", true),
+    ] {
+        let k = kernels(text);
+        for code in [&k.opencl, &k.wgsl, &k.opencl_f64, &k.wgsl_f64] {
+            assert_eq!(code.contains("anchor.xyz"), reads, "{text}:\n{code}");
+        }
+    }
+}

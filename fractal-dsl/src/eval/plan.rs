@@ -222,6 +222,45 @@ pub enum Step {
     Material(Box<Step>, Box<Mat>),
 }
 
+/// `x` as the f32 nearest it and the rest, x − f32(x): subtracted in turn from an anchor near x, the two keep x to
+/// about 48 bits where x alone would be rounded to 24.
+fn high_and_rest(x: f64) -> (f64, f64) {
+    let high = f64::from(x as f32);
+    (high, x - high)
+}
+
+/// The rest of a split vector, where any component has one.
+fn rest_of<F: CallLeaf>(rest: [f64; 3]) -> Option<V3<F>> {
+    (rest != [0.0; 3]).then(|| V3 { x: F::lit(rest[0]), y: F::lit(rest[1]), z: F::lit(rest[2]) })
+}
+
+/// A constant vector split as [`OpStep::vec_split`] splits a literal one.
+pub fn split_constant<F: CallLeaf>(c: [f64; 3]) -> (V3<F>, Option<V3<F>>) {
+    let parts = c.map(high_and_rest);
+    (V3 { x: F::lit(parts[0].0), y: F::lit(parts[1].0), z: F::lit(parts[2].0) }, rest_of(parts.map(|p| p.1)))
+}
+
+impl Step {
+    /// Whether the walker meets a translation here before any operation that takes the whole point: only then does
+    /// a frame's anchor keep precision ([`Env::anchor`]), so only then do a kernel's scene functions read it.
+    pub fn meets_translation(&self) -> bool {
+        match self {
+            Step::Leaf(_) | Step::Fractal { .. } | Step::Empty => false,
+            Step::Material(child, _) => child.meets_translation(),
+            Step::Op(op) => match op.meaning {
+                Meaning::Translate => true,
+                Meaning::Union
+                | Meaning::Intersect
+                | Meaning::Subtract
+                | Meaning::SmoothUnion
+                | Meaning::SmoothIntersect
+                | Meaning::SmoothSubtract => op.shapes.iter().any(|(s, _)| s.meets_translation()),
+                _ => false,
+            },
+        }
+    }
+}
+
 /// An operator: what it means, its shapes and its arguments.
 #[derive(Clone, Debug)]
 pub struct OpStep {
@@ -258,27 +297,21 @@ impl OpStep {
             _ => V3::splat(self.num(i, env)),
         }
     }
-    /// The argument at `i` as a vector split into the part an f32 holds and, where that is not all of it, the rest:
-    /// each literal component x as f32(x) and x − f32(x) (other components whole, with no rest). Subtracted in
-    /// turn from an anchor near x, the two keep x to about 48 bits where x alone would be rounded to 24.
+    /// The argument at `i` as a vector split into the part an f32 holds and, where that is not all of it, the rest
+    /// ([`split_constant`] for each literal component; other components whole, with no rest).
     pub fn vec_split<F: CallLeaf>(&self, i: usize, env: &Env<F>) -> (V3<F>, Option<V3<F>>) {
         let terms = match &self.args[i] {
             ArgTerm::Vec(v) => [&v.0[0], &v.0[1], &v.0[2]],
             ArgTerm::Num(t) => [t; 3],
             ArgTerm::Count(_) => return (self.vec(i, env), None),
         };
-        let high = |t: &Term| match t {
-            Term::Lit(x) => Some(f64::from(*x as f32)),
-            _ => None,
-        };
-        let rest = terms.map(|t| match t {
-            Term::Lit(x) => x - f64::from(*x as f32),
-            _ => 0.0,
+        let parts = terms.map(|t| match t {
+            Term::Lit(x) => Ok(high_and_rest(*x)),
+            other => Err(other.eval(env)),
         });
-        let part = |k: usize| high(terms[k]).map_or_else(|| terms[k].eval(env), F::lit);
-        let whole = V3 { x: part(0), y: part(1), z: part(2) };
-        let rest = (rest != [0.0; 3]).then(|| V3 { x: F::lit(rest[0]), y: F::lit(rest[1]), z: F::lit(rest[2]) });
-        (whole, rest)
+        let high = parts.map(|p| p.map_or_else(|whole| whole, |(h, _)| F::lit(h)));
+        let rest = parts.map(|p| p.map_or(0.0, |(_, r)| r));
+        (V3 { x: high[0], y: high[1], z: high[2] }, rest_of(rest))
     }
     /// The argument at `i` as a vector, with `None` on axes whose expression folded to the literal 0.
     pub fn per_axis(&self, i: usize) -> [Option<&Term>; 3] {

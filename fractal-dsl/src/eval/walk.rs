@@ -3,7 +3,7 @@
 //! values to record the kernels' `scene_de` and `scene_sample` ([`crate::lower`]). The rules are listed in
 //! [`crate::eval`].
 
-use crate::eval::plan::{Guard, LeafCall, Mat, OpStep, Paint, Plan, Step, Term};
+use crate::eval::plan::{split_constant, Guard, LeafCall, Mat, OpStep, Paint, Plan, Step, Term};
 use crate::eval::{Env, Sample};
 use crate::formula::leaf::{LeafArg, LeafOut};
 use crate::formula::{CallLeaf, Leaf, TINY};
@@ -102,25 +102,23 @@ impl<F: CallLeaf> At<F> {
     fn own(p: V3<F>) -> At<F> {
         At { anchor: None, rel: p }
     }
-    /// The point moved by −t (a box's centre).
+    /// The point moved by −t: the anchor by t's f32 part and then its rest (`split`, see [`OpStep::vec_split`]), a
+    /// point of its own by t `whole`.
     #[inline(always)]
-    fn minus(self, t: V3<F>) -> At<F> {
-        match self.anchor {
-            Some(a) => At { anchor: Some(a - t), rel: self.rel },
-            None => At::own(self.rel - t),
-        }
-    }
-    /// The point moved by a translation's −t, the anchor by both parts of [`OpStep::vec_split`].
-    #[inline(always)]
-    fn translated(self, op: &OpStep, env: &Env<F>) -> At<F> {
+    fn minus(self, whole: impl FnOnce() -> V3<F>, split: impl FnOnce() -> (V3<F>, Option<V3<F>>)) -> At<F> {
         match self.anchor {
             Some(a) => {
-                let (high, rest) = op.vec_split(0, env);
+                let (high, rest) = split();
                 let a = a - high;
                 At { anchor: Some(rest.map_or(a, |rest| a - rest)), rel: self.rel }
             }
-            None => At::own(self.rel - op.vec(0, env)),
+            None => At::own(self.rel - whole()),
         }
+    }
+    /// The point moved by a translation.
+    #[inline(always)]
+    fn translated(self, op: &OpStep, env: &Env<F>) -> At<F> {
+        self.minus(|| op.vec(0, env), || op.vec_split(0, env))
     }
     #[inline(always)]
     fn whole(self) -> V3<F> {
@@ -162,9 +160,11 @@ impl Walk<'_> {
     #[inline]
     fn guard<F: CallLeaf>(&self, guard: &Option<Guard>, p: At<F>, nearest: F) -> Option<F::Mask> {
         let g = guard.as_ref().filter(|_| self.guards)?;
-        let center = v3(c(g.center[0]), c(g.center[1]), c(g.center[2]));
+        let center = || v3(c(g.center[0]), c(g.center[1]), c(g.center[2]));
         let half = v3(c(g.half[0]), c(g.half[1]), c(g.half[2]));
-        let to_box = F::leaf(Leaf::SdBox, &[LeafArg::V3(p.minus(center).whole()), LeafArg::V3(half)]).distance();
+        // The centre split as a translation's literal is: the guard of a translated child shares its point.
+        let at = p.minus(center, || split_constant(g.center)).whole();
+        let to_box = F::leaf(Leaf::SdBox, &[LeafArg::V3(at), LeafArg::V3(half)]).distance();
         Some(lt(to_box, nearest))
     }
 

@@ -72,6 +72,9 @@ pub struct Program {
     /// The perturbation reference the frame holds for the scene's Mandelbrot patterns; when there is one, the
     /// sample function takes the point relative to it as a second argument, [`REFERENCE_OFFSET`].
     pub reference: Option<crate::analyse::ReferenceSpec>,
+    /// Whether the scene functions read the frame's anchor ([`reads_anchor`]); where they do not, the ray program
+    /// computes relative to the origin.
+    pub anchored: bool,
     pub settings: RenderSettings,
     /// The camera's thin lens, if it has one (its samples spread over it).
     pub lens: Option<crate::ray::Lens>,
@@ -99,15 +102,16 @@ fn lower_with(scene: &Scene, kernel: bool) -> Program {
     let plan = Plan::folded_with(&folded, scene.params(), kernel);
     let walk = Walk { plan: &plan, guards: true };
     let params = plan.params.clone();
+    let anchored = kernel && plan.root.meets_translation();
 
     let (distance, distance_result) = trace(|| {
         let (p, slots) = scene_inputs(params.len());
-        walk.distance(p, &Env { anchor: kernel.then(anchor), ..Env::new(Sym::time(), &slots) }).0
+        walk.distance(p, &Env { anchor: anchored.then(anchor), ..Env::new(Sym::time(), &slots) }).0
     });
     let distance = distance.pruned(&[distance_result]);
     let (sample, sample_result) = trace(|| {
         let (p, slots) = scene_inputs(params.len());
-        let mut env = Env { anchor: kernel.then(anchor), ..Env::new(Sym::time(), &slots) };
+        let mut env = Env { anchor: anchored.then(anchor), ..Env::new(Sym::time(), &slots) };
         if plan.reference.is_some() {
             // The point relative to the reference, which the kernels pass beside the point (`dp`).
             let offset = Sym::components(Sym::arg_of(REFERENCE_OFFSET, Ty::V3));
@@ -154,6 +158,7 @@ fn lower_with(scene: &Scene, kernel: bool) -> Program {
         specular: analyse::has_specular(&folded.root),
         refine: analyse::sign_refinement(&folded.root, &folded.settings),
         reference: plan.reference,
+        anchored,
         settings: folded.settings.clone(),
         lens: crate::ray::Lens::of(&folded.camera),
         distance,
@@ -161,6 +166,14 @@ fn lower_with(scene: &Scene, kernel: bool) -> Program {
         sample,
         sample_result,
     }
+}
+
+/// Whether a kernel of `scene` reads its frame's anchor: where the scene meets a translation before any operation
+/// that takes the whole point ([`crate::eval::plan::Step::meets_translation`]). Elsewhere an anchor gains nothing —
+/// the scene adds it back to the point at once — so the frame keeps the origin and the kernel skips the reads.
+pub fn reads_anchor(scene: &Scene) -> bool {
+    let folded = fold::fold_scene(scene);
+    Plan::folded_with(&folded, scene.params(), true).root.meets_translation()
 }
 
 /// The frame's anchor, as the scene functions of a kernel read it.

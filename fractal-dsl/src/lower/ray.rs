@@ -149,7 +149,7 @@ fn frame_view(program: &Program) -> View<Sym> {
         })
         .collect();
     View {
-        anchor: frame(FrameField::Anchor),
+        anchor: if program.anchored { frame(FrameField::Anchor) } else { V3::splat(Sym::lit(0.0)) },
         origin: frame(FrameField::Origin),
         right: frame(FrameField::Right),
         up: frame(FrameField::Up),
