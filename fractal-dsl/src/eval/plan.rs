@@ -240,27 +240,6 @@ pub fn split_constant<F: CallLeaf>(c: [f64; 3]) -> (V3<F>, Option<V3<F>>) {
     (V3 { x: F::lit(parts[0].0), y: F::lit(parts[1].0), z: F::lit(parts[2].0) }, rest_of(parts.map(|p| p.1)))
 }
 
-impl Step {
-    /// Whether the walker meets a translation here before any operation that takes the whole point: only then does
-    /// a frame's anchor keep precision ([`Env::anchor`]), so only then do a kernel's scene functions read it.
-    pub fn meets_translation(&self) -> bool {
-        match self {
-            Step::Leaf(_) | Step::Fractal { .. } | Step::Empty => false,
-            Step::Material(child, _) => child.meets_translation(),
-            Step::Op(op) => match op.meaning {
-                Meaning::Translate => true,
-                Meaning::Union
-                | Meaning::Intersect
-                | Meaning::Subtract
-                | Meaning::SmoothUnion
-                | Meaning::SmoothIntersect
-                | Meaning::SmoothSubtract => op.shapes.iter().any(|(s, _)| s.meets_translation()),
-                _ => false,
-            },
-        }
-    }
-}
-
 /// An operator: what it means, its shapes and its arguments.
 #[derive(Clone, Debug)]
 pub struct OpStep {

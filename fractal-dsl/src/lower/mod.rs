@@ -102,7 +102,7 @@ fn lower_with(scene: &Scene, kernel: bool) -> Program {
     let plan = Plan::folded_with(&folded, scene.params(), kernel);
     let walk = Walk { plan: &plan, guards: true };
     let params = plan.params.clone();
-    let anchored = kernel && plan.root.meets_translation();
+    let anchored = kernel && folded.root.meets_translation();
 
     let (distance, distance_result) = trace(|| {
         let (p, slots) = scene_inputs(params.len());
@@ -168,12 +168,12 @@ fn lower_with(scene: &Scene, kernel: bool) -> Program {
     }
 }
 
-/// Whether a kernel of `scene` reads its frame's anchor: where the scene meets a translation before any operation
-/// that takes the whole point ([`crate::eval::plan::Step::meets_translation`]). Elsewhere an anchor gains nothing —
-/// the scene adds it back to the point at once — so the frame keeps the origin and the kernel skips the reads.
+/// Whether a kernel of `scene` reads its frame's anchor: where the scene, folded as the lowering folds it, meets a
+/// translation before any operation that takes the whole point ([`Node::meets_translation`]). Elsewhere an anchor
+/// gains nothing — the scene adds it back to the point at once — so the frame keeps the origin and the kernel skips
+/// the reads.
 pub fn reads_anchor(scene: &Scene) -> bool {
-    let folded = fold::fold_scene(scene);
-    Plan::folded_with(&folded, scene.params(), true).root.meets_translation()
+    fold::fold_scene(scene).root.meets_translation()
 }
 
 /// The frame's anchor, as the scene functions of a kernel read it.
