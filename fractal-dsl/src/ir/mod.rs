@@ -90,23 +90,6 @@ impl Node {
     pub fn has_fractal(&self) -> bool {
         matches!(self, Node::Fractal(_)) || self.children().iter().any(|c| c.has_fractal())
     }
-    /// Whether the scene walker meets a translation here before any operation that takes the whole point (a
-    /// combination or a material hands its shapes the point as it is): only then does a frame's anchor keep
-    /// precision ([`crate::eval::Env::anchor`]), so only then do a kernel's scene functions read it.
-    pub fn meets_translation(&self) -> bool {
-        use op::Meaning::*;
-        match self {
-            Node::Prim(_) | Node::Fractal(_) => false,
-            Node::Material(child, _) => child.meets_translation(),
-            Node::Op(op) => match op.decl().meaning {
-                Translate => true,
-                Union | Intersect | Subtract | SmoothUnion | SmoothIntersect | SmoothSubtract => {
-                    op.shapes.iter().any(Node::meets_translation)
-                }
-                _ => false,
-            },
-        }
-    }
     /// The operator at this node, if it is one.
     pub fn op(&self) -> Option<&Op> {
         match self {

@@ -102,7 +102,7 @@ fn lower_with(scene: &Scene, kernel: bool) -> Program {
     let plan = Plan::folded_with(&folded, scene.params(), kernel);
     let walk = Walk { plan: &plan, guards: true };
     let params = plan.params.clone();
-    let anchored = kernel && folded.root.meets_translation();
+    let anchored = kernel && meets_translation(&folded.root);
 
     let (distance, distance_result) = trace(|| {
         let (p, slots) = scene_inputs(params.len());
@@ -169,11 +169,28 @@ fn lower_with(scene: &Scene, kernel: bool) -> Program {
 }
 
 /// Whether a kernel of `scene` reads its frame's anchor: where the scene, folded as the lowering folds it, meets a
-/// translation before any operation that takes the whole point ([`Node::meets_translation`]). Elsewhere an anchor
-/// gains nothing — the scene adds it back to the point at once — so the frame keeps the origin and the kernel skips
-/// the reads.
+/// translation before any operation that takes the whole point. Elsewhere an anchor gains nothing — the scene adds
+/// it back to the point at once — so the frame keeps the origin and the kernel skips the reads.
 pub fn reads_anchor(scene: &Scene) -> bool {
-    fold::fold_scene(scene).root.meets_translation()
+    meets_translation(&fold::fold_scene(scene).root)
+}
+
+/// Whether the scene walker meets a translation at `node` before any operation that takes the whole point (a
+/// combination or a material hands its shapes the point as it is): only then does a frame's anchor keep precision
+/// ([`crate::eval::Env::anchor`]).
+fn meets_translation(node: &Node) -> bool {
+    use crate::ir::op::Meaning::*;
+    match node {
+        Node::Prim(_) | Node::Fractal(_) => false,
+        Node::Material(child, _) => meets_translation(child),
+        Node::Op(op) => match op.decl().meaning {
+            Translate => true,
+            Union | Intersect | Subtract | SmoothUnion | SmoothIntersect | SmoothSubtract => {
+                op.shapes.iter().any(meets_translation)
+            }
+            _ => false,
+        },
+    }
 }
 
 /// The frame's anchor, as the scene functions of a kernel read it.
