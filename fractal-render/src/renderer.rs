@@ -228,6 +228,11 @@ impl Traced {
 pub trait Renderer: Send {
     /// Renders the job's scene into an image of the frame's size.
     fn render(&mut self, job: &RenderJob) -> Result<Image, RenderError>;
+    /// Renders each job, results in the jobs' order: a sequence's next frames. A GPU renderer keeps several frames
+    /// in flight, drawing the next ones while the host reads one; the default renders them one after another.
+    fn render_batch(&mut self, jobs: &[RenderJob]) -> Vec<Result<Image, RenderError>> {
+        jobs.iter().map(|job| self.render(job)).collect()
+    }
     /// Renders the job's scene and keeps what the march did at each pixel. A GPU renderer runs the job's `trace`
     /// kernels ([`fractal_dsl::Kernels::tracing`]) in place of its render kernels; the CPU renderer its evaluator.
     fn trace(&mut self, job: &RenderJob) -> Result<Traced, RenderError>;
@@ -248,6 +253,9 @@ pub trait Renderer: Send {
 impl<R: Renderer + ?Sized> Renderer for Box<R> {
     fn render(&mut self, job: &RenderJob) -> Result<Image, RenderError> {
         (**self).render(job)
+    }
+    fn render_batch(&mut self, jobs: &[RenderJob]) -> Vec<Result<Image, RenderError>> {
+        (**self).render_batch(jobs)
     }
     fn trace(&mut self, job: &RenderJob) -> Result<Traced, RenderError> {
         (**self).trace(job)

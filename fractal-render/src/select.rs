@@ -186,6 +186,21 @@ impl Renderer for AutoRenderer {
         }
     }
 
+    /// The current backend's batch where it draws every job; from a frame it failed on, frame by frame with the
+    /// fallback of [`Renderer::render`].
+    fn render_batch(&mut self, jobs: &[RenderJob]) -> Vec<Result<Image, RenderError>> {
+        let mut drawn = Vec::with_capacity(jobs.len());
+        if jobs.iter().all(|job| self.current.draws_in(job)) {
+            drawn = self.current.render_batch(jobs);
+            if let Some(failed) = drawn.iter().position(|d| d.as_ref().is_err_and(RenderError::is_backend_specific)) {
+                drawn.truncate(failed);
+            }
+        }
+        let rest = &jobs[drawn.len()..];
+        drawn.extend(rest.iter().map(|job| self.render(job)).collect::<Vec<_>>());
+        drawn
+    }
+
     fn trace(&mut self, job: &RenderJob) -> Result<Traced, RenderError> {
         match self.wider_than_current(job) {
             true => CpuRenderer::new().trace(job),

@@ -5,11 +5,10 @@
 //! the points at 2, in workgroups of 64; `trace` is `render` that also writes each pixel's march to binding 2; a
 //! kernel with a second pass ([`fractal_dsl::back::Pass`]) has its `refine` read the first pass's pixels at 3. Every
 //! wgpu call that can fail runs inside error scopes, so a kernel the driver refuses, or a device that cannot
-//! allocate, is a [`RenderError`] and never a panic. Pipelines are cached
-//! per source text; output buffers are reused while the image size stays the same. A job in f64 runs the scene's f64
-//! module where the adapter offers `SHADER_F64` (the device is opened with it).
-
-use std::sync::{mpsc, Arc, Mutex};
+//! allocate, is a [`RenderError`] and never a panic (module `scoped`). Pipelines are cached per source text. A frame goes
+//! from uniform upload to pixels on the host in one submission and one wait, with buffers kept while the image size
+//! stays the same, and a batch keeps several frames in flight (module `frames`). A job in f64 runs the scene's f64 module
+//! where the adapter offers `SHADER_F64` (the device is opened with it).
 
 use fractal_dsl::back::{has_refine, Entry, Pass, Scalar};
 use wgpu::util::DeviceExt;
@@ -20,8 +19,14 @@ use crate::frame::Frame;
 use crate::image::Image;
 use crate::renderer::{PixelTrace, ProbeSample, RenderJob, Renderer, Traced};
 
-/// Workgroup edge of the `render` entry point (8×8).
-pub const RENDER_WORKGROUP: u32 = 8;
+mod frames;
+mod scoped;
+
+use frames::{check_size, Frames, InFlight};
+pub use frames::{Drawn, FRAMES_IN_FLIGHT, RENDER_WORKGROUP};
+pub use scoped::{capture, map_read, read_back};
+use scoped::{device_error, Uncaptured};
+
 /// Workgroup size of the `probe` entry point.
 pub const PROBE_WORKGROUP: u32 = 64;
 /// Pipelines kept per renderer; a hot-reloading viewer compiles a new one per edit.
@@ -37,11 +42,12 @@ pub struct WgpuRenderer {
     /// The bind group and pipeline layouts of each entry point, in [`ENTRY_POINTS`]' order.
     layouts: [Layouts; 5],
     pipelines: Vec<(EntryPoint, String, wgpu::ComputePipeline)>,
-    targets: Option<Targets>,
+    /// A frame's buffers, kept from frame to frame, and its path from upload to pixels on the host.
+    frames: Frames,
     /// The first pass's pixels, which a refine pass reads; kept while the image size stays the same.
     first: Option<(u64, wgpu::Buffer)>,
-    /// Errors raised outside any error scope (wgpu would otherwise panic on them).
-    uncaptured: Arc<Mutex<Vec<String>>>,
+    /// Errors raised outside any error scope.
+    uncaptured: Uncaptured,
 }
 
 /// An entry point of a kernel: its entry and pass.
@@ -55,17 +61,6 @@ const ENTRY_POINTS: [EntryPoint; 5] = [
     (Entry::Trace, Pass::Refine),
     (Entry::Probe, Pass::First),
 ];
-
-/// Output and read-back buffers of one size.
-struct Targets {
-    bytes: u64,
-    out: wgpu::Buffer,
-    readback: wgpu::Buffer,
-}
-
-fn device_error(message: impl ToString) -> RenderError {
-    RenderError::Device { backend: Backend::Wgpu, message: message.to_string() }
-}
 
 impl WgpuRenderer {
     /// Opens the preferred adapter of the default backends (the `WGPU_BACKEND` environment variable may narrow them).
@@ -96,8 +91,10 @@ impl WgpuRenderer {
         let info = adapter.get_info();
         let descriptor = wgpu::DeviceDescriptor {
             label: Some("fractal"),
-            // f64 where the adapter has it, for frames that ask for it.
-            required_features: adapter.features() & (wanted | wgpu::Features::SHADER_F64),
+            // f64 where the adapter has it, for frames that ask for it; where the device's memory is the host's,
+            // pixel buffers the host maps without a copy.
+            required_features: adapter.features()
+                & (wanted | wgpu::Features::SHADER_F64 | frames::unified_memory(&info)),
             // The adapter's own limits, so large images are limited by the device rather than by WebGPU defaults.
             required_limits: adapter.limits(),
             memory_hints: wgpu::MemoryHints::Performance,
@@ -106,14 +103,9 @@ impl WgpuRenderer {
         let (device, queue) = pollster::block_on(adapter.request_device(&descriptor)).map_err(|e| {
             RenderError::NoDevice { backend: Backend::Wgpu, reason: format!("{} ({}): {e}", info.name, info.backend) }
         })?;
-        let uncaptured = Arc::new(Mutex::new(Vec::new()));
-        let sink = Arc::clone(&uncaptured);
-        device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
-            if let Ok(mut errors) = sink.lock() {
-                errors.push(e.to_string());
-            }
-        }));
+        let uncaptured = Uncaptured::install(&device);
         let layouts = ENTRY_POINTS.map(|p| pipeline_layout(&device, p));
+        let frames = Frames::new(&device, &queue, uncaptured.clone());
         Ok(WgpuRenderer {
             instance,
             adapter,
@@ -122,7 +114,7 @@ impl WgpuRenderer {
             info,
             layouts,
             pipelines: Vec::new(),
-            targets: None,
+            frames,
             first: None,
             uncaptured,
         })
@@ -293,6 +285,105 @@ impl WgpuRenderer {
         })
     }
 
+    /// Draws one frame through the renderer's own path: `uniform` uploaded, the passes `record` records (given the
+    /// device, the encoder, the uniform, the pixel buffer to write and the timestamp queries, where the device has
+    /// them) and the pixels read back, in one submission and one wait. The bench times its
+    /// baseline kernel through here, so both are timed alike.
+    pub fn draw_with(
+        &mut self,
+        uniform: &[u8],
+        size: (u32, u32),
+        record: impl FnOnce(&wgpu::Device, &mut wgpu::CommandEncoder, &wgpu::Buffer, &wgpu::Buffer, Option<&wgpu::QuerySet>),
+    ) -> Result<Drawn, RenderError> {
+        let frame = self.frames.submit((&self.device, &self.queue), uniform, size, (0, true), record)?;
+        self.frames.collect(&self.device, frame)
+    }
+
+    /// Submits the job's `render` kernel into readback `slot`.
+    fn submit_render(&mut self, job: &RenderJob, slot: usize, timed: bool) -> Result<InFlight, RenderError> {
+        let (source, scalar) = self.source_of(job)?;
+        let size = (job.width(), job.height());
+        check_size(&self.device, size, 0)?;
+        let passes = self.pixel_passes(Entry::Render, source, size)?;
+        let uniform = job.frame.bytes_in(scalar);
+        self.frames.submit(
+            (&self.device, &self.queue),
+            &uniform,
+            size,
+            (slot, timed),
+            |device, encoder, uniform, out, stamps| passes.record_timed(device, encoder, (uniform, out, None), stamps),
+        )
+    }
+
+    /// Renders the job's frame.
+    fn render_one(&mut self, job: &RenderJob) -> Result<Image, RenderError> {
+        let frame = self.submit_render(job, 0, false)?;
+        Ok(self.frames.collect(&self.device, frame)?.image)
+    }
+
+    /// Renders the job's frame and says how long its kernel (on the device's clock, where the device was opened with
+    /// timestamp queries) and its whole frame took.
+    pub fn render_timed(&mut self, job: &RenderJob) -> Result<Drawn, RenderError> {
+        let frame = self.submit_render(job, 0, true)?;
+        self.frames.collect(&self.device, frame)
+    }
+
+    /// Runs the job's `trace` kernel: the image and [`PixelTrace::KERNEL_WORDS`] words per pixel. Traces are rare
+    /// (accuracy and depth images): their buffers are made per call, not kept.
+    fn run_trace(&mut self, job: &RenderJob) -> Result<(Image, Vec<f32>), RenderError> {
+        let (source, scalar) = self.source_of(job)?;
+        let size = (job.width(), job.height());
+        let trace_bytes = size.0 as u64 * size.1 as u64 * 4 * PixelTrace::KERNEL_WORDS as u64;
+        check_size(&self.device, size, trace_bytes)?;
+        let passes = self.pixel_passes(Entry::Trace, source, size)?;
+        let (traces, error) =
+            capture(&self.device, || (self.storage_buffer("traces", trace_bytes), self.readback_buffer(trace_bytes)));
+        self.check(error)?;
+        let uniform = job.frame.bytes_in(scalar);
+        let drawn = self.draw_with(&uniform, size, |device, encoder, uniform, out, _| {
+            passes.record(device, encoder, uniform, out, Some(&traces.0));
+            encoder.copy_buffer_to_buffer(&traces.0, 0, &traces.1, 0, trace_bytes);
+        })?;
+        // The copy was part of the frame's submission, which has completed.
+        let (bytes, error) = capture(&self.device, || map_read(&self.device, &traces.1, trace_bytes));
+        self.check(error)?;
+        let words = bytemuck::pod_collect_to_vec::<u8, f32>(&bytes.map_err(device_error)?);
+        Ok((drawn.image, words))
+    }
+
+    /// Renders `jobs` keeping up to [`FRAMES_IN_FLIGHT`] frames submitted: the device draws the next ones while the
+    /// host reads one.
+    fn render_in_flight(&mut self, jobs: &[RenderJob]) -> Vec<Result<Image, RenderError>> {
+        let mut drawn = Vec::with_capacity(jobs.len());
+        let mut flying: std::collections::VecDeque<InFlight> = Default::default();
+        for (i, job) in jobs.iter().enumerate() {
+            // The readbacks are made per image size: frames of another size wait for those in flight.
+            let resized = flying.back().is_some_and(|f| f.size != (job.width(), job.height()));
+            while flying.len() >= FRAMES_IN_FLIGHT || (resized && !flying.is_empty()) {
+                let Some(frame) = flying.pop_front() else { break };
+                drawn.push(self.frames.collect(&self.device, frame).map(|d| d.image));
+            }
+            match self.submit_render(job, i, false) {
+                Ok(frame) => flying.push_back(frame),
+                Err(e) => {
+                    while let Some(frame) = flying.pop_front() {
+                        drawn.push(self.frames.collect(&self.device, frame).map(|d| d.image));
+                    }
+                    drawn.push(Err(e));
+                }
+            }
+        }
+        while let Some(frame) = flying.pop_front() {
+            drawn.push(self.frames.collect(&self.device, frame).map(|d| d.image));
+        }
+        drawn
+    }
+
+    /// Turns a scoped error, or any error that escaped the scopes, into a device error.
+    pub fn check(&self, scoped: Option<wgpu::Error>) -> Result<(), RenderError> {
+        self.uncaptured.check(scoped)
+    }
+
     fn encoder(&self) -> wgpu::CommandEncoder {
         self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("fractal") })
     }
@@ -303,61 +394,6 @@ impl WgpuRenderer {
         self.check(error)?;
         words.map_err(device_error)
     }
-
-    /// Turns a scoped error, or any error that escaped the scopes, into a device error.
-    pub fn check(&self, scoped: Option<wgpu::Error>) -> Result<(), RenderError> {
-        let mut messages: Vec<String> = scoped.into_iter().map(|e| e.to_string()).collect();
-        if let Ok(mut escaped) = self.uncaptured.lock() {
-            messages.append(&mut escaped);
-        }
-        if messages.is_empty() {
-            Ok(())
-        } else {
-            Err(device_error(messages.join("\n")))
-        }
-    }
-}
-
-/// Copies `bytes` of `source` into `readback` (a MAP_READ | COPY_DST buffer of at least `bytes`), waits for the device
-/// and returns them as u32 words.
-pub fn read_back(
-    device: &wgpu::Device,
-    queue: &wgpu::Queue,
-    source: &wgpu::Buffer,
-    readback: &wgpu::Buffer,
-    bytes: u64,
-) -> Result<Vec<u32>, String> {
-    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("readback") });
-    encoder.copy_buffer_to_buffer(source, 0, readback, 0, bytes);
-    queue.submit([encoder.finish()]);
-    let data = map_read(device, readback, bytes)?;
-    Ok(data.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect())
-}
-
-/// Waits for the device and returns the first `bytes` of a MAP_READ buffer, which is unmapped again afterwards.
-pub fn map_read(device: &wgpu::Device, buffer: &wgpu::Buffer, bytes: u64) -> Result<Vec<u8>, String> {
-    let slice = buffer.slice(..bytes);
-    let (sender, receiver) = mpsc::channel();
-    slice.map_async(wgpu::MapMode::Read, move |result| {
-        let _ = sender.send(result);
-    });
-    device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| e.to_string())?;
-    receiver.recv().map_err(|e| e.to_string())?.map_err(|e| e.to_string())?;
-    let data = slice.get_mapped_range().map_err(|e| e.to_string())?.to_vec();
-    buffer.unmap();
-    Ok(data)
-}
-
-/// Runs `f` inside validation, out-of-memory and internal error scopes and returns the first error they caught, so a
-/// kernel, buffer or surface the driver refuses is an error value rather than a panic.
-pub fn capture<T>(device: &wgpu::Device, f: impl FnOnce() -> T) -> (T, Option<wgpu::Error>) {
-    let internal = device.push_error_scope(wgpu::ErrorFilter::Internal);
-    let memory = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
-    let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
-    let value = f();
-    // Scopes pop innermost first.
-    let errors = [validation.pop(), memory.pop(), internal.pop()].map(pollster::block_on);
-    (value, errors.into_iter().flatten().next())
 }
 
 /// Records one dispatch of `pipeline` with `bind_group` over `groups` workgroups.
@@ -486,72 +522,20 @@ impl WgpuRenderer {
         let layout = self.layouts((entry, Pass::Refine)).0.clone();
         Ok(PixelPasses { first, refine: Some((pipeline, layout, buffer.clone())), groups })
     }
-
-    /// Runs the job's `entry` kernel (`render` or `trace`) over the frame's pixels: the image, and the trace
-    /// kernel's [`PixelTrace::KERNEL_WORDS`] words per pixel.
-    fn run_pixels(&mut self, job: &RenderJob, entry: Entry) -> Result<(Image, Vec<f32>), RenderError> {
-        let (source, scalar) = self.source_of(job)?;
-        let (width, height) = (job.width(), job.height());
-        let bytes = width as u64 * height as u64 * 4;
-        let trace_bytes = if entry == Entry::Trace { bytes * PixelTrace::KERNEL_WORDS as u64 } else { 0 };
-        let limits = self.device.limits();
-        let groups = (width.div_ceil(RENDER_WORKGROUP), height.div_ceil(RENDER_WORKGROUP));
-        let max_groups = limits.max_compute_workgroups_per_dimension;
-        let max_bytes = limits.max_storage_buffer_binding_size.min(limits.max_buffer_size);
-        if bytes.max(trace_bytes) > max_bytes || groups.0 > max_groups || groups.1 > max_groups {
-            return Err(RenderError::TooLarge {
-                backend: Backend::Wgpu,
-                what: if trace_bytes > max_bytes {
-                    format!("the trace buffer of a {width}x{height} image ({trace_bytes} bytes)")
-                } else {
-                    format!("a {width}x{height} image")
-                },
-                detail: format!("storage buffers up to {max_bytes} bytes, {max_groups} workgroups per dimension"),
-            });
-        }
-        let passes = self.pixel_passes(entry, source, (width, height))?;
-        if self.targets.as_ref().is_none_or(|t| t.bytes != bytes) {
-            self.targets = None;
-            let (targets, error) = capture(&self.device, || Targets {
-                bytes,
-                out: self.storage_buffer("pixels", bytes),
-                readback: self.readback_buffer(bytes),
-            });
-            self.check(error)?;
-            self.targets = Some(targets);
-        }
-        let Some(targets) = self.targets.as_ref() else {
-            return Err(device_error("output buffers were not created"));
-        };
-        // The traces are rare (accuracy and depth images): their buffers are made per call, not kept.
-        let (traces, error) = capture(&self.device, || {
-            let uniform = self.uniform_buffer(job.frame, scalar);
-            let traces = (trace_bytes > 0)
-                .then(|| (self.storage_buffer("traces", trace_bytes), self.readback_buffer(trace_bytes)));
-            let mut encoder = self.encoder();
-            passes.record(&self.device, &mut encoder, &uniform, &targets.out, traces.as_ref().map(|t| &t.0));
-            self.queue.submit([encoder.finish()]);
-            traces
-        });
-        self.check(error)?;
-        let pixels = self.read(&targets.out, &targets.readback, bytes)?;
-        let words = match &traces {
-            Some((buffer, readback)) => {
-                self.read(buffer, readback, trace_bytes)?.into_iter().map(f32::from_bits).collect()
-            }
-            None => Vec::new(),
-        };
-        Ok((Image { width, height, pixels }, words))
-    }
 }
 
 impl Renderer for WgpuRenderer {
     fn render(&mut self, job: &RenderJob) -> Result<Image, RenderError> {
-        Ok(self.run_pixels(job, Entry::Render)?.0)
+        self.render_one(job)
+    }
+
+    /// Keeps up to [`FRAMES_IN_FLIGHT`] frames submitted: the device draws the next ones while the host reads one.
+    fn render_batch(&mut self, jobs: &[RenderJob]) -> Vec<Result<Image, RenderError>> {
+        self.render_in_flight(jobs)
     }
 
     fn trace(&mut self, job: &RenderJob) -> Result<Traced, RenderError> {
-        let (image, words) = self.run_pixels(job, Entry::Trace)?;
+        let (image, words) = self.run_trace(job)?;
         Ok(Traced::from_kernel(image, &words))
     }
 
