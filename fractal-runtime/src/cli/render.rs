@@ -22,6 +22,8 @@ use crate::output::aov::write_aov;
 use crate::output::png::{prepare_output, write_png};
 use crate::output::sequence::{plan, FramePattern, Shard};
 use crate::output::video::{Container, VideoWriter};
+use crate::output::writers::{FrameWriters, Written};
+use crate::output::OutputError;
 use fractal_render::progressive::Progressive;
 
 /// What `-o` and `--frames` ask for.
@@ -336,36 +338,61 @@ fn render_sequence(
     let bar = progress_bar(plan.todo.len() as u64);
     let started = Instant::now();
     let mut precision = FramePrecision::new(args.render.device.precision, format!("fractal: {}: ", loaded.name));
-    for (done, &f) in plan.todo.iter().enumerate() {
-        let start = Instant::now();
-        let at = (f as f64 / args.fps, args.render.size);
-        let image = render_frame(renderer.as_mut(), loaded, params, at, &mut precision)?;
-        let path = pattern.path(f);
-        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-            std::fs::create_dir_all(dir)
-                .map_err(|source| crate::output::OutputError::Write { path: path.clone(), source })?;
+    // The renderer draws a batch (a GPU keeps its frames in flight) while the writers encode the batch before.
+    let writers = FrameWriters::per_core();
+    let mut written = 0;
+    let mut report = |done: Vec<Result<Written, OutputError>>| -> Result<(), CliError> {
+        for w in done {
+            let w = w?;
+            written += 1;
+            bar.inc(1);
+            if batch_log {
+                // No progress bar without a terminal: one line per frame keeps job-scheduler logs informative.
+                let total = plan.todo.len();
+                let (frame, path, seconds) = (w.frame, w.path.display(), w.seconds);
+                eprintln!("frame {frame} ({written}/{total}) -> {path}, written in {seconds:.2} s");
+            }
         }
-        write_png(&path, &image)?;
-        bar.inc(1);
-        if batch_log {
-            // No progress bar without a terminal: one line per frame keeps job-scheduler logs informative.
-            eprintln!(
-                "frame {f} ({}/{}) -> {} in {:.2} s",
-                done + 1,
-                plan.todo.len(),
-                path.display(),
-                start.elapsed().as_secs_f64()
-            );
+        Ok(())
+    };
+    for batch in plan.todo.chunks(SEQUENCE_BATCH) {
+        let times: Vec<f64> = batch.iter().map(|&f| f as f64 / args.fps).collect();
+        let images = render_frames(renderer.as_mut(), loaded, params, (&times, args.render.size), &mut precision)?;
+        for (&f, image) in batch.iter().zip(images) {
+            writers.push(f, pattern.path(f), image)?;
         }
+        report(writers.written())?;
     }
+    report(writers.finish())?;
     bar.finish_and_clear();
+    let seconds = started.elapsed().as_secs_f64();
     eprintln!(
-        "wrote {} frames{of_shard} to {pattern} in {:.1} s ({} already complete)",
+        "wrote {} frames{of_shard} to {pattern} in {seconds:.1} s, {:.1} frames/s ({} already complete)",
         plan.todo.len(),
-        started.elapsed().as_secs_f64(),
+        plan.todo.len() as f64 / seconds,
         plan.done.len()
     );
     Ok(())
+}
+
+/// Frames a sequence or video hands the renderer at once ([`Renderer::render_batch`]).
+const SEQUENCE_BATCH: usize = 8;
+
+/// Frames of the scene at `times`, seen from its own camera, each in the precision `precision` gives it, drawn as
+/// one batch.
+fn render_frames(
+    renderer: &mut dyn Renderer,
+    loaded: &LoadedScene,
+    params: &ParamValues,
+    (times, size): (&[f64], (u32, u32)),
+    precision: &mut FramePrecision,
+) -> Result<Vec<Image>, CliError> {
+    let frames = times.iter().map(|&t| frame_at(loaded, params, t, size)).collect::<Result<Vec<_>, _>>()?;
+    let precisions = frames.iter().map(|f| loaded.precision_of(precision, f)).collect::<Result<Vec<_>, _>>()?;
+    let jobs: Vec<RenderJob> =
+        frames.iter().zip(precisions).map(|(f, p)| RenderJob::new(loaded.sources(), f).with_precision(p)).collect();
+    let drawn = renderer.render_batch(&jobs);
+    with_notes(renderer, drawn.into_iter().collect::<Result<Vec<_>, _>>())
 }
 
 fn render_video(args: &RenderArgs, loaded: &LoadedScene, params: &ParamValues, path: &Path) -> Result<(), CliError> {
@@ -380,11 +407,13 @@ fn render_video(args: &RenderArgs, loaded: &LoadedScene, params: &ParamValues, p
     let bar = progress_bar(range.len());
     let started = Instant::now();
     let mut precision = FramePrecision::new(args.render.device.precision, format!("fractal: {}: ", loaded.name));
-    for f in range.iter() {
-        let at = (f as f64 / args.fps, args.render.size);
-        let image = render_frame(renderer.as_mut(), loaded, params, at, &mut precision)?;
-        video.push(&image)?;
-        bar.inc(1);
+    let frames: Vec<u64> = range.iter().collect();
+    for batch in frames.chunks(SEQUENCE_BATCH) {
+        let times: Vec<f64> = batch.iter().map(|&f| f as f64 / args.fps).collect();
+        for image in render_frames(renderer.as_mut(), loaded, params, (&times, args.render.size), &mut precision)? {
+            video.push(&image)?;
+            bar.inc(1);
+        }
     }
     bar.finish_and_clear();
     let written = video.finish()?;

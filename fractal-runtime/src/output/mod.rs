@@ -1,5 +1,6 @@
 //! Offline output of rendered images: PNG files written atomically ([`png`]), numbered frame sequences that resume
 //! after an interruption and split into shards across machines ([`sequence`]), video through ffmpeg ([`video`]),
+//! a sequence's frames encoded and written on worker threads while the next ones render ([`writers`]),
 //! per-pixel depth, normals and steps as OpenEXR beside an image ([`aov`]), the gallery's contact sheet
 //! ([`mod@contact_sheet`]), and a scene's camera as a glTF 2.0 animation for other tools ([`gltf_camera`]).
 
@@ -9,6 +10,7 @@ pub mod gltf_camera;
 pub mod png;
 pub mod sequence;
 pub mod video;
+pub mod writers;
 
 use std::io;
 use std::path::PathBuf;
