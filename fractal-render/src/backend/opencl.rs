@@ -3,7 +3,8 @@
 //! ([`fractal_dsl::back::Entry`]), in f32, or in f64 where the device has `cl_khr_fp64` and the job asks for it.
 //!
 //! Programs are built with `-cl-fast-relaxed-math` unless the renderer is precise; a build failure returns the
-//! driver's build log. Programs are cached per source text and precision.
+//! driver's build log. Programs are cached per source text and precision; a render's buffers and kernels are kept
+//! for the next frame of the same kernel and size.
 
 use std::sync::Mutex;
 
@@ -32,6 +33,19 @@ pub struct OpenClRenderer {
     info: DeviceInfo,
     /// Whether the device computes in f64 (`cl_khr_fp64`): then it draws jobs in f64 with their f64 kernels.
     fp64: bool,
+    /// The last render's buffers and kernels, for the next frame of the same kernel and size.
+    kept: Option<Kept>,
+}
+
+/// A render's image and frame buffers and its kernels (their arguments set), kept while the kernel, image size and
+/// number type stay the same: a frame then writes its uniform, runs the kernels and reads the image, allocating
+/// nothing.
+struct Kept {
+    /// The kernel's source, whether it is built strict, the image size and the frame's bytes.
+    key: (String, bool, (u32, u32), usize),
+    out: Buffer<u32>,
+    frame: Buffer<u8>,
+    kernels: Vec<Kernel>,
 }
 
 fn no_device(reason: impl ToString) -> RenderError {
@@ -136,7 +150,7 @@ impl OpenClRenderer {
             Ok(DeviceInfoResult::Extensions(list)) => list.split_whitespace().any(|e| e == "cl_khr_fp64"),
             _ => false,
         };
-        Ok(OpenClRenderer { device, context, queue, precise, programs: Vec::new(), info, fp64 })
+        Ok(OpenClRenderer { device, context, queue, precise, programs: Vec::new(), info, fp64, kept: None })
     }
 
     /// The renderer's queue (created with profiling enabled), for dispatchers that share its device.
@@ -151,6 +165,7 @@ impl OpenClRenderer {
     /// Switches fast math off (`true`) or on; programs are rebuilt on next use.
     pub fn set_precise(&mut self, precise: bool) {
         self.precise = precise;
+        self.kept = None;
     }
 
     /// The build options programs get.
@@ -302,6 +317,36 @@ impl OpenClRenderer {
         }
     }
 
+    /// Renders the job's frame with the kept buffers and kernels where they fit it, making them anew where not.
+    fn render_kept(&mut self, job: &RenderJob) -> Result<Image, RenderError> {
+        let (source, scalar) = self.source_of(job)?;
+        let size = (job.width(), job.height());
+        let bytes = job.frame.bytes_in(scalar);
+        let strict = Self::strict_for(job.frame);
+        let fits = |k: &Kept| k.key.0 == source && k.key.1 == strict && k.key.2 == size && k.key.3 == bytes.len();
+        let kept = match self.kept.take() {
+            Some(kept) if fits(&kept) => {
+                kept.frame.write(&bytes).enq().map_err(device_error)?;
+                kept
+            }
+            _ => {
+                let out = image_buffer(&self.queue, size.0, size.1)?;
+                let frame = self.frame_buffer(job.frame, scalar)?;
+                let kernels = self.pixel_kernels(Entry::Render, (source, strict), size, (&out, &frame, None))?;
+                Kept { key: (source.to_string(), strict, size, bytes.len()), out, frame, kernels }
+            }
+        };
+        for kernel in &kept.kernels {
+            // Safety: `out` and the first pass's buffer hold one u32 per pixel, and the kernels write only pixels
+            // inside the frame's size.
+            unsafe { kernel.enq() }.map_err(device_error)?;
+        }
+        let mut pixels = vec![0u32; size.0 as usize * size.1 as usize];
+        kept.out.read(&mut pixels).enq().map_err(device_error)?;
+        self.kept = Some(kept);
+        Ok(Image { width: size.0, height: size.1, pixels })
+    }
+
     /// Runs the job's `entry` kernel (`render` or `trace`) over the frame's pixels: the image, and the trace
     /// kernel's [`PixelTrace::KERNEL_WORDS`] words per pixel.
     fn run_pixels(&mut self, job: &RenderJob, entry: Entry) -> Result<(Image, Vec<f32>), RenderError> {
@@ -339,7 +384,7 @@ impl OpenClRenderer {
 
 impl Renderer for OpenClRenderer {
     fn render(&mut self, job: &RenderJob) -> Result<Image, RenderError> {
-        Ok(self.run_pixels(job, Entry::Render)?.0)
+        self.render_kept(job)
     }
 
     fn trace(&mut self, job: &RenderJob) -> Result<Traced, RenderError> {
