@@ -5,10 +5,10 @@
 //! the points at 2, in workgroups of 64; `trace` is `render` that also writes each pixel's march to binding 2; a
 //! kernel with a second pass ([`fractal_dsl::back::Pass`]) has its `refine` read the first pass's pixels at 3. Every
 //! wgpu call that can fail runs inside error scopes, so a kernel the driver refuses, or a device that cannot
-//! allocate, is a [`RenderError`] and never a panic (module `scoped`). Pipelines are cached per source text. A frame goes
-//! from uniform upload to pixels on the host in one submission and one wait, with buffers kept while the image size
-//! stays the same, and a batch keeps several frames in flight (module `frames`). A job in f64 runs the scene's f64 module
-//! where the adapter offers `SHADER_F64` (the device is opened with it).
+//! allocate, is a [`RenderError`] and never a panic (module `scoped`). Pipelines are cached per source text. A frame
+//! goes from uniform upload to pixels on the host in one submission and one wait, with buffers kept while the image
+//! size stays the same, and a batch keeps several frames in flight (module `frames`). A job in f64 runs the scene's
+//! f64 module where the adapter offers `SHADER_F64` (the device is opened with it).
 
 use fractal_dsl::back::{has_refine, Entry, Pass, Scalar};
 use wgpu::util::DeviceExt;

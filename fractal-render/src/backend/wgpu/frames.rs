@@ -14,8 +14,8 @@ use crate::image::Image;
 /// Workgroup edge of the `render` entry point (8×8).
 pub const RENDER_WORKGROUP: u32 = 8;
 
-/// The frames a batch keeps in flight ([`crate::renderer::Renderer::render_batch`]): while the host copies one frame's pixels, the
-/// device draws the next ones.
+/// The frames a batch keeps in flight ([`crate::renderer::Renderer::render_batch`]): while the host copies one
+/// frame's pixels, the device draws the next ones.
 pub const FRAMES_IN_FLIGHT: usize = 3;
 
 /// The pixel buffers the kernel writes and the mappable buffers the host reads them from, one per frame in flight;
@@ -60,9 +60,9 @@ pub struct InFlight {
     started: Instant,
 }
 
-/// One frame drawn through the renderer's own path ([`super::WgpuRenderer::draw_with`]): its pixels, the kernel's device
-/// time where timestamps were written, and the frame's host time, from the uniform upload to the pixels in host
-/// memory.
+/// One frame drawn through the renderer's own path ([`super::WgpuRenderer::draw_with`]): its pixels, the kernel's
+/// device time where timestamps were written, and the frame's host time, from the uniform upload to the pixels in
+/// host memory.
 #[derive(Clone, Debug)]
 pub struct Drawn {
     pub image: Image,
