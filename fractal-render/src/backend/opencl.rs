@@ -7,11 +7,12 @@
 //! for the next frame of the same kernel and size.
 
 use std::sync::Mutex;
+use std::time::Instant;
 
 use fractal_dsl::back::{has_refine, Entry, Pass, Scalar};
-use ocl::enums::{DeviceInfo as ClDeviceInfo, DeviceInfoResult};
+use ocl::enums::{DeviceInfo as ClDeviceInfo, DeviceInfoResult, ProfilingInfo};
 use ocl::flags::DeviceType;
-use ocl::{flags, Buffer, Context, Device, Kernel, Platform, Program, Queue};
+use ocl::{flags, Buffer, Context, Device, Event, Kernel, Platform, Program, Queue};
 
 use crate::device::{Backend, DeviceInfo};
 use crate::error::RenderError;
@@ -317,8 +318,27 @@ impl OpenClRenderer {
         }
     }
 
-    /// Renders the job's frame with the kept buffers and kernels where they fit it, making them anew where not.
-    fn render_kept(&mut self, job: &RenderJob) -> Result<Image, RenderError> {
+    /// Renders the job's frame and says how long its kernels took on the device (from the first pass's start to the
+    /// last pass's end, by the queue's profiling events) and how long the whole frame took on the host, from the
+    /// uniform's upload to the pixels in host memory. The bench times this path: the one every render takes.
+    pub fn render_timed(&mut self, job: &RenderJob) -> Result<(Image, f64, f64), RenderError> {
+        let start = Instant::now();
+        let mut events = Vec::new();
+        let image = self.render_kept(job, Some(&mut events))?;
+        let frame_ms = start.elapsed().as_secs_f64() * 1e3;
+        let (Some(first), Some(last)) = (events.first(), events.last()) else {
+            return Err(device_error(ocl::Error::from("no kernel ran")));
+        };
+        let nanos = |event: &Event, which| {
+            event.profiling_info(which).and_then(|r| r.time().map_err(ocl::Error::from)).map_err(device_error)
+        };
+        let kernel_ns = nanos(last, ProfilingInfo::End)?.saturating_sub(nanos(first, ProfilingInfo::Start)?);
+        Ok((image, kernel_ns as f64 / 1e6, frame_ms))
+    }
+
+    /// Renders the job's frame with the kept buffers and kernels where they fit it, making them anew where not; with
+    /// `events`, each kernel's profiling event is pushed there.
+    fn render_kept(&mut self, job: &RenderJob, mut events: Option<&mut Vec<Event>>) -> Result<Image, RenderError> {
         let (source, scalar) = self.source_of(job)?;
         let size = (job.width(), job.height());
         let bytes = job.frame.bytes_in(scalar);
@@ -337,9 +357,13 @@ impl OpenClRenderer {
             }
         };
         for kernel in &kept.kernels {
+            let mut event = Event::empty();
             // Safety: `out` and the first pass's buffer hold one u32 per pixel, and the kernels write only pixels
             // inside the frame's size.
-            unsafe { kernel.enq() }.map_err(device_error)?;
+            unsafe { kernel.cmd().enew(&mut event).enq() }.map_err(device_error)?;
+            if let Some(events) = events.as_deref_mut() {
+                events.push(event);
+            }
         }
         let mut pixels = vec![0u32; size.0 as usize * size.1 as usize];
         kept.out.read(&mut pixels).enq().map_err(device_error)?;
@@ -384,7 +408,7 @@ impl OpenClRenderer {
 
 impl Renderer for OpenClRenderer {
     fn render(&mut self, job: &RenderJob) -> Result<Image, RenderError> {
-        self.render_kept(job)
+        self.render_kept(job, None)
     }
 
     fn trace(&mut self, job: &RenderJob) -> Result<Traced, RenderError> {

@@ -1,11 +1,11 @@
-//! The OpenCL dispatcher (cargo feature `opencl`): runs on the device and profiling queue of a
-//! [`fractal_render::OpenClRenderer`], builds programs through the renderer's cache with its options
-//! (`-cl-fast-relaxed-math` unless precise; the baseline gets the same options as the generated kernel), and reads each
-//! kernel's time from its profiling events (with a refine pass, from the first pass's start to the refine's end).
+//! The OpenCL dispatcher (cargo feature `opencl`): times the generated kernel on the renderer's own render path
+//! ([`fractal_render::OpenClRenderer::render_timed`]: kept buffers and kernels, the time from profiling events, with a
+//! refine pass from the first pass's start to the refine's end), and the baseline on the same device and profiling
+//! queue, built through the renderer's program cache with its options (`-cl-fast-relaxed-math` unless precise, as the
+//! generated kernel).
 
 use std::time::Instant;
 
-use fractal_dsl::back::{Entry, Scalar};
 use fractal_render::backend::opencl::{device_error, image_buffer, rejected, OpenClRenderer};
 use fractal_render::device::DeviceInfo;
 use fractal_render::error::RenderError;
@@ -60,49 +60,29 @@ impl Timer for OpenClTimer {
 
     fn run(&mut self, work: &Work) -> Result<Timed, RenderError> {
         let (width, height) = match work {
-            Work::Generated(job) => (job.width(), job.height()),
+            // The generated kernel is timed on the renderer's own path, the one every render takes.
+            Work::Generated(job) => {
+                let (image, kernel_ms, frame_ms) = self.renderer.render_timed(job)?;
+                return Ok(Timed { image, kernel_ms, frame_ms });
+            }
             Work::Baseline { width, height } => (*width, *height),
-        };
-        let (source, scalar) = match work {
-            Work::Generated(job) => self.renderer.source_of(job)?,
-            Work::Baseline { .. } => (BASELINE_OPENCL, Scalar::F32),
         };
         let count = width as usize * height as usize;
         let out = self.out(count, width, height)?;
 
         let start = Instant::now();
-        let kernels = match work {
-            Work::Generated(job) => {
-                let frame = self.renderer.frame_buffer(job.frame, scalar)?;
-                let strict = OpenClRenderer::strict_for(job.frame);
-                self.renderer.pixel_kernels(Entry::Render, (source, strict), (width, height), (&out, &frame, None))?
-            }
-            Work::Baseline { .. } => {
-                let program = self.renderer.program((source, false))?;
-                let mut builder = Kernel::builder();
-                builder.program(&program).name("render").queue(self.renderer.queue().clone());
-                builder.global_work_size((width, height)).arg(&out).arg(width as i32).arg(height as i32);
-                vec![builder.build().map_err(rejected)?]
-            }
-        };
-        let mut events = Vec::new();
-        for kernel in &kernels {
-            let mut event = Event::empty();
-            // Safety: `out` (and a refine pass's input) holds one u32 per pixel; the kernels write only pixels inside
-            // (width, height).
-            unsafe { kernel.cmd().enew(&mut event).enq() }.map_err(device_error)?;
-            events.push(event);
-        }
-        for event in &events {
-            event.wait_for().map_err(|e| device_error(e.into()))?;
-        }
+        let program = self.renderer.program((BASELINE_OPENCL, false))?;
+        let mut builder = Kernel::builder();
+        builder.program(&program).name("render").queue(self.renderer.queue().clone());
+        builder.global_work_size((width, height)).arg(&out).arg(width as i32).arg(height as i32);
+        let kernel = builder.build().map_err(rejected)?;
+        let mut event = Event::empty();
+        // Safety: `out` holds one u32 per pixel; the kernel writes only pixels inside (width, height).
+        unsafe { kernel.cmd().enew(&mut event).enq() }.map_err(device_error)?;
         let mut pixels = vec![0u32; count];
         out.read(&mut pixels).enq().map_err(device_error)?;
         let frame_ms = millis(start.elapsed());
-        let (Some(first), Some(last)) = (events.first(), events.last()) else {
-            return Err(device_error(ocl::Error::from("no kernel ran")));
-        };
-        let kernel_ns = nanos(last, ProfilingInfo::End)?.saturating_sub(nanos(first, ProfilingInfo::Start)?);
+        let kernel_ns = nanos(&event, ProfilingInfo::End)?.saturating_sub(nanos(&event, ProfilingInfo::Start)?);
         Ok(Timed { image: Image { width, height, pixels }, kernel_ms: kernel_ns as f64 / 1e6, frame_ms })
     }
 }
