@@ -303,7 +303,6 @@ impl WgpuRenderer {
     fn submit_render(&mut self, job: &RenderJob, slot: usize, timed: bool) -> Result<InFlight, RenderError> {
         let (source, scalar) = self.source_of(job)?;
         let size = (job.width(), job.height());
-        check_size(&self.device, size, 0)?;
         let passes = self.pixel_passes(Entry::Render, source, size)?;
         let uniform = job.frame.bytes_in(scalar);
         self.frames.submit(
@@ -355,28 +354,34 @@ impl WgpuRenderer {
     /// host reads one.
     fn render_in_flight(&mut self, jobs: &[RenderJob]) -> Vec<Result<Image, RenderError>> {
         let mut drawn = Vec::with_capacity(jobs.len());
-        let mut flying: std::collections::VecDeque<InFlight> = Default::default();
+        let mut flying = std::collections::VecDeque::new();
         for (i, job) in jobs.iter().enumerate() {
             // The readbacks are made per image size: frames of another size wait for those in flight.
-            let resized = flying.back().is_some_and(|f| f.size != (job.width(), job.height()));
-            while flying.len() >= FRAMES_IN_FLIGHT || (resized && !flying.is_empty()) {
-                let Some(frame) = flying.pop_front() else { break };
-                drawn.push(self.frames.collect(&self.device, frame).map(|d| d.image));
-            }
+            let resized = flying.back().is_some_and(|f: &InFlight| f.size != (job.width(), job.height()));
+            self.collect_until(&mut flying, if resized { 0 } else { FRAMES_IN_FLIGHT - 1 }, &mut drawn);
             match self.submit_render(job, i, false) {
                 Ok(frame) => flying.push_back(frame),
                 Err(e) => {
-                    while let Some(frame) = flying.pop_front() {
-                        drawn.push(self.frames.collect(&self.device, frame).map(|d| d.image));
-                    }
+                    self.collect_until(&mut flying, 0, &mut drawn);
                     drawn.push(Err(e));
                 }
             }
         }
-        while let Some(frame) = flying.pop_front() {
+        self.collect_until(&mut flying, 0, &mut drawn);
+        drawn
+    }
+
+    /// Reads the oldest frames in flight into `drawn` until at most `left` remain.
+    fn collect_until(
+        &mut self,
+        flying: &mut std::collections::VecDeque<InFlight>,
+        left: usize,
+        drawn: &mut Vec<Result<Image, RenderError>>,
+    ) {
+        while flying.len() > left {
+            let Some(frame) = flying.pop_front() else { break };
             drawn.push(self.frames.collect(&self.device, frame).map(|d| d.image));
         }
-        drawn
     }
 
     /// Turns a scoped error, or any error that escaped the scopes, into a device error.

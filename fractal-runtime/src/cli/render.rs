@@ -211,10 +211,8 @@ pub(super) fn render_frame(
     (time, size): (f64, (u32, u32)),
     precision: &mut FramePrecision,
 ) -> Result<Image, CliError> {
-    let frame = frame_at(loaded, params, time, size)?;
-    let job = RenderJob::new(loaded.sources(), &frame).with_precision(loaded.precision_of(precision, &frame)?);
-    let image = renderer.render(&job);
-    with_notes(renderer, image)
+    let mut images = render_frames(renderer, loaded, params, (&[time], size), precision)?;
+    images.pop().ok_or_else(|| CliError::failure("the renderer drew no frame"))
 }
 
 pub fn render(args: &RenderArgs, library: &SceneLibrary) -> Result<(), CliError> {

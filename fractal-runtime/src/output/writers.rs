@@ -80,20 +80,22 @@ impl FrameWriters {
 
     /// Waits for every queued frame; the frames written (or failed) since the last [`FrameWriters::written`].
     pub fn finish(mut self) -> Vec<Result<Written, OutputError>> {
+        self.close();
+        self.done.try_iter().collect()
+    }
+
+    /// Closes the queue and waits for the workers to write what it held.
+    fn close(&mut self) {
         self.queue = None;
         for worker in self.workers.drain(..) {
             let _ = worker.join();
         }
-        self.done.try_iter().collect()
     }
 }
 
 impl Drop for FrameWriters {
     fn drop(&mut self) {
-        self.queue = None;
-        for worker in self.workers.drain(..) {
-            let _ = worker.join();
-        }
+        self.close();
     }
 }
 
