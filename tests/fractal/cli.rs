@@ -170,6 +170,40 @@ fn view_without_a_display_says_how_to_render_instead() {
     assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
 }
 
+/// `fractal view --headless` runs the viewer's frames with no display, says what they cost, and saves the last one
+/// as a window would show it: with time paused, the frame `fractal render` draws at the same time and size.
+#[test]
+fn view_headless_draws_frames_and_says_what_they_cost() {
+    let dir = scratch("view-headless");
+    let view = |args: &[&str]| {
+        Command::new(FRACTAL)
+            .args(["view", "hello_world"])
+            .args(args)
+            .current_dir(&dir)
+            .env_remove("DISPLAY")
+            .env_remove("WAYLAND_DISPLAY")
+            .output()
+            .unwrap()
+    };
+    let args = ["--headless", "--frames", "4", "--size", "96x64", "--backend", "cpu", "--paused", "--no-accumulate"];
+    let out = view(&[&args[..], &["--screenshot", "last.png"]].concat());
+    assert_ok(&out);
+    let report = stdout(&out);
+    assert!(report.contains("4 frames at 96x64 (rendered at 96x64)"), "{report}");
+    assert!(report.contains("3 kernel frames") && report.contains("host memory"), "{report}");
+    let shown = read_png(&dir.join("last.png")).expect("the last frame was saved");
+    assert_ok(&run_in(&dir, &["render", "hello_world", "--size", "96x64", "--backend", "cpu", "-o", "render.png"]));
+    let rendered = read_png(&dir.join("render.png")).unwrap();
+    assert_eq!(fraction_unlike(&shown, &rendered, 0), 0.0, "the headless viewer shows what render draws");
+
+    // A count of frames or a screenshot means nothing with a window; a scale outside 0.05..=1 is refused.
+    let out = view(&["--frames", "4"]);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    let out = view(&["--headless", "--scale", "2"]);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(stderr(&out).contains("0.05..=1"), "{}", stderr(&out));
+}
+
 /// `--samples` draws a built-in with more rays a pixel on a backend that runs its kernels (compiled again for it)
 /// and on the CPU alike: the silhouette's pixels change, little else does.
 #[test]

@@ -18,6 +18,7 @@
 //! only one window-system event loop. Without Xvfb the window test is skipped with a note, or fails when
 //! `FRACTAL_REQUIRE_GPU_BACKENDS=1`.
 
+mod headless;
 mod precision;
 mod still;
 
@@ -32,6 +33,7 @@ use fractal_render::{
 };
 use fractal_runtime::viewer::{
     read_png, Action, Move, PresentMode, RenderScale, ScreenshotInfo, ScriptedStep, ViewerOptions, ViewerScene,
+    ViewerSummary,
 };
 
 /// Set in the child process: the folder for its screenshots. Unset, the child test does nothing.
@@ -274,12 +276,25 @@ fn viewer_child_process() {
         "deep" => return precision::deep_child(&dir),
         _ => {}
     }
-    let (backend, present) = match mode.as_str() {
-        "cpu-softbuffer" => (BackendChoice::Only(Backend::Cpu), PresentMode::Softbuffer),
-        _ => (BackendChoice::Auto, PresentMode::Auto),
+    let (backend, present, presenter) = match mode.as_str() {
+        "cpu-softbuffer" => (BackendChoice::Only(Backend::Cpu), PresentMode::Softbuffer, "softbuffer"),
+        // On the device whatever the adapter, so the surface path is tested on lavapipe too.
+        _ => (BackendChoice::Auto, PresentMode::Gpu, "wgpu surface"),
     };
+    let mut script = scripted_steps(&dir);
+    script.push(ScriptedStep::Idle(LINGER));
+    let options = ViewerOptions { window_position: Some((0, 0)), ..scripted_options(&dir, (backend, present), script) };
+    let summary = fractal_runtime::viewer::run(ViewerScene::compiled("sphere_box", &scenes::SPHERE_BOX), options)
+        .expect("the viewer runs");
+    check_scripted_run(&summary, presenter);
+}
+
+/// The scripted session of the window test and of the headless run (module `headless`): frames at the scene's
+/// camera, ten frames forward, a turn of the mouse, the panel shown and hidden, shadows toggled and time paused, with
+/// four screenshots on the way.
+fn scripted_steps(dir: &Path) -> Vec<ScriptedStep> {
     let forward = Action::Move(Move::Forward);
-    let script = vec![
+    vec![
         ScriptedStep::Frames(3),
         ScriptedStep::Screenshot(dir.join("start.png")),
         ScriptedStep::Press(forward),
@@ -294,35 +309,45 @@ fn viewer_child_process() {
         ScriptedStep::Trigger(Action::TogglePause),
         ScriptedStep::Frames(2),
         ScriptedStep::Screenshot(dir.join(LAST_SHOT)),
-        ScriptedStep::Idle(LINGER),
-    ];
-    let options = ViewerOptions {
+    ]
+}
+
+/// The options of a scripted run of `script` on `backend` through `present`, with its screenshots in `dir`.
+fn scripted_options(
+    dir: &Path,
+    (backend, present): (BackendChoice, PresentMode),
+    script: Vec<ScriptedStep>,
+) -> ViewerOptions {
+    ViewerOptions {
         backend,
         present,
         window_size: WINDOW,
-        window_position: Some((0, 0)),
         // Half size, so the comparison also checks the upscaling.
         render_scale: RenderScale::Fixed(0.5),
         fixed_time_step: Some(STEP),
         move_speed: SPEED,
         mouse_sensitivity: SENSITIVITY,
-        screenshot_dir: dir.clone(),
+        screenshot_dir: dir.to_path_buf(),
         script: Some(script),
         print_help: false,
         // These runs compare frames drawn as usual; `still_child` tests the passes.
         accumulate: false,
         ..ViewerOptions::default()
-    };
-    let summary = fractal_runtime::viewer::run(ViewerScene::compiled("sphere_box", &scenes::SPHERE_BOX), options)
-        .expect("the viewer runs");
+    }
+}
+
+/// Checks a run of [`scripted_steps`]: the poses the script asked for, and each screenshot equal to an offline
+/// render of its pose upscaled as the viewer upscales; `presenter` is the one expected for wgpu frames (or for
+/// every frame, on the CPU).
+fn check_scripted_run(summary: &ViewerSummary, presenter: &str) {
     let [start, moved, panel, no_shadows] = summary.screenshots.as_slice() else {
         panic!("expected four screenshots, got {}", summary.screenshots.len());
     };
     println!("device: {}, presenter: {}", start.device, start.presenter);
-    if mode == "cpu-softbuffer" {
-        assert_eq!((start.device.backend, start.presenter), (Backend::Cpu, "softbuffer"));
+    if start.device.backend == Backend::Cpu {
+        assert_eq!(start.presenter, presenter);
     } else if start.device.backend == Backend::Wgpu && require_backends() {
-        assert_eq!(start.presenter, "wgpu surface", "wgpu frames should reach the window through a wgpu surface");
+        assert_eq!(start.presenter, presenter, "wgpu frames should reach the window without a host round trip");
     }
 
     // The scripted move: 10 frames forward at 1.5 units/s with 1/30 s steps, then a turn to the right.

@@ -22,8 +22,8 @@ use crate::renderer::{PixelTrace, ProbeSample, RenderJob, Renderer, Traced};
 mod frames;
 mod scoped;
 
-use frames::{check_size, Frames, InFlight};
-pub use frames::{Drawn, FRAMES_IN_FLIGHT, RENDER_WORKGROUP};
+pub use frames::{check_size, Drawn, FRAMES_IN_FLIGHT, RENDER_WORKGROUP};
+use frames::{Frames, InFlight};
 pub use scoped::{capture, map_read, read_back};
 use scoped::{device_error, Uncaptured};
 

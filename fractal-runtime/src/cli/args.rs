@@ -12,6 +12,7 @@ use fractal_render::select::BackendChoice;
 use crate::export::Target;
 use crate::output::{Aov, FrameRange, Shard};
 use crate::package::Engine;
+use crate::viewer::PresentMode;
 
 /// Most frames `bench --frames` times.
 pub const MAX_BENCH_FRAMES: u32 = 100_000;
@@ -496,6 +497,31 @@ pub struct ViewArgs {
     /// 256, while nothing that changes the picture changes)
     #[arg(long)]
     pub no_accumulate: bool,
+    /// Render this fraction of the window, 0.05..=1 [default: adapts to hold 30 frames/s; 1 with --headless]
+    #[arg(long, value_name = "FRACTION", value_parser = parse_scale)]
+    pub scale: Option<f64>,
+    /// Run the viewer with no window: its frames (without the panel) go to a target of the window's size, time
+    /// advances 1/60 s per frame, and the frame times are printed
+    #[arg(long)]
+    pub headless: bool,
+    /// With --headless: how many frames to draw
+    #[arg(long, value_name = "N", default_value_t = 120, requires = "headless", value_parser = clap::value_parser!(u64).range(1..=1_000_000))]
+    pub frames: u64,
+    /// How wgpu frames reach the window: `gpu` draws them to it on the device, `host` reads them back and shows them
+    /// through softbuffer, `auto` is `gpu` on a GPU and `host` on a software rasteriser (lavapipe)
+    #[arg(long, value_name = "auto|gpu|host", default_value = "auto", value_parser = parse_present)]
+    pub present: PresentMode,
+    /// With --headless: save the last frame, as a window would show it, to this PNG
+    #[arg(long, value_name = "PATH", requires = "headless")]
+    pub screenshot: Option<PathBuf>,
+}
+
+/// A render scale: a fraction of the window in 0.05..=1.
+pub fn parse_scale(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(v) if (0.05..=1.0).contains(&v) => Ok(v),
+        _ => Err(format!("--scale takes a fraction of the window in 0.05..=1, got `{text}`")),
+    }
 }
 
 /// `WIDTHxHEIGHT`, each side within the renderers' limits.
@@ -534,6 +560,10 @@ fn parse_threshold(text: &str) -> Result<f64, String> {
 
 pub fn parse_precision(text: &str) -> Result<PrecisionChoice, String> {
     text.parse::<PrecisionChoice>().map_err(|e| e.to_string())
+}
+
+pub fn parse_present(text: &str) -> Result<PresentMode, String> {
+    text.parse::<PresentMode>()
 }
 
 pub fn parse_backend(text: &str) -> Result<BackendChoice, String> {

@@ -1,12 +1,13 @@
-//! The game loop: a winit [`ApplicationHandler`] that, once per frame, polls input (keys, mouse, the script, the
-//! watched file), updates time, camera and parameters, renders, and presents — and recovers from what can go wrong on
-//! the way (a kernel the driver rejects, a backend that fails, a surface that cannot present) without panicking.
-//! What each key, click or scripted step changes is module `input`'s; this file owns the state and the frame.
+//! The game loop: once per frame, poll input (keys, mouse, the script, the watched file), update time, camera and
+//! parameters, render, and present — and recover from what can go wrong on the way (a kernel the driver rejects, a
+//! backend that fails, a surface that cannot present) without panicking. What each key, click or scripted step
+//! changes is module `input`'s; a winit event loop drives the frames in a window (module `window`), a plain loop
+//! drives them without one (module `headless`); this file owns the state and the frame.
 
 use std::collections::HashSet;
 use std::path::PathBuf;
 use std::sync::Arc;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use fractal_render::camera::Pose;
 use fractal_render::device::Backend;
@@ -15,20 +16,20 @@ use fractal_render::frame::Frame;
 use fractal_render::image::Image;
 use fractal_render::precision::Precision;
 use fractal_render::renderer::RenderJob;
-use winit::application::ApplicationHandler;
-use winit::dpi::{PhysicalPosition, PhysicalSize};
-use winit::event::{DeviceEvent, DeviceId, ElementState, MouseButton, MouseScrollDelta, WindowEvent};
-use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
-use winit::keyboard::PhysicalKey;
-use winit::window::{Window, WindowId};
+use winit::window::Window;
 
+mod headless;
 mod input;
 mod passes;
+mod window;
+
+pub use headless::{run_headless, FrameKind, HeadlessRun};
+pub use window::run;
 
 use crate::frame_precision::FramePrecision;
 
 use super::camera_control::{FlyCamera, SPRINT_FACTOR};
-use super::controls::{Move, HELP};
+use super::controls::Move;
 use super::effects::{describe, describe_quality, EffectOverrides};
 use super::engine::{Engine, EngineChain};
 use super::live_scene::{FileWatch, LiveScene};
@@ -45,86 +46,64 @@ use super::title::{title, FrameClock, TitleFacts};
 
 /// Longest time step of one frame: after a stall (a slow recompile, a dragged window) the camera does not jump.
 const MAX_DT: f64 = 0.25;
-/// Pixels of scroll per mouse-wheel line.
-const PIXELS_PER_LINE: f64 = 40.0;
 /// The time slider's range when the scene has no camera path to take it from.
 const DEFAULT_TIME_SPAN: f64 = 60.0;
-/// Time between frames while the viewer rests (standing still with every pass drawn): input, the watched file and
-/// the panel are still looked at, and nothing is rendered.
-const REST_FRAME: Duration = Duration::from_millis(50);
 
-pub fn run(scene: ViewerScene, options: ViewerOptions) -> Result<ViewerSummary, ViewerError> {
-    let overrides = EffectOverrides::default().with_samples(options.samples);
-    let live = LiveScene::load(&scene).and_then(|l| l.with_overrides(&overrides)).map_err(ViewerError::Scene)?;
-    let path_file =
-        options.camera_path.as_deref().map(load_camera_path).transpose().map_err(ViewerError::CameraPath)?;
-    let event_loop = build_event_loop()?;
-    event_loop.set_control_flow(ControlFlow::Poll);
-    let watch = match (&scene, options.watch) {
-        (ViewerScene::File(path), true) => {
-            let text = fractal_dsl::parse::read_source(path).ok();
-            match FileWatch::new(path, text) {
-                Ok(watch) => Some(watch),
-                Err(e) => {
-                    eprintln!("not watching {} for changes: {e}", path.display());
-                    None
+impl App {
+    /// The viewer's state for `scene`, with its engine open; `headless` draws to a window-sized target with no
+    /// window (module `headless`).
+    fn start(scene: ViewerScene, options: ViewerOptions, headless: bool) -> Result<App, ViewerError> {
+        let overrides = EffectOverrides::default().with_samples(options.samples);
+        let live = LiveScene::load(&scene).and_then(|l| l.with_overrides(&overrides)).map_err(ViewerError::Scene)?;
+        let path_file =
+            options.camera_path.as_deref().map(load_camera_path).transpose().map_err(ViewerError::CameraPath)?;
+        let watch = match (&scene, options.watch) {
+            (ViewerScene::File(path), true) => {
+                let text = fractal_dsl::parse::read_source(path).ok();
+                match FileWatch::new(path, text) {
+                    Ok(watch) => Some(watch),
+                    Err(e) => {
+                        eprintln!("not watching {} for changes: {e}", path.display());
+                        None
+                    }
                 }
             }
+            _ => None,
+        };
+        let mut chain = EngineChain::new(options.backend, options.renderer);
+        let mut notes = Vec::new();
+        let engine = chain.next(&mut notes);
+        for note in notes {
+            println!("{note}");
         }
-        _ => None,
-    };
-    let mut chain = EngineChain::new(options.backend, options.renderer);
-    let mut notes = Vec::new();
-    let engine = chain.next(&mut notes);
-    for note in notes {
-        println!("{note}");
+        let mut app = App::new(scene, options, live, path_file, watch, chain, engine?)?;
+        app.headless = headless;
+        // No one sees a headless run's panel unless a script shows it (its screenshots are the frame's).
+        app.panel_shown &= !headless;
+        Ok(app)
     }
-    let engine = engine?;
-    let mut app = App::new(scene, options, live, path_file, watch, chain, engine)?;
-    event_loop.run_app(&mut app).map_err(|e| ViewerError::Window(e.to_string()))?;
-    app.summary.device = Some(app.engine.device());
-    app.summary.presenter = app.presenter.as_ref().map(Presenter::name);
-    match app.fatal {
-        Some(e) => Err(e),
-        None => Ok(app.summary),
-    }
-}
 
-/// An event loop that may run on any thread (tests run the viewer off the main thread). A window system that is
-/// missing or refuses the connection is [`ViewerError::NoDisplay`].
-fn build_event_loop() -> Result<EventLoop<()>, ViewerError> {
-    let built = std::panic::catch_unwind(|| {
-        let mut builder = EventLoop::builder();
-        #[cfg(any(
-            target_os = "linux",
-            target_os = "dragonfly",
-            target_os = "freebsd",
-            target_os = "netbsd",
-            target_os = "openbsd"
-        ))]
-        {
-            winit::platform::x11::EventLoopBuilderExtX11::with_any_thread(&mut builder, true);
-            winit::platform::wayland::EventLoopBuilderExtWayland::with_any_thread(&mut builder, true);
+    /// What the session did, or the error that ended it.
+    fn finish(mut self) -> Result<ViewerSummary, ViewerError> {
+        self.summary.device = Some(self.engine.device());
+        self.summary.presenter = self.presenter.as_ref().map(Presenter::name);
+        match self.fatal {
+            Some(e) => Err(e),
+            None => Ok(self.summary),
         }
-        builder.build()
-    });
-    match built {
-        Ok(Ok(event_loop)) => Ok(event_loop),
-        Ok(Err(e)) => Err(ViewerError::NoDisplay(format!("cannot connect to the window system: {e}"))),
-        Err(_) => Err(ViewerError::NoDisplay("the window system library failed to start".to_string())),
     }
 }
 
 enum Presenter {
-    Gpu(GpuPresenter),
+    Gpu(Box<GpuPresenter>),
     Soft(SoftPresenter),
 }
 
 impl Presenter {
     fn name(&self) -> &'static str {
         match self {
-            Presenter::Gpu(_) => "wgpu surface",
-            Presenter::Soft(_) => "softbuffer",
+            Presenter::Gpu(gpu) => gpu.name(),
+            Presenter::Soft(soft) => soft.name(),
         }
     }
 }
@@ -189,6 +168,12 @@ struct App {
     precision: FramePrecision,
     /// The backend that drew the last frame in f64: the engine's where it computes in f64, else the CPU.
     wide_backend: Backend,
+    /// No window: frames go to a target of the window's size (module `headless`).
+    headless: bool,
+    /// How the last frame was drawn, for the headless run's report.
+    last_plan: Option<(Plan, Precision)>,
+    /// The session ends after this frame (a key, the script's end, an error with nowhere left to go).
+    exit: bool,
 }
 
 impl App {
@@ -244,45 +229,37 @@ impl App {
             woken: false,
             precision: FramePrecision::new(options.precision, ""),
             wide_backend: Backend::Cpu,
+            headless: false,
+            last_plan: None,
+            exit: false,
             live,
             options,
         })
     }
 
-    fn open_window(&mut self, event_loop: &ActiveEventLoop) -> Result<(), ViewerError> {
-        let (width, height) = self.options.window_size;
-        let mut attributes = Window::default_attributes()
-            .with_title(format!("fractal — {}", self.live.name))
-            .with_inner_size(PhysicalSize::new(width.max(1), height.max(1)));
-        if let Some((x, y)) = self.options.window_position {
-            attributes = attributes.with_position(PhysicalPosition::new(x, y));
-        }
-        let window = event_loop
-            .create_window(attributes)
-            .map(Arc::new)
-            .map_err(|e| ViewerError::NoDisplay(format!("cannot open a window: {e}")))?;
-        self.window = Some(window);
-        self.presenter = Some(self.make_presenter()?);
-        println!(
-            "viewing {} with {} ({})",
-            self.live.name,
-            self.engine.device(),
-            self.presenter.as_ref().map_or("no presenter", Presenter::name)
-        );
-        if self.options.print_help && self.script.is_none() {
-            println!("{HELP}");
-        }
-        Ok(())
-    }
-
-    /// A wgpu surface for wgpu frames when allowed and possible, softbuffer otherwise.
+    /// A wgpu surface for wgpu frames when allowed and possible, softbuffer otherwise; without a window, a texture
+    /// or host memory in their place.
     fn make_presenter(&self) -> Result<Presenter, ViewerError> {
-        let Some(window) = self.window.clone() else {
-            return Err(ViewerError::Window("no window".to_string()));
+        let gpu = match (self.options.present, &self.engine) {
+            (PresentMode::Gpu, _) => true,
+            (PresentMode::Auto, Engine::Wgpu(renderer)) => renderer.adapter_info().device_type != wgpu::DeviceType::Cpu,
+            _ => false,
         };
-        if let (PresentMode::Auto, Engine::Wgpu(renderer)) = (self.options.present, &self.engine) {
+        let Some(window) = self.window.clone() else {
+            if !self.headless {
+                return Err(ViewerError::Window("no window".to_string()));
+            }
+            if let (true, Engine::Wgpu(renderer)) = (gpu, &self.engine) {
+                match GpuPresenter::offscreen(renderer) {
+                    Ok(gpu) => return Ok(Presenter::Gpu(Box::new(gpu))),
+                    Err(e) => eprintln!("wgpu target unavailable ({e}): presenting through host memory"),
+                }
+            }
+            return Ok(Presenter::Soft(SoftPresenter::offscreen()));
+        };
+        if let (true, Engine::Wgpu(renderer)) = (gpu, &self.engine) {
             match GpuPresenter::new(renderer, window.clone()) {
-                Ok(gpu) => return Ok(Presenter::Gpu(gpu)),
+                Ok(gpu) => return Ok(Presenter::Gpu(Box::new(gpu))),
                 Err(e) => eprintln!("wgpu surface unavailable ({e}): presenting through softbuffer"),
             }
         }
@@ -403,7 +380,7 @@ impl App {
         }
     }
 
-    fn frame(&mut self, event_loop: &ActiveEventLoop) {
+    fn frame(&mut self) {
         let now = Instant::now();
         let measured = self.last_frame_at.map(|at| now.duration_since(at).as_secs_f64());
         self.last_frame_at = Some(now);
@@ -412,13 +389,13 @@ impl App {
         if let Some(script) = &mut self.script {
             let step = script.next_frame(now);
             if step.finished {
-                event_loop.exit();
+                self.exit = true;
                 return;
             }
             step.press.into_iter().for_each(|a| self.press(a));
             step.release.into_iter().for_each(|a| self.release(a));
             for action in step.trigger {
-                self.trigger(action, event_loop);
+                self.trigger(action);
             }
             if step.look != (0.0, 0.0) {
                 self.look(step.look.0, step.look.1);
@@ -433,15 +410,15 @@ impl App {
             let speed = self.move_speed * if self.sprint { SPRINT_FACTOR } else { 1.0 };
             fly.step(self.held.iter().copied(), speed, dt);
         }
-        if let Some(window) = self.window.clone() {
-            self.draw_frame(&window, event_loop);
+        if let Some(window_size) = self.window_size() {
+            self.draw_frame(window_size);
             if let Some(seconds) = measured {
                 // Standing still holds the render scale: the passes keep the size they started at.
                 if !self.still.still() {
                     self.scale.record(seconds);
                 }
-                if self.clock.record(seconds, now) {
-                    self.update_title(&window);
+                if let (true, Some(window)) = (self.clock.record(seconds, now), &self.window) {
+                    self.update_title(window);
                 }
             }
         }
@@ -452,10 +429,16 @@ impl App {
         }
     }
 
+    /// The window's size in pixels (the size asked for, without a window); `None` before the window opens.
+    fn window_size(&self) -> Option<(u32, u32)> {
+        match &self.window {
+            Some(window) => Some((window.inner_size().width, window.inner_size().height)),
+            None => self.headless.then_some(self.options.window_size),
+        }
+    }
+
     /// Renders and presents the current state, saving a requested screenshot of it.
-    fn draw_frame(&mut self, window: &Window, event_loop: &ActiveEventLoop) {
-        let size = window.inner_size();
-        let window_size = (size.width, size.height);
+    fn draw_frame(&mut self, window_size: (u32, u32)) {
         let Some(pose) = self.pose() else {
             return;
         };
@@ -476,7 +459,9 @@ impl App {
         let key = StillKey::new(&self.live.scene, &frame, window_size, self.engine.device().backend, presenter);
         self.render_size = render_size;
         let precision = self.frame_precision(&frame);
-        let drawn = match (self.still.plan(key), precision) {
+        let plan = self.still.plan(key);
+        self.last_plan = Some((plan, precision));
+        let drawn = match (plan, precision) {
             (Plan::Frame, Precision::F32) => {
                 self.overlay = self.panel(window_size.0);
                 self.draw(&frame, window_size, want_screenshot)
@@ -492,7 +477,7 @@ impl App {
                     self.save_screenshot(path, shown, &pose, render_size, window_size);
                 }
             }
-            Err(e) => self.recover(e, event_loop),
+            Err(e) => self.recover(e),
         }
     }
 
@@ -500,7 +485,7 @@ impl App {
         match (&mut self.presenter, &mut self.engine) {
             (Some(Presenter::Gpu(gpu)), Engine::Wgpu(renderer)) => {
                 let overlay = self.overlay.as_ref();
-                gpu.draw(renderer, self.live.wgsl(), frame, window_size, screenshot, overlay).map_err(|e| match e {
+                gpu.draw(renderer, (self.live.wgsl(), frame), window_size, screenshot, overlay).map_err(|e| match e {
                     GpuFrameError::Render(e) => DrawError::Render(e),
                     GpuFrameError::Surface(e) => DrawError::Present(e),
                 })
@@ -553,19 +538,22 @@ impl App {
 
     /// After a failed frame: back to the last good scene, down the backend chain, or to softbuffer; a failure with
     /// nowhere left to go ends the viewer with the error.
-    fn recover(&mut self, error: DrawError, event_loop: &ActiveEventLoop) {
+    fn recover(&mut self, error: DrawError) {
         self.still.reset();
         match error {
             DrawError::Present(message) => {
                 if matches!(self.presenter, Some(Presenter::Gpu(_))) {
                     eprintln!("wgpu surface failed ({message}): presenting through softbuffer");
-                    let soft = self.window.clone().ok_or_else(|| "no window".to_string()).and_then(SoftPresenter::new);
+                    let soft = match self.window.clone() {
+                        Some(window) => SoftPresenter::new(window),
+                        None => Ok(SoftPresenter::offscreen()),
+                    };
                     match soft {
                         Ok(soft) => self.presenter = Some(Presenter::Soft(soft)),
-                        Err(e) => self.stop(ViewerError::Window(e), event_loop),
+                        Err(e) => self.stop(ViewerError::Window(e)),
                     }
                 } else {
-                    self.stop(ViewerError::Window(message), event_loop);
+                    self.stop(ViewerError::Window(message));
                 }
             }
             DrawError::Render(error) => {
@@ -589,22 +577,22 @@ impl App {
                             self.engine = engine;
                             match self.make_presenter() {
                                 Ok(p) => self.presenter = Some(p),
-                                Err(e) => self.stop(e, event_loop),
+                                Err(e) => self.stop(e),
                             }
                         }
-                        Err(e) => self.stop(e.into(), event_loop),
+                        Err(e) => self.stop(e.into()),
                     }
                 } else {
-                    self.stop(error.into(), event_loop);
+                    self.stop(error.into());
                 }
             }
         }
     }
 
-    fn stop(&mut self, error: ViewerError, event_loop: &ActiveEventLoop) {
+    fn stop(&mut self, error: ViewerError) {
         eprintln!("error: {error}");
         self.fatal = Some(error);
-        event_loop.exit();
+        self.exit = true;
     }
 
     fn update_title(&self, window: &Window) {
@@ -625,101 +613,5 @@ impl App {
             following_path: self.fly.is_none(),
             passes: passes.as_deref(),
         }));
-    }
-}
-
-impl ApplicationHandler for App {
-    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
-        if self.window.is_some() {
-            return;
-        }
-        if let Err(e) = self.open_window(event_loop) {
-            self.fatal = Some(e);
-            event_loop.exit();
-        }
-    }
-
-    fn window_event(&mut self, event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
-        let scripted = self.script.is_some();
-        if !matches!(event, WindowEvent::RedrawRequested) {
-            self.woken = true;
-        }
-        match event {
-            WindowEvent::CloseRequested => event_loop.exit(),
-            WindowEvent::RedrawRequested => self.frame(event_loop),
-            // A script drives the camera on its own; the user's keys and mouse would make the run irreproducible.
-            _ if scripted => {}
-            WindowEvent::KeyboardInput { event, .. } => {
-                if let PhysicalKey::Code(code) = event.physical_key {
-                    self.key(code, event.state, event.repeat, event_loop);
-                }
-            }
-            WindowEvent::CursorMoved { position, .. } => {
-                self.cursor = (position.x, position.y);
-                if let Some(target) = self.dragging {
-                    self.slide(target, position.x);
-                }
-            }
-            WindowEvent::MouseInput { state: ElementState::Pressed, button: MouseButton::Left, .. }
-                if !self.captured =>
-            {
-                let (x, y) = self.cursor;
-                match self.overlay.as_ref().map(|o| (o.contains(x, y), o.slider_at(x, y))) {
-                    Some((_, Some(slider))) => {
-                        self.dragging = Some(slider.target);
-                        self.slide(slider.target, x);
-                    }
-                    // A click on the panel's text does nothing; anywhere else it takes the mouse to look around.
-                    Some((true, None)) => {}
-                    _ => self.capture_mouse(),
-                }
-            }
-            WindowEvent::MouseInput { state: ElementState::Released, button: MouseButton::Left, .. } => {
-                self.dragging = None;
-            }
-            WindowEvent::MouseWheel { delta, .. } => {
-                let lines = match delta {
-                    MouseScrollDelta::LineDelta(_, y) => y as f64,
-                    MouseScrollDelta::PixelDelta(p) => p.y / PIXELS_PER_LINE,
-                };
-                self.take_control();
-                if let Some(fly) = &mut self.fly {
-                    // Scrolling up narrows the view (zooms in).
-                    fly.zoom(-lines);
-                }
-            }
-            WindowEvent::Focused(false) => {
-                self.release_mouse();
-                self.held.clear();
-                self.sprint = false;
-                self.shift = false;
-            }
-            _ => {}
-        }
-    }
-
-    fn device_event(&mut self, _event_loop: &ActiveEventLoop, _id: DeviceId, event: DeviceEvent) {
-        if let DeviceEvent::MouseMotion { delta } = event {
-            if self.captured && self.script.is_none() {
-                self.woken = true;
-                self.look(delta.0, delta.1);
-            }
-        }
-    }
-
-    /// The next frame at once, or, while the viewer rests, after [`REST_FRAME`] or the next input.
-    fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
-        let Some(window) = &self.window else {
-            return;
-        };
-        if self.still.resting() && !self.woken {
-            if let Some(due) = self.last_frame_at.map(|at| at + REST_FRAME).filter(|&due| Instant::now() < due) {
-                event_loop.set_control_flow(ControlFlow::WaitUntil(due));
-                return;
-            }
-        }
-        self.woken = false;
-        event_loop.set_control_flow(ControlFlow::Poll);
-        window.request_redraw();
     }
 }

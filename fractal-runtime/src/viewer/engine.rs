@@ -51,7 +51,9 @@ impl EngineChain {
         while !self.remaining.is_empty() {
             let backend = self.remaining.remove(0);
             let opened = match backend {
-                Backend::Wgpu => WgpuRenderer::new().map(|r| Engine::Wgpu(Box::new(r))),
+                // Timestamps where the adapter has them: a viewer run without a window times its passes.
+                Backend::Wgpu => WgpuRenderer::with_features(wgpu::Backends::all(), wgpu::Features::TIMESTAMP_QUERY)
+                    .map(|r| Engine::Wgpu(Box::new(r))),
                 other => select::open(other, &self.options).map(Engine::Other),
             };
             match opened {

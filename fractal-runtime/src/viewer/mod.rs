@@ -4,9 +4,12 @@
 //!
 //! The game loop (module `app`) runs once per frame: poll input → update time, camera and parameters → render →
 //! present.
-//! - Rendering: wgpu frames are computed into a storage buffer and drawn to a wgpu surface by a small full-screen pass
-//!   that also upscales them (module `present`); CPU and OpenCL frames, and wgpu frames when no surface can be had
-//!   (it says so on stderr), are read back and presented through softbuffer.
+//! - Rendering: on a GPU, wgpu frames are computed into a storage buffer and drawn to a wgpu surface by a small
+//!   full-screen pass that also upscales them (module `present`); CPU and OpenCL frames, wgpu frames on a software
+//!   rasteriser (lavapipe, where the host stretches a frame faster than the pass does) and wgpu frames when no surface
+//!   can be had (it says so on stderr) are read back and presented through softbuffer ([`PresentMode`]).
+//! - Without a window, [`run_headless`] runs the same game loop into a window-sized texture (or host memory) and
+//!   times its frames (`fractal view --headless`).
 //! - The render size is a fraction of the window ([`RenderScale`]); by default the fraction adapts to hold a target
 //!   frame rate, and the image is upscaled to the window (nearest pixel).
 //! - Effects (shadows, ambient occlusion, glow, fog) are compiled into the kernels, so a toggle recompiles them with
@@ -45,7 +48,7 @@ mod camera_control;
 pub mod controls;
 mod effects;
 mod engine;
-mod headless;
+mod fallback;
 mod live_scene;
 mod panel;
 mod params;
@@ -62,9 +65,11 @@ use std::path::{Path, PathBuf};
 
 use fractal_render::device::DeviceInfo;
 
+pub use app::{run_headless, FrameKind, HeadlessRun};
 pub use controls::{Action, Move};
-pub use headless::{display_available, render_png};
+pub use fallback::{display_available, render_png};
 pub use path_file::{load_camera_path, parse_camera_path, CameraPathFile};
+pub use present::PassTimes;
 pub use scale::RenderScale;
 pub use screenshot::{read_png, write_png};
 pub use script::{ScriptedStep, MAX_IDLE};

@@ -1,7 +1,7 @@
 //! What a viewer session is given and what it gives back: the scene, the options, the summary of what it did and
 //! the errors that end it.
 //!
-//! Apart from the facade (`mod.rs`), which starts a session, so the game loop and the headless fallback read these
+//! Apart from the facade (`mod.rs`), which starts a session, so the game loop and the no-display fallback read these
 //! types without reading their caller.
 
 use std::path::PathBuf;
@@ -54,11 +54,28 @@ impl ViewerScene {
 /// How frames reach the window.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum PresentMode {
-    /// A wgpu surface when the backend is wgpu and a surface can be made; softbuffer otherwise.
+    /// [`PresentMode::Gpu`] where the wgpu adapter is a GPU; [`PresentMode::Softbuffer`] where it is the CPU (a
+    /// software rasteriser such as lavapipe), which draws the full-screen pass slower than the host stretches the
+    /// frame (`docs/performance.md`, "The viewer's frame").
     #[default]
     Auto,
+    /// A wgpu surface when the backend is wgpu and a surface can be made: the frame goes from the kernel to the
+    /// window on the device; softbuffer otherwise.
+    Gpu,
     /// Always read frames back and present them through softbuffer.
     Softbuffer,
+}
+
+impl std::str::FromStr for PresentMode {
+    type Err = String;
+    fn from_str(text: &str) -> Result<PresentMode, String> {
+        match text {
+            "auto" => Ok(PresentMode::Auto),
+            "gpu" => Ok(PresentMode::Gpu),
+            "host" => Ok(PresentMode::Softbuffer),
+            _ => Err(format!("--present takes auto, gpu or host, got `{text}`")),
+        }
+    }
 }
 
 /// Everything about a viewer session that is not the scene.

@@ -34,7 +34,7 @@ const EARLY_PASSES: u32 = 8;
 pub(super) fn still_child(dir: &Path, cpu: bool) {
     let (backend, present) = match cpu {
         true => (BackendChoice::Only(Backend::Cpu), PresentMode::Softbuffer),
-        false => (BackendChoice::Auto, PresentMode::Auto),
+        false => (BackendChoice::Auto, PresentMode::Gpu),
     };
     // The first frame is drawn as usual; each later one of the same view adds a pass, a screenshot's frame too.
     let script = vec![

@@ -2,7 +2,6 @@
 //! camera, time, effect toggles and parameters. The game loop (`app.rs`) routes events here and draws the result.
 
 use winit::event::ElementState;
-use winit::event_loop::ActiveEventLoop;
 use winit::keyboard::KeyCode;
 use winit::window::CursorGrabMode;
 
@@ -20,7 +19,7 @@ const SPEED_STEP: f64 = 1.25;
 const TIME_STEP: f64 = 1.0;
 
 impl App {
-    pub(super) fn key(&mut self, code: KeyCode, state: ElementState, repeat: bool, event_loop: &ActiveEventLoop) {
+    pub(super) fn key(&mut self, code: KeyCode, state: ElementState, repeat: bool) {
         if matches!(code, KeyCode::ShiftLeft | KeyCode::ShiftRight) {
             self.shift = state.is_pressed();
         }
@@ -38,7 +37,7 @@ impl App {
         let repeats =
             matches!(action, Action::IncreaseParam | Action::DecreaseParam | Action::TimeForward | Action::TimeBack);
         if state.is_pressed() && (!repeat || repeats) {
-            self.trigger(action, event_loop);
+            self.trigger(action);
         }
     }
 
@@ -108,7 +107,7 @@ impl App {
         self.captured = false;
     }
 
-    pub(super) fn trigger(&mut self, action: Action, event_loop: &ActiveEventLoop) {
+    pub(super) fn trigger(&mut self, action: Action) {
         let authored = self.live.authored().settings.clone();
         match action {
             Action::Move(_) | Action::Sprint => {}
@@ -182,7 +181,7 @@ impl App {
                 if self.captured {
                     self.release_mouse();
                 } else {
-                    event_loop.exit();
+                    self.exit = true;
                 }
             }
             Action::Help => println!("{HELP}"),
