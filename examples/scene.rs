@@ -9,12 +9,12 @@ use fractal::view::{example_main, ViewerScene};
 
 fn main() -> std::process::ExitCode {
     let name = std::env::args().nth(1).unwrap_or_else(|| "mandelbulb".to_string());
-    match scenes::by_name(&name) {
+    match fractal::scenes::by_name(&name) {
         Some(compiled) => example_main(&name, ViewerScene::compiled(&name, compiled)),
         None => {
             eprintln!(
                 "error: no built-in scene `{name}`; the scenes: {}",
-                scenes::names().collect::<Vec<_>>().join(", ")
+                fractal::scenes::names().collect::<Vec<_>>().join(", ")
             );
             std::process::ExitCode::from(2)
         }
