@@ -1,6 +1,7 @@
 //! `fractal mesh` on every built-in scene at 128 cells along the longest side: the mesh is closed (every directed
-//! edge of a triangle is matched by the reverse edge of another: no boundary, consistent orientation), has triangles,
-//! and its vertices lie on the surface of the field meshed (the scene's distance cut to the meshing box, at the level
+//! edge of a triangle is matched by the reverse edge of another: no boundary, consistent orientation), 2-manifold
+//! (every edge shared by exactly two triangles, as slicers and engines expect), has triangles, and its vertices lie
+//! on the surface of the field meshed (the scene's distance cut to the meshing box, at the level
 //! the scene is meshed at: 0, or a quarter of a cell for a scene with a fractal, whose estimate need not change sign).
 //!
 //! "On the surface" is checked by looking for the other side of the field within half a cell of each vertex: along
@@ -51,8 +52,30 @@ fn every_scene_meshes_closed_with_vertices_on_the_surface() {
         );
         assert!(!mesh.triangles.is_empty(), "{name}: no triangles");
         assert_eq!(unmatched, 0, "{name}: the mesh is not closed");
+        assert_eq!(mesh.non_manifold_edges(), 0, "{name}: edges shared by more than two triangles");
         assert!(far.is_empty(), "{name}: vertices farther than half a cell from the surface: {far:?}");
         assert!(mesh.triangles.iter().flatten().all(|&i| (i as usize) < mesh.positions.len()));
+    }
+}
+
+/// Closed and 2-manifold at other resolutions too (odd and even, coarse), where other cells are ambiguous.
+#[test]
+fn every_scene_meshes_closed_and_manifold_at_other_resolutions() {
+    for resolution in [48, 61, 64] {
+        for (name, compiled) in scenes::ALL {
+            let scene = compiled.scene();
+            let settings = MeshSettings {
+                bounds: default_bounds(scene),
+                resolution,
+                level: default_level(scene),
+                time: 0.0,
+                params: compiled.default_params::<f32>().to_vec(),
+            };
+            let mesh = extract(&compiled.native(), &settings, &|_, _| {});
+            let (unmatched, shared) = (mesh.unmatched_edges(), mesh.non_manifold_edges());
+            assert!(!mesh.triangles.is_empty(), "{name} at {resolution}: no triangles");
+            assert_eq!((unmatched, shared), (0, 0), "{name} at {resolution}: unmatched and non-manifold edges");
+        }
     }
 }
 

@@ -7,13 +7,17 @@
 //! ([`default_level`]), the surface a sphere tracer's hit epsilon sees.
 //!
 //! The mesh is closed: the scene is meshed intersected with the meshing box (its bound, or the box given), so a
-//! floor or an infinite repetition ends in a cap at the box instead of an open edge. Each vertex is the mean of its
-//! cell's edge crossings, moved once along the gradient onto the surface; its normal is the distance gradient and its
-//! colour the material's albedo there.
+//! floor or an infinite repetition ends in a cap at the box instead of an open edge. It is 2-manifold: each sheet of
+//! surface through a cell has its own vertex (module `cell_topology`), and the few edges that still end up shared by
+//! four triangles are split at one end (module `repair`). Each vertex is the mean of its sheet's edge crossings,
+//! moved once along the gradient onto the surface; its normal is the distance gradient and its colour the material's
+//! albedo there.
 //!
 //! Files are written in glTF's right-handed frame, the renderer's with z mirrored (see
 //! [`crate::output::gltf_camera`]), in every format, so meshes and exported cameras line up.
 
+mod cell_topology;
+mod repair;
 pub mod surface_nets;
 pub mod write;
 
@@ -46,14 +50,13 @@ impl Mesh {
         self.edge_uses().values().map(|&(forward, backward)| forward.abs_diff(backward) as usize).sum()
     }
 
-    /// Undirected edges shared by more than two triangles (where surface nets meets an ambiguous cell face: two
-    /// sheets touch in one edge; the mesh is still closed).
+    /// Undirected edges shared by more than two triangles (0 for a 2-manifold mesh, as [`extract`] makes).
     pub fn non_manifold_edges(&self) -> usize {
         self.edge_uses().values().filter(|&&(forward, backward)| forward + backward > 2).count()
     }
 
     /// Per undirected edge (low index, high index): how many triangles run it low → high and high → low.
-    fn edge_uses(&self) -> HashMap<(u32, u32), (u32, u32)> {
+    pub(crate) fn edge_uses(&self) -> HashMap<(u32, u32), (u32, u32)> {
         let mut uses: HashMap<(u32, u32), (u32, u32)> = HashMap::new();
         for t in &self.triangles {
             for (a, b) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {

@@ -8,20 +8,41 @@
 //! Inside, a fractal's estimate is no distance (the Juliabulb's reads −0.5 a hair from its surface), so tiles inside
 //! are always sampled.
 //!
-//! Every cell whose corners differ in sign gets one vertex: the mean of the crossings on its edges (linear
-//! interpolation), moved once along the gradient onto the surface and kept inside its cell. Every grid edge whose ends
-//! differ in sign joins the four cells around it in a quad, wound so its normal points from inside to outside.
+//! Every cell whose corners differ in sign gets one vertex per sheet of surface through it (module
+//! `cell_topology`): the mean of the crossings on the sheet's edges (linear interpolation), moved once along the
+//! gradient onto the surface and kept inside its cell. Every grid edge whose ends differ in sign joins, in a quad
+//! wound so its normal points from inside to outside, the vertices of its sheet in the four cells around it.
 
 use fractal_dsl::eval::{Env, Evaluator};
 use fractal_dsl::number::math::{v3, V3};
 use rayon::prelude::*;
 
+use super::cell_topology::{edge_at, edge_corners, sheets, Sheets};
 use super::{Mesh, MeshSettings};
 
 /// Corners per tile side in the sampling cull.
 const TILE: usize = 8;
-/// No vertex for this cell.
+/// No vertex for this cell, or for this edge of it.
 const NONE: u32 = u32::MAX;
+
+/// A cell's vertices: the first one's index, one per sheet in sheet order.
+#[derive(Clone, Copy)]
+struct CellVertices {
+    first: u32,
+    sheets: Sheets,
+}
+
+impl CellVertices {
+    const EMPTY: CellVertices = CellVertices { first: NONE, sheets: Sheets::NONE };
+
+    /// The vertex of the sheet `edge` belongs to.
+    fn on(&self, edge: usize) -> u32 {
+        match (self.first, self.sheets.of(edge)) {
+            (NONE, _) | (_, None) => NONE,
+            (first, Some(sheet)) => first + u32::from(sheet),
+        }
+    }
+}
 /// The grid's offset from the box's corner, in cells (see [`Grid::new`]).
 const GRID_OFFSET: [f64; 3] = [0.0137, 0.0291, 0.0413];
 /// A projected vertex is kept when the field changes sign within this many cells along its gradient (a margin under
@@ -184,12 +205,12 @@ pub fn extract(evaluator: &dyn Evaluator<f32>, settings: &MeshSettings, progress
     let row = field.grid.row();
     let layer_len = row * (ny + 1);
     let (mut below, mut above) = (vec![0.0f32; layer_len], vec![0.0f32; layer_len]);
-    let (mut previous, mut current) = (vec![NONE; nx * ny], vec![NONE; nx * ny]);
+    let (mut previous, mut current) = (vec![CellVertices::EMPTY; nx * ny], vec![CellVertices::EMPTY; nx * ny]);
     let mut mesh = Mesh::default();
     field.sample_layer(0, &mut below);
     for k in 0..nz {
         field.sample_layer(k + 1, &mut above);
-        current.fill(NONE);
+        current.fill(CellVertices::EMPTY);
         cell_vertices(&field, k, &below, &above, &mut current, &mut mesh);
         let mut quad = |cells: [u32; 4], a: f32, b: f32| {
             if is_inside(a) == is_inside(b) || cells.contains(&NONE) {
@@ -199,28 +220,31 @@ pub fn extract(evaluator: &dyn Evaluator<f32>, settings: &MeshSettings, progress
             mesh.triangles.push([c0, c1, c2]);
             mesh.triangles.push([c0, c2, c3]);
         };
-        let cell = |layer: &[u32], i: usize, j: usize| layer[j * nx + i];
+        // The vertex of the cell at (i, j) of `layer` on the sheet of its edge along `axis` at offsets `at`.
+        let cell = |layer: &[CellVertices], i: usize, j: usize, axis: usize, at: [usize; 3]| {
+            layer[j * nx + i].on(edge_at(axis, at))
+        };
         // Edges along z from corner layer k to k + 1: the four cells of this layer around each.
         for j in 1..ny {
             for i in 1..nx {
                 let cells = [
-                    cell(&current, i - 1, j - 1),
-                    cell(&current, i, j - 1),
-                    cell(&current, i, j),
-                    cell(&current, i - 1, j),
+                    cell(&current, i - 1, j - 1, 2, [1, 1, 0]),
+                    cell(&current, i, j - 1, 2, [0, 1, 0]),
+                    cell(&current, i, j, 2, [0, 0, 0]),
+                    cell(&current, i - 1, j, 2, [1, 0, 0]),
                 ];
                 quad(cells, below[j * row + i], above[j * row + i]);
             }
         }
-        // Edges along x and y in corner layer k: cells of layers k − 1 and k.
+        // Edges along x and y in corner layer k: cells of layers k − 1 (where the edge is on their top face) and k.
         if k > 0 {
             for j in 1..ny {
                 for i in 0..nx {
                     let cells = [
-                        cell(&previous, i, j - 1),
-                        cell(&previous, i, j),
-                        cell(&current, i, j),
-                        cell(&current, i, j - 1),
+                        cell(&previous, i, j - 1, 0, [0, 1, 1]),
+                        cell(&previous, i, j, 0, [0, 0, 1]),
+                        cell(&current, i, j, 0, [0, 0, 0]),
+                        cell(&current, i, j - 1, 0, [0, 1, 0]),
                     ];
                     quad(cells, below[j * row + i], below[j * row + i + 1]);
                 }
@@ -228,10 +252,10 @@ pub fn extract(evaluator: &dyn Evaluator<f32>, settings: &MeshSettings, progress
             for j in 0..ny {
                 for i in 1..nx {
                     let cells = [
-                        cell(&previous, i - 1, j),
-                        cell(&current, i - 1, j),
-                        cell(&current, i, j),
-                        cell(&previous, i, j),
+                        cell(&previous, i - 1, j, 1, [1, 0, 1]),
+                        cell(&current, i - 1, j, 1, [1, 0, 0]),
+                        cell(&current, i, j, 1, [0, 0, 0]),
+                        cell(&previous, i, j, 1, [0, 0, 1]),
                     ];
                     quad(cells, below[j * row + i], below[(j + 1) * row + i]);
                 }
@@ -241,12 +265,13 @@ pub fn extract(evaluator: &dyn Evaluator<f32>, settings: &MeshSettings, progress
         std::mem::swap(&mut previous, &mut current);
         progress(k + 1, nz);
     }
+    super::repair::split_non_manifold_edges(&mut mesh);
     mesh
 }
 
-/// The vertices of cell layer `k` (between corner layers `below` and `above`), appended to `mesh`, their indices
-/// written into `index`.
-fn cell_vertices(field: &Field, k: usize, below: &[f32], above: &[f32], index: &mut [u32], mesh: &mut Mesh) {
+/// The vertices of cell layer `k` (between corner layers `below` and `above`), one per sheet of each cell, appended
+/// to `mesh`; each cell's first vertex and sheets written into `cells`.
+fn cell_vertices(field: &Field, k: usize, below: &[f32], above: &[f32], cells: &mut [CellVertices], mesh: &mut Mesh) {
     let g = &field.grid;
     let [nx, ny, _] = g.cells;
     let row = g.row();
@@ -254,78 +279,80 @@ fn cell_vertices(field: &Field, k: usize, below: &[f32], above: &[f32], index: &
     let mut crossing = Vec::new();
     for j in 0..ny {
         for i in 0..nx {
-            let mut inside_count = 0;
-            for c in 0..8 {
-                inside_count += is_inside(corner_value(i + (c & 1), j + ((c >> 1) & 1), c >> 2)) as u32;
-            }
+            let values: [f32; 8] = std::array::from_fn(|c| corner_value(i + (c & 1), j + ((c >> 1) & 1), c >> 2));
+            let inside_count = values.iter().filter(|&&v| is_inside(v)).count();
             if inside_count != 0 && inside_count != 8 {
-                crossing.push((i, j));
+                crossing.push((i, j, values, sheets(values, is_inside)));
             }
         }
     }
-    let vertices: Vec<([f32; 3], [f32; 3], [f32; 3])> = crossing
+    let vertices: Vec<Vec<Vertex>> = crossing
         .par_iter()
-        .map(|&(i, j)| {
-            // The mean of the edge crossings.
-            let (mut sum, mut n) = ([0.0f64; 3], 0.0);
-            let mut edges = Vec::with_capacity(6);
-            for c in 0..8usize {
-                let a = [c & 1, (c >> 1) & 1, c >> 2];
-                for axis in 0..3 {
-                    if a[axis] == 1 {
-                        continue;
-                    }
-                    let mut b = a;
-                    b[axis] = 1;
-                    let (va, vb) = (corner_value(i + a[0], j + a[1], a[2]), corner_value(i + b[0], j + b[1], b[2]));
-                    if is_inside(va) != is_inside(vb) {
-                        let t = f64::from(va) / f64::from(va - vb);
-                        let pa = g.corner(i + a[0], j + a[1], k + a[2]);
-                        edges.push((pa, axis, is_inside(va)));
-                        for (s, x) in sum.iter_mut().zip(pa) {
-                            *s += x;
-                        }
-                        sum[axis] += t * g.h;
-                        n += 1.0;
-                    }
-                }
-            }
-            let mean = sum.map(|s| s / n);
-            // One step along the gradient onto the surface, kept inside the cell.
-            let grad = field.gradient(mean, 0.05 * g.h);
-            let len2 = grad.iter().map(|c| c * c).sum::<f64>();
-            let d = f64::from(field.at(mean));
-            let low = g.corner(i, j, k);
-            // Where the field is no distance (a fractal estimate inside its set, a step across a discontinuity) the
-            // step can land away from the surface: a vertex with no sign change within half a cell along the
-            // gradient is replaced by the edge crossing nearest the mean, found by bisection on the field itself.
-            let projected = [0, 1, 2].map(|a| {
-                let moved = if len2 > 1e-12 { mean[a] - d * grad[a] / len2 } else { mean[a] };
-                moved.clamp(low[a], low[a] + g.h)
-            });
-            let len = len2.sqrt();
-            let unit = if len > 1e-12 { grad.map(|c| c / len) } else { [0.0, 1.0, 0.0] };
-            let p = if field.crosses_along(projected, unit, REACH * g.h) {
-                projected
-            } else {
-                let distance2 = |q: [f64; 3]| (0..3).map(|a| (q[a] - mean[a]).powi(2)).sum::<f64>();
-                edges
-                    .iter()
-                    .map(|&(pa, axis, a_inside)| field.crossing(pa, axis, a_inside))
-                    .min_by(|x, y| distance2(*x).total_cmp(&distance2(*y)))
-                    .unwrap_or(projected)
-            };
-            let normal = unit.map(|c| c as f32);
-            let q: V3<f32> = v3(p[0] as f32, p[1] as f32, p[2] as f32);
-            let albedo = field.evaluator.sample(q, &field.env).albedo;
-            (p.map(|x| x as f32), normal, [albedo.x, albedo.y, albedo.z].map(|c| c.clamp(0.0, 1.0)))
+        .map(|&(i, j, values, sheets)| {
+            (0..sheets.count)
+                .map(|sheet| sheet_vertex(field, [i, j, k], &values, |e| sheets.of(e) == Some(sheet)))
+                .collect()
         })
         .collect();
-    let base = mesh.positions.len() as u32;
-    for (n, (&(i, j), (p, normal, colour))) in crossing.iter().zip(vertices).enumerate() {
-        index[j * nx + i] = base + n as u32;
-        mesh.positions.push(p);
-        mesh.normals.push(normal);
-        mesh.colours.push(colour);
+    for (&(i, j, _, sheets), cell) in crossing.iter().zip(vertices) {
+        cells[j * nx + i] = CellVertices { first: mesh.positions.len() as u32, sheets };
+        for (p, normal, colour) in cell {
+            mesh.positions.push(p);
+            mesh.normals.push(normal);
+            mesh.colours.push(colour);
+        }
     }
+}
+
+/// A vertex's position, normal and colour.
+type Vertex = ([f32; 3], [f32; 3], [f32; 3]);
+
+/// The vertex of one sheet of the cell at `cell` (corner values `values`), whose edges `on_sheet` picks.
+fn sheet_vertex(field: &Field, [i, j, k]: [usize; 3], values: &[f32; 8], on_sheet: impl Fn(usize) -> bool) -> Vertex {
+    let g = &field.grid;
+    // The mean of the sheet's edge crossings.
+    let (mut sum, mut n) = ([0.0f64; 3], 0.0);
+    let mut edges = Vec::with_capacity(6);
+    for edge in (0..12).filter(|&e| on_sheet(e)) {
+        let (a, b) = edge_corners(edge);
+        let axis = edge / 4;
+        let (va, vb) = (values[a], values[b]);
+        let t = f64::from(va) / f64::from(va - vb);
+        let pa = g.corner(i + (a & 1), j + ((a >> 1) & 1), k + (a >> 2));
+        edges.push((pa, axis, is_inside(va)));
+        for (s, x) in sum.iter_mut().zip(pa) {
+            *s += x;
+        }
+        sum[axis] += t * g.h;
+        n += 1.0;
+    }
+    let mean = sum.map(|s| s / n);
+    // One step along the gradient onto the surface, kept inside the cell.
+    let grad = field.gradient(mean, 0.05 * g.h);
+    let len2 = grad.iter().map(|c| c * c).sum::<f64>();
+    let d = f64::from(field.at(mean));
+    let low = g.corner(i, j, k);
+    // Where the field is no distance (a fractal estimate inside its set, a step across a discontinuity) the step can
+    // land away from the surface: a vertex with no sign change within half a cell along the gradient is replaced by
+    // the edge crossing nearest the mean, found by bisection on the field itself.
+    let projected = [0, 1, 2].map(|a| {
+        let moved = if len2 > 1e-12 { mean[a] - d * grad[a] / len2 } else { mean[a] };
+        moved.clamp(low[a], low[a] + g.h)
+    });
+    let len = len2.sqrt();
+    let unit = if len > 1e-12 { grad.map(|c| c / len) } else { [0.0, 1.0, 0.0] };
+    let p = if field.crosses_along(projected, unit, REACH * g.h) {
+        projected
+    } else {
+        let distance2 = |q: [f64; 3]| (0..3).map(|a| (q[a] - mean[a]).powi(2)).sum::<f64>();
+        edges
+            .iter()
+            .map(|&(pa, axis, a_inside)| field.crossing(pa, axis, a_inside))
+            .min_by(|x, y| distance2(*x).total_cmp(&distance2(*y)))
+            .unwrap_or(projected)
+    };
+    let normal = unit.map(|c| c as f32);
+    let q: V3<f32> = v3(p[0] as f32, p[1] as f32, p[2] as f32);
+    let albedo = field.evaluator.sample(q, &field.env).albedo;
+    (p.map(|x| x as f32), normal, [albedo.x, albedo.y, albedo.z].map(|c| c.clamp(0.0, 1.0)))
 }
