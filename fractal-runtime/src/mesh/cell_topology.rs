@@ -21,11 +21,14 @@ pub const NO_SHEET: u8 = 0xF;
 pub struct Sheets {
     sheet: [u8; 12],
     pub count: u8,
+    /// Bit `s`: sheet `s` crosses a face of the cell twice (all four changing edges of an ambiguous face are on it).
+    /// Only such a sheet's vertex can end up on an edge four triangles share (module `repair`).
+    pub crosses_a_face_twice: u16,
 }
 
 impl Sheets {
     /// No edge changes sign.
-    pub const NONE: Sheets = Sheets { sheet: [NO_SHEET; 12], count: 0 };
+    pub const NONE: Sheets = Sheets { sheet: [NO_SHEET; 12], count: 0, crosses_a_face_twice: 0 };
 
     /// The sheet edge `edge` belongs to, or `None` where it does not change sign.
     pub fn of(&self, edge: usize) -> Option<u8> {
@@ -75,6 +78,7 @@ pub fn sheets(values: [f32; 8], inside: impl Fn(f32) -> bool) -> Sheets {
         let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
         parent[ra.max(rb)] = ra.min(rb);
     };
+    let mut ambiguous = Vec::new();
     for axis in 0..3 {
         let (p, q) = other_axes(axis);
         for s in 0..2 {
@@ -90,6 +94,7 @@ pub fn sheets(values: [f32; 8], inside: impl Fn(f32) -> bool) -> Sheets {
             match changing.as_slice() {
                 [a, b] => join(*a, *b),
                 [_, _, _, _] => {
+                    ambiguous.push(face);
                     // Diagonal corners alike: the saddle's side says whether corner (0, 0)'s side connects across
                     // the face. The contour cuts off the two corners of the other side, each with its two edges.
                     let v = [corner(0, 0), corner(1, 0), corner(0, 1), corner(1, 1)].map(|c| f64::from(values[c]));
@@ -123,7 +128,11 @@ pub fn sheets(values: [f32; 8], inside: impl Fn(f32) -> bool) -> Sheets {
         }
         label[r]
     });
-    Sheets { sheet, count }
+    let crosses_a_face_twice = ambiguous
+        .iter()
+        .filter(|face| face.iter().all(|&e| sheet[e] == sheet[face[0]]))
+        .fold(0u16, |bits, face| bits | 1 << sheet[face[0]]);
+    Sheets { sheet, count, crosses_a_face_twice }
 }
 
 fn with(mut at: [usize; 3], axis: usize, value: usize) -> [usize; 3] {

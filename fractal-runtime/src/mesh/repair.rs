@@ -22,22 +22,24 @@ const NUDGE: f32 = 0.05;
 /// The most edges four triangles share at one vertex whose pairings are tried (2^n pairings).
 const MAX_SHARED: usize = 8;
 
-/// Splits vertices until no edge is shared by more than two triangles, or none left can be split. Returns the
-/// vertices added.
-pub fn split_non_manifold_edges(mesh: &mut Mesh) -> usize {
+/// Splits vertices until no edge at one of `candidates` (and the copies made) is shared by more than two triangles,
+/// or none left can be split. Surface nets passes the vertices of sheets that cross a face of their cell twice, the
+/// only ones such an edge can end at; the rest of the mesh is not counted, so a mesh of millions of triangles is
+/// repaired in one pass over its triangles per round. Returns the vertices added.
+pub fn split_non_manifold_edges(mesh: &mut Mesh, candidates: &[u32]) -> usize {
+    let mut candidates = candidates.to_vec();
     let mut added = 0;
-    // Each pass tries the lower end of each shared edge, then the higher where the lower cannot be split; the
-    // counts are those at the start of the pass, so a vertex next to one split in the pass waits for the next.
+    // Each round tries the lower end of each shared edge, then the higher where the lower cannot be split; the
+    // counts are those at the start of the round, so a vertex next to one split in the round waits for the next.
     for _ in 0..4 {
-        let uses = mesh.edge_uses();
+        candidates.sort_unstable();
+        candidates.dedup();
+        let around: HashMap<u32, Vec<usize>> = triangles_around(mesh, &candidates).into_iter().collect();
+        let uses = edge_uses(mesh, around.values().flatten().copied());
         let shared: Vec<(u32, u32)> = uses.iter().filter(|(_, &(f, b))| f + b > 2).map(|(&e, _)| e).collect();
         if shared.is_empty() {
             break;
         }
-        let mut ends: Vec<u32> = shared.iter().flat_map(|&(a, b)| [a, b]).collect();
-        ends.sort_unstable();
-        ends.dedup();
-        let around: HashMap<u32, Vec<usize>> = triangles_around(mesh, &ends).into_iter().collect();
         let mut touched = std::collections::HashSet::new();
         let before = added;
         for (low, high) in shared {
@@ -49,7 +51,7 @@ pub fn split_non_manifold_edges(mesh: &mut Mesh) -> usize {
                     continue;
                 };
                 for group in &groups[1..] {
-                    split_off(mesh, vertex, group);
+                    candidates.push(split_off(mesh, vertex, group));
                     added += 1;
                 }
                 for &t in groups.iter().flatten() {
@@ -66,8 +68,27 @@ pub fn split_non_manifold_edges(mesh: &mut Mesh) -> usize {
     added
 }
 
-/// Gives the triangles of `group` a copy of `vertex`, moved towards the group's centre.
-fn split_off(mesh: &mut Mesh, vertex: u32, group: &[usize]) {
+/// Per undirected edge (low index, high index) of `triangles` (each counted once): how many run it low → high and
+/// high → low.
+fn edge_uses(mesh: &Mesh, triangles: impl Iterator<Item = usize>) -> HashMap<(u32, u32), (u32, u32)> {
+    let mut seen = std::collections::HashSet::new();
+    let mut uses: HashMap<(u32, u32), (u32, u32)> = HashMap::new();
+    for t in triangles.filter(|&t| seen.insert(t)) {
+        let [a, b, c] = mesh.triangles[t];
+        for (from, to) in [(a, b), (b, c), (c, a)] {
+            let entry = uses.entry((from.min(to), from.max(to))).or_default();
+            if from < to {
+                entry.0 += 1;
+            } else {
+                entry.1 += 1;
+            }
+        }
+    }
+    uses
+}
+
+/// Gives the triangles of `group` a copy of `vertex`, moved towards the group's centre; returns the copy.
+fn split_off(mesh: &mut Mesh, vertex: u32, group: &[usize]) -> u32 {
     let copy = mesh.positions.len() as u32;
     let centre = outer_centre(mesh, vertex, group);
     let p = mesh.positions[vertex as usize];
@@ -81,15 +102,20 @@ fn split_off(mesh: &mut Mesh, vertex: u32, group: &[usize]) {
             }
         }
     }
+    copy
 }
 
-/// The triangles around each of `vertices`.
+/// The triangles around each of `vertices` (sorted, no repeats), in one pass over the mesh.
 fn triangles_around(mesh: &Mesh, vertices: &[u32]) -> Vec<(u32, Vec<usize>)> {
-    let slot: HashMap<u32, usize> = vertices.iter().enumerate().map(|(i, &v)| (v, i)).collect();
     let mut around: Vec<(u32, Vec<usize>)> = vertices.iter().map(|&v| (v, Vec::new())).collect();
+    if vertices.is_empty() {
+        return around;
+    }
+    let mut wanted = vec![false; mesh.positions.len()];
+    vertices.iter().for_each(|&v| wanted[v as usize] = true);
     for (t, triangle) in mesh.triangles.iter().enumerate() {
-        for corner in triangle {
-            if let Some(&i) = slot.get(corner) {
+        for corner in triangle.iter().filter(|&&c| wanted[c as usize]) {
+            if let Ok(i) = vertices.binary_search(corner) {
                 around[i].1.push(t);
             }
         }
@@ -203,7 +229,7 @@ mod tests {
         let n = positions.len();
         let mut mesh = Mesh { positions, normals: vec![[0.0; 3]; n], colours: vec![[0.0; 3]; n], triangles };
         assert_eq!((mesh.unmatched_edges(), mesh.non_manifold_edges()), (0, 1));
-        let added = split_non_manifold_edges(&mut mesh);
+        let added = split_non_manifold_edges(&mut mesh, &[0, 1, 2, 3, 4, 5]);
         assert_eq!(added, 1);
         assert_eq!((mesh.unmatched_edges(), mesh.non_manifold_edges()), (0, 0));
         assert_ne!(mesh.positions[6], mesh.positions[0], "the copy does not sit on the vertex");
@@ -219,7 +245,7 @@ mod tests {
             triangles: tetrahedron([0, 1, 2, 3]),
         };
         let before = mesh.clone();
-        assert_eq!(split_non_manifold_edges(&mut mesh), 0);
+        assert_eq!(split_non_manifold_edges(&mut mesh, &[0, 1, 2, 3]), 0);
         assert_eq!(mesh, before);
     }
 }

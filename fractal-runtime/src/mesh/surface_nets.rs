@@ -207,11 +207,12 @@ pub fn extract(evaluator: &dyn Evaluator<f32>, settings: &MeshSettings, progress
     let (mut below, mut above) = (vec![0.0f32; layer_len], vec![0.0f32; layer_len]);
     let (mut previous, mut current) = (vec![CellVertices::EMPTY; nx * ny], vec![CellVertices::EMPTY; nx * ny]);
     let mut mesh = Mesh::default();
+    let mut twice = Vec::new();
     field.sample_layer(0, &mut below);
     for k in 0..nz {
         field.sample_layer(k + 1, &mut above);
         current.fill(CellVertices::EMPTY);
-        cell_vertices(&field, k, &below, &above, &mut current, &mut mesh);
+        cell_vertices(&field, k, &below, &above, (&mut current, &mut twice), &mut mesh);
         let mut quad = |cells: [u32; 4], a: f32, b: f32| {
             if is_inside(a) == is_inside(b) || cells.contains(&NONE) {
                 return;
@@ -265,13 +266,21 @@ pub fn extract(evaluator: &dyn Evaluator<f32>, settings: &MeshSettings, progress
         std::mem::swap(&mut previous, &mut current);
         progress(k + 1, nz);
     }
-    super::repair::split_non_manifold_edges(&mut mesh);
+    super::repair::split_non_manifold_edges(&mut mesh, &twice);
     mesh
 }
 
 /// The vertices of cell layer `k` (between corner layers `below` and `above`), one per sheet of each cell, appended
-/// to `mesh`; each cell's first vertex and sheets written into `cells`.
-fn cell_vertices(field: &Field, k: usize, below: &[f32], above: &[f32], cells: &mut [CellVertices], mesh: &mut Mesh) {
+/// to `mesh`; each cell's first vertex and sheets written into `cells`, and the vertices of sheets that cross a face
+/// of their cell twice appended to `twice`.
+fn cell_vertices(
+    field: &Field,
+    k: usize,
+    below: &[f32],
+    above: &[f32],
+    (cells, twice): (&mut [CellVertices], &mut Vec<u32>),
+    mesh: &mut Mesh,
+) {
     let g = &field.grid;
     let [nx, ny, _] = g.cells;
     let row = g.row();
@@ -282,25 +291,29 @@ fn cell_vertices(field: &Field, k: usize, below: &[f32], above: &[f32], cells: &
             let values: [f32; 8] = std::array::from_fn(|c| corner_value(i + (c & 1), j + ((c >> 1) & 1), c >> 2));
             let inside_count = values.iter().filter(|&&v| is_inside(v)).count();
             if inside_count != 0 && inside_count != 8 {
-                crossing.push((i, j, values, sheets(values, is_inside)));
+                crossing.push((i, j, values));
             }
         }
     }
-    let vertices: Vec<Vec<Vertex>> = crossing
+    let cell_sheets: Vec<Sheets> = crossing.par_iter().map(|&(_, _, values)| sheets(values, is_inside)).collect();
+    let vertices: Vec<Vertex> = crossing
         .par_iter()
-        .map(|&(i, j, values, sheets)| {
-            (0..sheets.count)
-                .map(|sheet| sheet_vertex(field, [i, j, k], &values, |e| sheets.of(e) == Some(sheet)))
-                .collect()
+        .zip(&cell_sheets)
+        .flat_map_iter(|(&(i, j, values), &sheets)| {
+            (0..sheets.count).map(move |sheet| sheet_vertex(field, [i, j, k], &values, |e| sheets.of(e) == Some(sheet)))
         })
         .collect();
-    for (&(i, j, _, sheets), cell) in crossing.iter().zip(vertices) {
-        cells[j * nx + i] = CellVertices { first: mesh.positions.len() as u32, sheets };
-        for (p, normal, colour) in cell {
-            mesh.positions.push(p);
-            mesh.normals.push(normal);
-            mesh.colours.push(colour);
-        }
+    let mut first = mesh.positions.len() as u32;
+    for (&(i, j, _), &sheets) in crossing.iter().zip(&cell_sheets) {
+        cells[j * nx + i] = CellVertices { first, sheets };
+        let crosses_twice = |s: &u8| sheets.crosses_a_face_twice >> s & 1 == 1;
+        twice.extend((0..sheets.count).filter(crosses_twice).map(|s| first + u32::from(s)));
+        first += u32::from(sheets.count);
+    }
+    for (p, normal, colour) in vertices {
+        mesh.positions.push(p);
+        mesh.normals.push(normal);
+        mesh.colours.push(colour);
     }
 }
 
