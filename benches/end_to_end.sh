@@ -22,6 +22,7 @@ say "devices"
 
 say "1. the frame at $SIZE: kernel and frame, generated against the baseline"
 for backend in wgpu opencl; do
+    echo "-- $backend"
     "$FRACTAL" bench mandelbulb_bench --backend "$backend" --size "$SIZE" --frames 30 --baseline --json "$OUT/bench.jsonl" 2>&1 |
         grep -E "^bench|^\s+(kernel|frame)\s|generated/baseline"
 done
