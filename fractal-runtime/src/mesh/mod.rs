@@ -56,20 +56,25 @@ impl Mesh {
     }
 
     /// Per undirected edge (low index, high index): how many triangles run it low → high and high → low.
-    pub(crate) fn edge_uses(&self) -> HashMap<(u32, u32), (u32, u32)> {
-        let mut uses: HashMap<(u32, u32), (u32, u32)> = HashMap::new();
-        for t in &self.triangles {
-            for (a, b) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
-                let entry = uses.entry((a.min(b), a.max(b))).or_default();
-                if a < b {
-                    entry.0 += 1;
-                } else {
-                    entry.1 += 1;
-                }
+    fn edge_uses(&self) -> HashMap<(u32, u32), (u32, u32)> {
+        edge_uses(&self.triangles)
+    }
+}
+
+/// Per undirected edge (low index, high index) of `triangles`: how many run it low → high and high → low.
+fn edge_uses<'a>(triangles: impl IntoIterator<Item = &'a [u32; 3]>) -> HashMap<(u32, u32), (u32, u32)> {
+    let mut uses: HashMap<(u32, u32), (u32, u32)> = HashMap::new();
+    for t in triangles {
+        for (a, b) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
+            let entry = uses.entry((a.min(b), a.max(b))).or_default();
+            if a < b {
+                entry.0 += 1;
+            } else {
+                entry.1 += 1;
             }
         }
-        uses
     }
+    uses
 }
 
 /// What to mesh: the box and the grid's resolution along its longest side, the level, the scene time and parameter

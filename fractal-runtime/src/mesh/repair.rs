@@ -15,7 +15,7 @@
 
 use std::collections::HashMap;
 
-use super::Mesh;
+use super::{edge_uses, Mesh};
 
 /// How far a copy moves towards the centre of its group's outer vertices.
 const NUDGE: f32 = 0.05;
@@ -35,7 +35,10 @@ pub fn split_non_manifold_edges(mesh: &mut Mesh, candidates: &[u32]) -> usize {
         candidates.sort_unstable();
         candidates.dedup();
         let around: HashMap<u32, Vec<usize>> = triangles_around(mesh, &candidates).into_iter().collect();
-        let uses = edge_uses(mesh, around.values().flatten().copied());
+        let mut near: Vec<usize> = around.values().flatten().copied().collect();
+        near.sort_unstable();
+        near.dedup();
+        let uses = edge_uses(near.iter().map(|&t| &mesh.triangles[t]));
         let shared: Vec<(u32, u32)> = uses.iter().filter(|(_, &(f, b))| f + b > 2).map(|(&e, _)| e).collect();
         if shared.is_empty() {
             break;
@@ -66,25 +69,6 @@ pub fn split_non_manifold_edges(mesh: &mut Mesh, candidates: &[u32]) -> usize {
         }
     }
     added
-}
-
-/// Per undirected edge (low index, high index) of `triangles` (each counted once): how many run it low → high and
-/// high → low.
-fn edge_uses(mesh: &Mesh, triangles: impl Iterator<Item = usize>) -> HashMap<(u32, u32), (u32, u32)> {
-    let mut seen = std::collections::HashSet::new();
-    let mut uses: HashMap<(u32, u32), (u32, u32)> = HashMap::new();
-    for t in triangles.filter(|&t| seen.insert(t)) {
-        let [a, b, c] = mesh.triangles[t];
-        for (from, to) in [(a, b), (b, c), (c, a)] {
-            let entry = uses.entry((from.min(to), from.max(to))).or_default();
-            if from < to {
-                entry.0 += 1;
-            } else {
-                entry.1 += 1;
-            }
-        }
-    }
-    uses
 }
 
 /// Gives the triangles of `group` a copy of `vertex`, moved towards the group's centre; returns the copy.
