@@ -56,8 +56,6 @@ pub struct HeadlessRun {
     /// texture's; zero elsewhere, where waiting is inside the renderer): the rest is the viewer's own work and the
     /// driver's on the host.
     pub waited_ms: Vec<f64>,
-    /// Milliseconds from the last frame's end until the device finished every frame.
-    pub drain_ms: f64,
     /// The device times of the frames drawn through a wgpu texture, in order, where the device has timestamps.
     pub device_times: Vec<PassTimes>,
 }
@@ -104,7 +102,6 @@ pub fn run_headless(
         times.push((kind, started.elapsed().as_secs_f64() * 1e3));
         waited_ms.push(waited(&app) - waited_before);
     }
-    let drained = Instant::now();
     let device_times = match (&mut app.presenter, &app.engine) {
         (Some(Presenter::Gpu(gpu)), Engine::Wgpu(renderer)) => gpu.finish(renderer).unwrap_or_else(|e| {
             eprintln!("cannot read the device's timestamps: {e:?}");
@@ -112,8 +109,7 @@ pub fn run_headless(
         }),
         _ => Vec::new(),
     };
-    let drain_ms = drained.elapsed().as_secs_f64() * 1e3;
     let (window_size, render_size) = (app.options.window_size, app.render_size);
     let summary = app.finish()?;
-    Ok(HeadlessRun { summary, window_size, render_size, frames: times, waited_ms, drain_ms, device_times })
+    Ok(HeadlessRun { summary, window_size, render_size, frames: times, waited_ms, device_times })
 }
