@@ -5,8 +5,10 @@
 
 use crate::analyse::{fold, guarded_bound, union_order};
 use crate::eval::Env;
-use crate::formula::leaf::LeafArg;
+use crate::formula::leaf::{LeafArg, LeafOut};
+use crate::formula::user::Ready;
 use crate::formula::{CallLeaf, Leaf};
+use crate::ir::formula::Formula;
 use crate::ir::fractal::CallArg;
 use crate::ir::op::Meaning;
 use crate::ir::*;
@@ -216,10 +218,51 @@ pub enum Step {
         call: LeafCall,
         step: f64,
     },
+    /// A fractal written in the scene language: its estimate × the step factor, and the orbit trap.
+    Formula {
+        call: Box<FormulaCall>,
+        step: f64,
+    },
     /// A union or intersection of nothing: no geometry.
     Empty,
     Op(OpStep),
     Material(Box<Step>, Box<Mat>),
+}
+
+/// A fractal written in the scene language, ready to run ([`crate::formula::user`]): its maps with their scene numbers
+/// as terms, and its bailout.
+#[derive(Clone, Debug)]
+pub struct FormulaCall {
+    pub ready: Ready,
+    /// The formula's scene numbers, in the order its maps index them.
+    pub nums: Vec<Term>,
+    pub bailout: Term,
+    /// The estimate is signed by membership (the scene's `membership_hits`).
+    pub signed: bool,
+}
+
+impl FormulaCall {
+    fn compile(f: &Fractal, formula: &Formula, params: &[ParamDecl], signed: bool) -> FormulaCall {
+        let mut nums = Vec::new();
+        let indexed = formula.map_nums(&mut |e: &Expr| {
+            nums.push(Term::compile(e, params));
+            (nums.len() - 1) as u16
+        });
+        let literals = nums.iter().map(|t| if let Term::Lit(v) = t { Some(*v) } else { None }).collect();
+        FormulaCall {
+            ready: Ready { formula: indexed, literals, iterations: f.iterations_or_default() },
+            nums,
+            bailout: Term::compile(&f.bailout_or_default(), params),
+            signed,
+        }
+    }
+
+    /// The estimate and orbit trap at `p` (for the ground truth's numbers, its membership: [`CallLeaf::formula`]).
+    #[inline]
+    pub fn run<F: CallLeaf>(&self, p: V3<F>, env: &Env<F>) -> LeafOut<F> {
+        let nums: Vec<F> = self.nums.iter().map(|t| t.eval(env)).collect();
+        F::formula(&self.ready, &nums, p, self.bailout.eval(env), self.signed)
+    }
 }
 
 /// `x` as the f32 nearest it and the rest, x − f32(x): subtracted in turn from an anchor near x, the two keep x to
@@ -373,7 +416,14 @@ impl Compiler<'_> {
     fn node(&self, n: &Node, world: bool) -> Step {
         match n {
             Node::Prim(p) => Step::Leaf(self.prim(p)),
-            Node::Fractal(f) => Step::Fractal { call: self.fractal(f), step: f.step_factor_or_default() },
+            Node::Fractal(f) => match (self.fractal(f), f.formula()) {
+                (Some(call), _) => Step::Fractal { call, step: f.step_factor_or_default() },
+                (None, Some(formula)) => Step::Formula {
+                    call: Box::new(FormulaCall::compile(f, formula, self.params, self.signed)),
+                    step: f.step_factor_or_default(),
+                },
+                (None, None) => Step::Empty,
+            },
             Node::Op(op) if op.shapes.is_empty() => Step::Empty,
             Node::Op(op) => {
                 let meaning = op.decl().meaning;
@@ -410,8 +460,8 @@ impl Compiler<'_> {
         self.call(p.decl().leaf, args)
     }
 
-    fn fractal(&self, f: &Fractal) -> LeafCall {
-        let (leaf, args) = f.call();
+    fn fractal(&self, f: &Fractal) -> Option<LeafCall> {
+        let (leaf, args) = f.call()?;
         let leaf = match f.decl().membership.signed_for(leaf) {
             Some(signed) if self.signed => signed,
             _ => leaf,
@@ -423,6 +473,6 @@ impl Compiler<'_> {
                 CallArg::Count(n) => ArgTerm::Count(n),
             })
             .collect();
-        self.call(leaf, args)
+        Some(self.call(leaf, args))
     }
 }

@@ -172,6 +172,7 @@ impl Walk<'_> {
         let op = match step {
             Step::Leaf(call) => return leaf(call, p.whole(), env).distance(),
             Step::Fractal { call, step } => return leaf(call, p.whole(), env).distance() * c(*step),
+            Step::Formula { call, step } => return call.run(p.whole(), env).distance() * c(*step),
             Step::Empty => return c(f64::INFINITY),
             Step::Material(child, _) => return self.dist(child, p, env),
             Step::Op(op) => op,
@@ -221,6 +222,10 @@ impl Walk<'_> {
             Step::Leaf(call) => return (leaf(call, p.whole(), env).distance(), leaf_fields(m, env, None, mp)),
             Step::Fractal { call, step } => {
                 let out = leaf(call, p.whole(), env);
+                return (out.distance() * c(*step), leaf_fields(m, env, out.trap(), mp));
+            }
+            Step::Formula { call, step } => {
+                let out = call.run(p.whole(), env);
                 return (out.distance() * c(*step), leaf_fields(m, env, out.trap(), mp));
             }
             Step::Empty => return (c(f64::INFINITY), leaf_fields(m, env, None, mp)),

@@ -6,12 +6,14 @@
 //! signatures.
 
 mod common;
+pub mod dual;
 mod estimate;
 pub mod leaf;
 pub mod mandelbrot;
 mod membership;
 pub mod noise;
 mod shapes;
+pub mod user;
 
 pub use common::{DR_MAX, POW_LOG2_MAX, TINY};
 pub use estimate::*;
@@ -78,6 +80,12 @@ pub trait CallLeaf: Num {
     #[inline(always)]
     fn leaf(leaf: Leaf, args: &[LeafArg<Self>]) -> LeafOut<Self> {
         leaf.eval(args)
+    }
+    /// A fractal written in the scene language at `p`: its estimate and orbit trap ([`user::estimate`]), or — for a
+    /// number type that answers membership instead — its membership test. `nums` are its scene numbers.
+    #[inline(always)]
+    fn formula(ready: &user::Ready, nums: &[Self], p: V3<Self>, bailout: Self, signed: bool) -> LeafOut<Self> {
+        LeafOut::Pair(user::estimate(ready, nums, p, bailout, signed))
     }
 }
 

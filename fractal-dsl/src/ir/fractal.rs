@@ -2,6 +2,7 @@
 //! which settings apply, the leaf call, step factor and bound) with its values. Families are declared once
 //! (`crate::vocab::fractals`); every reader works from the declaration.
 
+use super::formula::Formula;
 use super::prim::PrimBound;
 use super::{Expr, Vec3Expr, Vec4Expr};
 use crate::formula::Leaf;
@@ -14,6 +15,8 @@ pub enum FractalArgShape {
     Vec4,
     /// The iteration count itself (stored in [`Fractal::iterations`]).
     Levels,
+    /// A map written in the scene language (`escape_time(|z, c| ..)`, [`crate::ir::formula`]).
+    Formula,
 }
 
 /// The rule the constructor argument keeps.
@@ -91,8 +94,9 @@ pub struct FractalDecl {
     pub iterations: Iterations,
     /// The settings that apply, with their defaults.
     pub settings: &'static [(Setting, f64)],
-    /// The leaf function and its arguments after the point.
-    pub call: fn(&Fractal) -> (Leaf, Vec<CallArg>),
+    /// The leaf function and its arguments after the point; `None` for a formula written in the scene language,
+    /// which runs as [`crate::formula::user`] runs it.
+    pub call: fn(&Fractal) -> Option<(Leaf, Vec<CallArg>)>,
     /// Factor on the estimate so a step never overshoots the surface (measured; see `crate::vocab::fractals`).
     pub step_factor: fn(&Fractal) -> f64,
     /// A conservative bound; `None` when no bound is known for the values' ranges.
@@ -148,6 +152,7 @@ pub enum FractalArgValue {
     Vec4(Vec4Expr),
     /// The count is [`Fractal::iterations`].
     Levels,
+    Formula(Box<Formula>),
 }
 
 /// A fractal leaf with its settings. `None` means the family's default.
@@ -186,7 +191,14 @@ impl Fractal {
             FractalArgValue::Num(e) => std::slice::from_ref(e),
             FractalArgValue::Vec3(v) => &v.0,
             FractalArgValue::Vec4(v) => &v.0,
-            FractalArgValue::Levels => &[],
+            FractalArgValue::Levels | FractalArgValue::Formula(_) => &[],
+        }
+    }
+    /// The formula of a fractal written in the scene language.
+    pub fn formula(&self) -> Option<&Formula> {
+        match &self.arg {
+            FractalArgValue::Formula(f) => Some(f),
+            _ => None,
         }
     }
     pub fn arg_exprs_mut(&mut self) -> &mut [Expr] {
@@ -194,7 +206,7 @@ impl Fractal {
             FractalArgValue::Num(e) => std::slice::from_mut(e),
             FractalArgValue::Vec3(v) => &mut v.0,
             FractalArgValue::Vec4(v) => &mut v.0,
-            FractalArgValue::Levels => &mut [],
+            FractalArgValue::Levels | FractalArgValue::Formula(_) => &mut [],
         }
     }
     /// The number argument (the power, the scale); `None` for other shapes.
@@ -243,8 +255,8 @@ impl Fractal {
     pub fn step_factor_or_default(&self) -> f64 {
         self.step_factor.unwrap_or_else(|| (self.kind.0.step_factor)(self))
     }
-    /// The leaf function and its arguments after the point.
-    pub fn call(&self) -> (Leaf, Vec<CallArg>) {
+    /// The leaf function and its arguments after the point; `None` for a formula.
+    pub fn call(&self) -> Option<(Leaf, Vec<CallArg>)> {
         (self.kind.0.call)(self)
     }
 }

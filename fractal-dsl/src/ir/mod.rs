@@ -50,6 +50,7 @@ use declared_item;
 
 pub mod arg;
 mod expr;
+pub mod formula;
 pub mod fractal;
 pub mod op;
 pub mod prim;

@@ -35,7 +35,7 @@ pub(crate) fn scene(expr: &syn::Expr) -> syn::Result<Scene> {
     Ok(scene)
 }
 
-fn error(at: impl ToTokens, message: impl std::fmt::Display) -> syn::Error {
+pub(super) fn error(at: impl ToTokens, message: impl std::fmt::Display) -> syn::Error {
     syn::Error::new_spanned(at, message)
 }
 
@@ -95,6 +95,7 @@ fn coerce(value: Value, ty: Ty) -> Result<Value, Misfit> {
         (Value::Light(l), Ty::Light) => Value::Light(l),
         (Value::Camera(c), Ty::Camera) => Value::Camera(c),
         (Value::Key(k), Ty::Key) => Value::Key(k),
+        (Value::Formula(m), Ty::Formula) => Value::Formula(m),
         _ => return Err(Misfit::Type),
     })
 }
@@ -165,7 +166,7 @@ fn plural(n: usize) -> &'static str {
 }
 
 #[derive(Default)]
-struct Lower {
+pub(super) struct Lower {
     /// Parameters declared so far, to refuse a second declaration that disagrees.
     params: Vec<ParamDecl>,
     nodes: usize,
@@ -173,7 +174,7 @@ struct Lower {
 }
 
 impl Lower {
-    fn eval(&mut self, e: &syn::Expr, depth: usize) -> syn::Result<Value> {
+    pub(super) fn eval(&mut self, e: &syn::Expr, depth: usize) -> syn::Result<Value> {
         if depth > MAX_EVAL_DEPTH {
             let message = match e {
                 // A long sum or product is a chain of binary operators, each one level: say so, or the message
@@ -433,6 +434,7 @@ impl Lower {
                 }
                 Ok(Value::IntVec3(out))
             }
+            Ty::Formula => Ok(Value::Formula(self.formula_map(arg, entry.name == "fold", depth)?)),
             Ty::Str => match arg {
                 syn::Expr::Lit(syn::ExprLit { lit: syn::Lit::Str(s), .. }) => Ok(Value::Str(s.value())),
                 _ => Err(wrong("a string literal such as \"power\"")),

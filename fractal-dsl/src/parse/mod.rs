@@ -15,6 +15,7 @@
 //! `smooth_intersect(a, b, k)`, `smooth_subtract(a, b, k)`. `box` is a Rust keyword, so the box is `box3(half)`.
 
 mod build;
+mod formula;
 mod names;
 mod scan;
 
@@ -107,6 +108,17 @@ fn lex_error(src: &str, e: &proc_macro2::LexError) -> SourceError {
         None => "the text cannot be read as tokens".to_string(),
     };
     SourceError { line: at.line.max(1), column: at.column + 1, message }
+}
+
+/// The formula of canonical fractal text such as `escape_time(|z, c| z + c)` (as the printer writes it): how the
+/// `scene!` expansion rebuilds a formula's IR. Text that is not one gives a formula with no maps, whose orbit stays at
+/// the point.
+pub fn formula_from_source(text: &str) -> crate::ir::formula::Formula {
+    let fractal = parse_str(text).ok().and_then(|scene| match &scene.root {
+        crate::ir::Node::Fractal(f) => f.formula().cloned(),
+        _ => None,
+    });
+    fractal.unwrap_or(crate::ir::formula::Formula { kind: crate::ir::formula::FormulaKind::EscapeTime, maps: vec![] })
 }
 
 /// Parses the tokens of a `scene!` invocation; errors carry the span of the offending token.

@@ -8,10 +8,11 @@ use std::sync::OnceLock;
 
 use crate::builder::{self as b, Color, ShapeExt};
 use crate::ir::arg::{ArgDecl, ArgShape};
+use crate::ir::formula::{Formula, FormulaKind, FormulaMap};
 use crate::ir::fractal::{FractalArgShape, FractalArgValue, Setting};
 use crate::ir::op::Operands;
 use crate::ir::*;
-use crate::vocab::fractals::families::FRACTALS;
+use crate::vocab::fractals::families::{FOLD, FRACTALS};
 use crate::vocab::ops::decl::OPS;
 use crate::vocab::prims::decl::PRIMS;
 
@@ -41,6 +42,8 @@ pub(crate) enum Ty {
     Str,
     /// `min..max` (the range of a param).
     Range,
+    /// An iteration map written as a closure, `|z, c| ..` ([`crate::ir::formula`]).
+    Formula,
 }
 
 impl Ty {
@@ -65,6 +68,7 @@ impl Ty {
             Ty::Scene => "scene",
             Ty::Str => "string",
             Ty::Range => "range",
+            Ty::Formula => "map",
         }
     }
     /// The name with its article, as messages use it: "must be a number".
@@ -88,6 +92,7 @@ impl Ty {
             Ty::Scene => "a scene",
             Ty::Str => "a string literal",
             Ty::Range => "a range min..max",
+            Ty::Formula => "a map |z, c| ..",
         }
     }
 }
@@ -112,6 +117,7 @@ pub(crate) enum Value {
     Scene(Box<Scene>),
     Str(String),
     Range(f64, f64),
+    Formula(FormulaMap<Expr>),
 }
 
 impl Value {
@@ -134,6 +140,7 @@ impl Value {
             Value::Scene(_) => Ty::Scene,
             Value::Str(_) => Ty::Str,
             Value::Range(..) => Ty::Range,
+            Value::Formula(_) => Ty::Formula,
         }
     }
 }
@@ -218,6 +225,7 @@ fn fractal_entry(decl: &'static FractalDecl) -> Entry {
         FractalArgShape::Vec3 => Ty::Vec3,
         FractalArgShape::Vec4 => Ty::Vec4,
         FractalArgShape::Levels => Ty::Int,
+        FractalArgShape::Formula => Ty::Formula,
     };
     let params = vec![Param { name: decl.arg.name, ty, many: false }];
     Entry {
@@ -251,6 +259,11 @@ impl Entry {
                     Some(Value::Vec4(v)) => Fractal::new(decl, FractalArgValue::Vec4(v)),
                     Some(Value::Int(n)) => {
                         Fractal { iterations: Some(n), ..Fractal::new(decl, FractalArgValue::Levels) }
+                    }
+                    Some(Value::Formula(m)) => {
+                        let kind = if decl.name == FOLD.name { FormulaKind::Fold } else { FormulaKind::EscapeTime };
+                        let formula = Formula { kind, maps: vec![m] };
+                        Fractal::new(decl, FractalArgValue::Formula(Box::new(formula)))
                     }
                     _ => return Err(mismatch()),
                 };
@@ -395,6 +408,14 @@ use Ty as T;
 
 /// The free functions of the language.
 pub(crate) static FUNCTIONS: &[Entry] = &[
+    // ---- formulas (`escape_time` and `fold` are made from their declarations)
+    fun("hybrid", &[many("maps", T::Formula)], T::Fractal, |a| {
+        let mut maps = Vec::new();
+        while let Some(Value::Formula(m)) = a.0.pop_front() {
+            maps.push(m);
+        }
+        fractal(crate::vocab::fractals::escape_time(Formula { kind: FormulaKind::EscapeTime, maps }))
+    }),
     // ---- numbers and vectors
     fun("param", &[p("name", T::Str), p("default", T::Const), p("range", T::Range)], T::Number, |a| {
         number(b::param(&a.string()?, a.konst()?, a.range()?))

@@ -1,6 +1,7 @@
 //! A pass over the raw tokens before syn sees them: refuses what the scene language never uses (blocks, brackets,
 //! statements, keywords, attributes) with a message that says so, and bounds how deeply the input can make syn and
-//! the lowering recurse. Both syn's parser and the drop of its tree recurse once per nesting level, so hostile input
+//! the lowering recurse. Inside the parentheses of a formula (`escape_time(..)`, `fold(..)`, `hybrid(..)`) closures,
+//! blocks, `let`, `if`/`else`, comparisons and `&&`, `||`, `!` are allowed too; an `if` counts as a parenthesis. Both syn's parser and the drop of its tree recurse once per nesting level, so hostile input
 //! (thousands of parentheses or signs) must be refused here, without recursion, before it reaches them.
 
 use proc_macro2::{Delimiter, Spacing, Span, TokenStream, TokenTree};
@@ -34,13 +35,33 @@ struct Frame {
     cost: usize,
     /// Operators since the last operand.
     run: usize,
-    /// Whether the previous token was a `.` joined to the next one (the first half of `..`).
+    /// Whether the previous token was a `.` joined to the next one (the first half of `..`), or in a formula any
+    /// punctuation joined to the next (`<=`, `&&`, `||`).
     joint_dot: bool,
+    /// Inside a formula's parentheses.
+    formula: bool,
+    /// The previous token names a formula (`escape_time`, `fold`, `hybrid`): its parentheses hold one.
+    before_formula: bool,
 }
 
+/// The calls whose parentheses hold formulas.
+const FORMULA_CALLS: &[&str] = &["escape_time", "fold", "hybrid"];
+/// The keywords a formula may use.
+const FORMULA_KEYWORDS: &[&str] = &["let", "if", "else"];
+
 impl Frame {
-    fn new(stream: TokenStream, span: Span) -> Frame {
-        Frame { tokens: stream.into_iter(), span, operators: 0, deepest_child: 0, cost: 0, run: 0, joint_dot: false }
+    fn new(stream: TokenStream, span: Span, formula: bool) -> Frame {
+        Frame {
+            tokens: stream.into_iter(),
+            span,
+            operators: 0,
+            deepest_child: 0,
+            cost: 0,
+            run: 0,
+            joint_dot: false,
+            formula,
+            before_formula: false,
+        }
     }
     fn end_segment(&mut self) {
         self.cost = self.cost.max(self.operators + self.deepest_child);
@@ -70,7 +91,7 @@ fn punct_message(c: char) -> String {
 /// Checks the tokens of a scene; see the module doc for what is refused.
 pub(crate) fn check(tokens: &TokenStream) -> syn::Result<()> {
     let mut count = 0usize;
-    let mut stack = vec![Frame::new(tokens.clone(), Span::call_site())];
+    let mut stack = vec![Frame::new(tokens.clone(), Span::call_site(), false)];
     while let Some(frame) = stack.last_mut() {
         let Some(tree) = frame.tokens.next() else {
             let Some(mut done) = stack.pop() else { break };
@@ -91,11 +112,14 @@ pub(crate) fn check(tokens: &TokenStream) -> syn::Result<()> {
             return Err(err(tree.span(), format!("the scene is too long (more than {MAX_TOKENS} tokens)")));
         }
         let joint_dot = std::mem::take(&mut frame.joint_dot);
+        let before_formula = std::mem::take(&mut frame.before_formula);
         match tree {
             TokenTree::Group(g) => {
                 frame.run = 0;
+                let formula = frame.formula || (before_formula && g.delimiter() == Delimiter::Parenthesis);
                 match g.delimiter() {
                     Delimiter::Parenthesis | Delimiter::None => {}
+                    Delimiter::Brace if formula => {}
                     Delimiter::Bracket => {
                         return Err(err(
                             g.span_open(),
@@ -115,7 +139,7 @@ pub(crate) fn check(tokens: &TokenStream) -> syn::Result<()> {
                         format!("parentheses nest more than {MAX_PAREN_NESTING} levels deep"),
                     ));
                 }
-                stack.push(Frame::new(g.stream(), g.span()));
+                stack.push(Frame::new(g.stream(), g.span(), formula));
             }
             TokenTree::Ident(i) => {
                 frame.run = 0;
@@ -127,6 +151,14 @@ pub(crate) fn check(tokens: &TokenStream) -> syn::Result<()> {
                          e.g. box3(vec3(1.0, 1.0, 1.0))",
                     ));
                 }
+                frame.before_formula = FORMULA_CALLS.contains(&name.as_str());
+                if frame.formula && FORMULA_KEYWORDS.contains(&name.as_str()) {
+                    // An `if` nests its branches as a parenthesis does (an `else if` chain nests deeper each time).
+                    if name == "if" {
+                        frame.operators += PAREN_COST;
+                    }
+                    continue;
+                }
                 if KEYWORDS.contains(&name.as_str()) {
                     return Err(err(
                         i.span(),
@@ -137,16 +169,18 @@ pub(crate) fn check(tokens: &TokenStream) -> syn::Result<()> {
             TokenTree::Literal(_) => frame.run = 0,
             TokenTree::Punct(p) => {
                 let c = p.as_char();
-                if !matches!(c, '+' | '-' | '*' | '/' | '.' | ',') {
+                let formula_punct = frame.formula && matches!(c, '|' | ';' | '=' | '<' | '>' | '!' | '&');
+                if !matches!(c, '+' | '-' | '*' | '/' | '.' | ',') && !formula_punct {
                     return Err(err(p.span(), punct_message(c)));
                 }
-                if c == ',' {
+                if c == ',' || (c == ';' && frame.formula) {
                     frame.end_segment();
                     frame.run = 0;
                     continue;
                 }
-                // The second dot of `..` continues the operator the first one began.
-                if !(c == '.' && joint_dot) {
+                // The second dot of `..` continues the operator the first one began (in a formula, the second half of
+                // any joined pair: `<=`, `&&`).
+                if !((c == '.' || frame.formula) && joint_dot) {
                     frame.operators += 1;
                     frame.run += 1;
                     if frame.run > MAX_OPERATOR_RUN {
@@ -156,7 +190,7 @@ pub(crate) fn check(tokens: &TokenStream) -> syn::Result<()> {
                         ));
                     }
                 }
-                frame.joint_dot = c == '.' && p.spacing() == Spacing::Joint && !joint_dot;
+                frame.joint_dot = (c == '.' || frame.formula) && p.spacing() == Spacing::Joint && !joint_dot;
             }
         }
     }

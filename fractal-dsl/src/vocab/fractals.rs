@@ -41,6 +41,8 @@ pub mod families {
         &JULIABULB,
         &OCTAHEDRAL_KIFS,
         &ICOSAHEDRAL_KIFS,
+        &ESCAPE_TIME,
+        &FOLD,
     ];
 
     fn count(f: &Fractal) -> CallArg {
@@ -77,11 +79,11 @@ pub mod families {
         call: |f| {
             let power = f.number().cloned().unwrap_or(Expr::Lit(8.0));
             let leaf = match power.as_lit() {
-                Some(8.0) => return (Leaf::DeMandelbulb8, vec![count(f), num(f.bailout_or_default())]),
+                Some(8.0) => return Some((Leaf::DeMandelbulb8, vec![count(f), num(f.bailout_or_default())])),
                 _ if stretched_bulb(f) => Leaf::DeMandelbulbStretched,
                 _ => Leaf::DeMandelbulb,
             };
-            (leaf, vec![num(power), count(f), num(f.bailout_or_default())])
+            Some((leaf, vec![num(power), count(f), num(f.bailout_or_default())]))
         },
         step_factor: |f| if stretched_bulb(f) { 1.0 } else { bulb_step_factor(bulb_powers(f).lo) },
         bound: |f| {
@@ -117,7 +119,7 @@ pub mod families {
         // Each level multiplies the detail by 3, and 8 is already below f32 resolution.
         iterations: Iterations { default: 4, min: 1, max: 8 },
         settings: &[],
-        call: |f| (Leaf::DeMenger, vec![count(f)]),
+        call: |f| Some((Leaf::DeMenger, vec![count(f)])),
         step_factor: |_| 1.0,
         // The sponge's estimate is max(box, cuts) with the box [-1, 1]³: exact.
         bound: |_| PrimBound::exact(Aabb::cube(1.0)),
@@ -136,7 +138,7 @@ pub mod families {
         // Each fold halves the detail; 24 reaches f32 resolution.
         iterations: Iterations { default: 8, min: 1, max: 24 },
         settings: &[],
-        call: |f| (Leaf::DeSierpinski, vec![count(f)]),
+        call: |f| Some((Leaf::DeSierpinski, vec![count(f)])),
         step_factor: |_| 1.0,
         // The folds keep points in the tetrahedron's symmetry; far away the estimate is a plane distance, which falls
         // shortest of the distance to the cube along the diagonals (`docs/settings.md`, “Bounds of the fractal
@@ -163,7 +165,7 @@ pub mod families {
         call: |f| {
             let mut args: Vec<CallArg> = f.arg_exprs().iter().cloned().map(num).collect();
             args.extend([count(f), num(f.bailout_or_default())]);
-            (Leaf::DeJulia, args)
+            Some((Leaf::DeJulia, args))
         },
         step_factor: |_| 0.85,
         bound: |f| {
@@ -192,7 +194,7 @@ pub mod families {
         call: |f| {
             let scale = f.number().cloned().unwrap_or(Expr::Lit(2.0));
             let args = vec![num(scale), count(f), num(f.min_radius_or_default()), num(f.fold_limit_or_default())];
-            (Leaf::DeMandelbox, args)
+            Some((Leaf::DeMandelbox, args))
         },
         step_factor: |_| 0.75,
         bound: |f| {
@@ -224,7 +226,7 @@ pub mod families {
         call: |f| {
             let mut args: Vec<CallArg> = f.arg_exprs().iter().cloned().map(num).collect();
             args.extend([num(f.setting_or_default(Setting::Power)), count(f), num(f.bailout_or_default())]);
-            (Leaf::DeJuliabulb, args)
+            Some((Leaf::DeJuliabulb, args))
         },
         step_factor: |f| juliabulb_step_factor(range(&f.setting_or_default(Setting::Power)).lo),
         bound: |f| {
@@ -262,7 +264,7 @@ pub mod families {
         name: &'static str,
         doc: &'static str,
         what: &'static str,
-        call: fn(&Fractal) -> (Leaf, Vec<CallArg>),
+        call: fn(&Fractal) -> Option<(Leaf, Vec<CallArg>)>,
         leaves: &'static [(Leaf, Leaf)],
     ) -> FractalDecl {
         FractalDecl {
@@ -283,7 +285,7 @@ pub mod families {
         "a kaleidoscopic IFS with octahedral folds, scaled by `scale` about (1, 0, 0) (at 2: the Sierpinski \
          octahedron), turned by `.angle(a)` about z each iteration",
         "octahedral_kifs scale",
-        |f| (Leaf::DeOctahedralKifs, kifs_args(f)),
+        |f| Some((Leaf::DeOctahedralKifs, kifs_args(f))),
         &[(Leaf::DeOctahedralKifs, Leaf::InOctahedralKifs)],
     );
 
@@ -292,9 +294,60 @@ pub mod families {
         "a kaleidoscopic IFS with icosahedral folds, scaled by `scale` about a vertex (at φ² ≈ 2.618: the \
          icosahedron flake), turned by `.angle(a)` about z each iteration",
         "icosahedral_kifs scale",
-        |f| (Leaf::DeIcosahedralKifs, kifs_args(f)),
+        |f| Some((Leaf::DeIcosahedralKifs, kifs_args(f))),
         &[(Leaf::DeIcosahedralKifs, Leaf::InIcosahedralKifs)],
     );
+
+    /// The iteration counts of a formula written in the scene language.
+    const FORMULA_ITERATIONS: Iterations = Iterations { default: 10, min: 1, max: MAX_ITERATIONS };
+
+    /// The bailout a formula's set lies within: at least 1, so the escape-time estimate 0.5·r·ln r/‖J‖ is positive
+    /// past it; at most 10⁶.
+    pub const FORMULA_BAILOUT: (f64, f64) = (1.0, 1e6);
+
+    /// A formula's step factor: the scene's `.step_factor(k)` (measured by `fractal accuracy --estimators SCENE`),
+    /// else a safe half.
+    fn formula_step_factor(_: &Fractal) -> f64 {
+        crate::formula::user::UNMEASURED_STEP_FACTOR
+    }
+
+    pub static ESCAPE_TIME: FractalDecl = FractalDecl {
+        name: "escape_time",
+        doc: "an escape-time fractal of a map written in the scene language, z ← map(z, c) from z = c = p while \
+              |z| ≤ bailout; `hybrid(f, g, ..)` applies several maps in turn. The estimate 0.5·|z|·ln|z|/‖J‖ takes \
+              the orbit's Jacobian J, derived by the compiler",
+        arg: FractalArg {
+            name: "map",
+            what: "escape_time map",
+            shape: FractalArgShape::Formula,
+            rule: FractalRule::Finite,
+        },
+        iterations: FORMULA_ITERATIONS,
+        settings: &[(Setting::Bailout, 2.0)],
+        call: |_| None,
+        step_factor: formula_step_factor,
+        // The set lies within the bailout: a point past it escapes before the first step. There the estimate is
+        // 0.5·|p|·ln|p|/√3 (J = I), over a quarter of the distance to the ball for a bailout of at least 1.
+        bound: |f| {
+            let b = range(&f.bailout_or_default()).hi;
+            b.is_finite().then(|| PrimBound { aabb: Aabb::cube(b), reach: 0.25 * f.step_factor_or_default() })
+        },
+        membership: Membership { leaves: &[], approaches_limit: true, signed: &[] },
+    };
+
+    pub static FOLD: FractalDecl = FractalDecl {
+        name: "fold",
+        doc: "a folding fractal (Mandelbox, KIFS kind) of a map written in the scene language, z ← map(z, c) from \
+              z = c = p for every iteration; the estimate is (|z| − bailout)/‖J‖, J the orbit's Jacobian, or the \
+              product of the map's own scales where it returns (z, scale)",
+        arg: FractalArg { name: "map", what: "fold map", shape: FractalArgShape::Formula, rule: FractalRule::Finite },
+        iterations: FORMULA_ITERATIONS,
+        settings: &[(Setting::Bailout, 1.0)],
+        call: |_| None,
+        step_factor: formula_step_factor,
+        bound: |_| None,
+        membership: Membership { leaves: &[], approaches_limit: false, signed: &[] },
+    };
 
     /// The Juliabulb's step factor for its lowest power: at power 8 from the estimator study, below it from the
     /// Lipschitz tests (`docs/settings.md`, “Step factors of the fractal families”).
@@ -356,6 +409,14 @@ pub fn juliabulb(c: impl Into<Vec3Expr>) -> Fractal {
 /// Kaleidoscopic IFS with octahedral folds.
 pub fn octahedral_kifs(scale: impl Into<Expr>) -> Fractal {
     Fractal::new(&OCTAHEDRAL_KIFS, FractalArgValue::Num(scale.into()))
+}
+/// An escape-time fractal of a formula ([`crate::ir::formula`]); a hybrid when it has several maps.
+pub fn escape_time(formula: crate::ir::formula::Formula) -> Fractal {
+    Fractal::new(&ESCAPE_TIME, FractalArgValue::Formula(Box::new(formula)))
+}
+/// A folding fractal of a formula ([`crate::ir::formula`]).
+pub fn fold(formula: crate::ir::formula::Formula) -> Fractal {
+    Fractal::new(&FOLD, FractalArgValue::Formula(Box::new(formula)))
 }
 /// Kaleidoscopic IFS with icosahedral folds.
 pub fn icosahedral_kifs(scale: impl Into<Expr>) -> Fractal {

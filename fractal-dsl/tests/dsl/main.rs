@@ -4,6 +4,7 @@
 
 mod bounds;
 mod common;
+mod formula;
 mod interp;
 mod leaves;
 mod lipschitz;

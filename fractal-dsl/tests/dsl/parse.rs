@@ -47,7 +47,13 @@ fn unit_box() -> Node {
 fn cases() -> Vec<(&'static str, Scene)> {
     let s = |n: Node| scene(n);
     let ball = || sphere(1.0);
+    let formula = |src: &str| escape_time(fractal_dsl::parse::formula_from_source(src));
     vec![
+        // formulas (their own errors and round trips: `formula.rs`)
+        (
+            "hybrid(|z, c| z * 2.0 + c, |z| box_fold(z, 1.0))",
+            s(formula("hybrid(|z, c| z * 2.0 + c, |z| box_fold(z, 1.0))").into()),
+        ),
         // numbers
         ("sphere(2)", s(sphere(2.0))),
         ("sphere(1.5f32)", s(sphere(1.5f32))),
@@ -324,6 +330,11 @@ fn every_declared_fractal_family_reads_back_from_its_printed_source() {
             FractalArgShape::Vec4 => Fractal::new(decl, FractalArgValue::Vec4(vec4(value, -value, 0.5 * value, 0.0))),
             FractalArgShape::Levels => {
                 Fractal { iterations: Some(decl.iterations.min + 1), ..Fractal::new(decl, FractalArgValue::Levels) }
+            }
+            FractalArgShape::Formula => {
+                let formula = fractal_dsl::parse::formula_from_source(&format!("{}(|z, c| z * z.x + c)", decl.name));
+                assert_eq!(formula.maps.len(), 1, "{}", decl.name);
+                Fractal::new(decl, FractalArgValue::Formula(Box::new(formula)))
             }
         };
         let written = scene(fractal);

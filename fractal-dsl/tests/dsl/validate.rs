@@ -131,7 +131,7 @@ fn rules_of_every_kind() {
         (scene(mandelbox(2.0).fold_limit(-1.0)), "mandelbox: mandelbox fold_limit must be > 0, found -1"),
         (
             scene(mandelbox(2.0).bailout(4.0)),
-            "mandelbox: `bailout` applies only to mandelbulb, julia and juliabulb, not mandelbox",
+            "mandelbox: `bailout` applies only to mandelbulb, julia, juliabulb, escape_time and fold, not mandelbox",
         ),
         (scene(mandelbulb(8).min_radius(0.5)), "mandelbulb: `min_radius` applies only to mandelbox, not mandelbulb"),
         (

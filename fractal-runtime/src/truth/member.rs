@@ -14,8 +14,9 @@ use fractal_dsl::eval::plan::Plan;
 use fractal_dsl::eval::walk::Walk;
 use fractal_dsl::eval::Env;
 use fractal_dsl::formula::leaf::{LeafArg, LeafOut};
+use fractal_dsl::formula::user::{self, Ready};
 use fractal_dsl::formula::{CallLeaf, Leaf};
-use fractal_dsl::number::math::{v3, Carry, Num};
+use fractal_dsl::number::math::{v3, Carry, Num, V3};
 use fractal_dsl::vocab::fractals::families::FRACTALS;
 use fractal_dsl::Scene;
 
@@ -144,6 +145,11 @@ impl CallLeaf for Member {
             Some(member) => LeafOut::F(member.eval(args).distance()),
             None => leaf.eval(args),
         }
+    }
+    /// A formula written in the scene language answers its own membership test, its orbit alone.
+    #[inline(always)]
+    fn formula(ready: &Ready, nums: &[Self], p: V3<Self>, bailout: Self, _signed: bool) -> LeafOut<Self> {
+        LeafOut::F(user::membership(ready, nums, p, bailout))
     }
 }
 

@@ -269,6 +269,12 @@ impl Writer<'_> {
                 quote!(#k::ir::fractal::FractalArgValue::Vec4(#v))
             }
             FractalArgValue::Levels => quote!(#k::ir::fractal::FractalArgValue::Levels),
+            // A formula is written as its canonical text, read back when the IR is first asked for: the text the
+            // kernels were compiled from, which the printer's round trip keeps exact.
+            FractalArgValue::Formula(formula) => {
+                let text = crate::print::formula_call(formula);
+                quote!(#k::ir::fractal::FractalArgValue::Formula(::std::boxed::Box::new(#k::parse::formula_from_source(#text))))
+            }
         };
         let iterations = self.option(iterations, |&n| {
             let n = u32_lit(n);

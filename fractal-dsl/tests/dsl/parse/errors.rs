@@ -131,7 +131,7 @@ fn validation_errors_point_at_the_argument() {
         ("menger(3).iterations(0)", "1:22: menger levels must be in 1..=8, found 0"),
         ("sierpinski_tetrahedron(25)", "1:24: sierpinski_tetrahedron levels must be in 1..=24, found 25"),
         ("menger(3).min_radius(0.5)", "1:11: `min_radius` applies only to mandelbox, not menger"),
-        ("menger(3).bailout(4.0)", "1:11: `bailout` applies only to mandelbulb, julia and juliabulb, not menger"),
+        ("menger(3).bailout(4.0)", "1:11: `bailout` applies only to mandelbulb, julia, juliabulb, escape_time and fold, not menger"),
         ("mandelbox(1.0)", "1:11: mandelbox |scale| must be in [1.05, 8], found 1"),
         ("mandelbox(2.0).min_radius(1.5)", "1:27: mandelbox min_radius must be in (0, 1), found 1.5"),
         ("mandelbox(2.0).fold_limit(0.0)", "1:27: mandelbox fold_limit must be > 0, found 0"),

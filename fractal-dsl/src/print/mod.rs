@@ -9,7 +9,11 @@
 //! The exact round trip holds for scenes the builder makes (the parser builds through the builder, which normalises
 //! plane normals and rotation axes and flattens nested unions) and whose values are finite.
 
+mod formula;
+
 use std::fmt::Write;
+
+pub use formula::call as formula_call;
 
 use crate::ir::arg::{normalised, ArgDecl, ArgShape, Rule};
 use crate::ir::fractal::{FractalArgValue, Setting};
@@ -211,8 +215,12 @@ fn fractal(f: &Fractal) -> String {
             format!("vec4({}, {}, {}, {})", expr(&c.0[0]), expr(&c.0[1]), expr(&c.0[2]), expr(&c.0[3]))
         }
         FractalArgValue::Levels => f.iterations_or_default().to_string(),
+        FractalArgValue::Formula(_) => String::new(),
     };
-    let mut s = format!("{}({arg})", f.name());
+    let mut s = match f.formula() {
+        Some(formula) => formula::call(formula),
+        None => format!("{}({arg})", f.name()),
+    };
     if let (Some(n), false) = (f.iterations, f.arg == FractalArgValue::Levels) {
         let _ = write!(s, ".iterations({n})");
     }
