@@ -20,6 +20,7 @@ pub mod mesh;
 pub mod output;
 pub mod package;
 pub mod quality;
+pub mod step_factors;
 pub mod text;
 pub mod truth;
 pub mod viewer;

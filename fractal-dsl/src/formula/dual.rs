@@ -56,6 +56,8 @@ impl<F: Num> Sub for Dual<F> {
 }
 impl<F: Num> Mul for Dual<F> {
     type Output = Dual<F>;
+    /// The product rule.
+    #[allow(clippy::suspicious_arithmetic_impl)]
     #[inline(always)]
     fn mul(self, o: Self) -> Self {
         Dual { v: self.v * o.v, d: [0, 1, 2].map(|i| self.d[i] * o.v + self.v * o.d[i]) }
@@ -63,6 +65,8 @@ impl<F: Num> Mul for Dual<F> {
 }
 impl<F: Num> Div for Dual<F> {
     type Output = Dual<F>;
+    /// The quotient rule.
+    #[allow(clippy::suspicious_arithmetic_impl)]
     #[inline(always)]
     fn div(self, o: Self) -> Self {
         let inv = F::lit(1.0) / o.v;

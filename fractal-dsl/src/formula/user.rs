@@ -3,10 +3,11 @@
 //! formula. The estimate's derivative is the orbit run in [`Dual`] numbers, so it is derived, never written: the
 //! kernels trace it like any other formula.
 //!
-//! Every operation has one defined result on every backend: `sqrt`, `ln`, `acos`, `asin` and a `pow` of a
-//! non-integer exponent read their argument clamped into their domain, a `pow` of a small integer exponent is
-//! multiplied out (defined for negative bases), and an orbit keeps its last iterate whose length and derivative are
-//! finite (below [`FINITE`]), stopping there as if escaped. So a NaN or an infinity never reaches an estimate.
+//! Every operation has one defined result on every backend: `sqrt`, `ln`, `acos`, `asin`, `exp` and a `pow` of a
+//! non-integer exponent read their argument clamped into their domain, a division divides by at least 10⁻³⁰ in
+//! magnitude (`x / 0` is x·10³⁰, `0 / 0` is 0), a `pow` of a small integer exponent is multiplied out (defined for
+//! negative bases), and an orbit keeps its last iterate whose length and derivative are finite (below [`FINITE`]),
+//! stopping there as if escaped. So a NaN or an infinity never reaches an estimate.
 
 use super::common::{DR_MAX, TINY};
 use super::dual::Dual;
@@ -20,6 +21,8 @@ pub const FINITE: f64 = 1e30;
 /// The step factor of a formula no one has measured: half the estimate (`fractal accuracy --estimators SCENE`
 /// measures one, and `.step_factor(k)` sets it).
 pub const UNMEASURED_STEP_FACTOR: f64 = 0.5;
+/// Largest argument `exp` takes: e^80 ≈ 5.5·10³⁴ stays finite in f32.
+const EXP_MAX: f64 = 80.0;
 /// Largest integer exponent `pow` multiplies out.
 const MULTIPLIED_POW: f64 = 16.0;
 
@@ -67,6 +70,14 @@ impl<F: Num> Value<F> {
         let (c, _) = self.comps();
         v3(c[0], c[1], c[2])
     }
+}
+
+/// A divisor at least [`TINY`] in magnitude (its sign kept, +TINY for 0): a formula's x / 0 is x·10³⁰ and 0 / 0 is
+/// 0 on every backend, where IEEE division would give infinities and NaNs that fast-math kernels do not keep.
+#[inline(always)]
+fn away_from_zero<F: Num>(y: F) -> F {
+    let tiny = F::lit(TINY);
+    select(lt(abs(y), tiny), select(lt(y, F::lit(0.0)), -tiny, tiny), y)
 }
 
 /// `f` per component of `a` and `b`, a number standing for every component of the other.
@@ -175,7 +186,7 @@ impl<F: Num> Run<'_, F> {
                     BinOp::Add => zip(a, b, |x, y| x + y),
                     BinOp::Sub => zip(a, b, |x, y| x - y),
                     BinOp::Mul => zip(a, b, |x, y| x * y),
-                    BinOp::Div => zip(a, b, |x, y| x / y),
+                    BinOp::Div => zip(a, b, |x, y| x / away_from_zero(y)),
                 }
             }
             FExpr::Call(f, args) => self.call(*f, args),
@@ -248,7 +259,7 @@ impl<F: Num> Run<'_, F> {
             FFunc::Sqrt => each(arg(0), |x| sqrt(max(x, zero))),
             FFunc::Sin => each(arg(0), sin),
             FFunc::Cos => each(arg(0), cos),
-            FFunc::Tan => each(arg(0), |x| sin(x) / cos(x)),
+            FFunc::Tan => each(arg(0), |x| sin(x) / away_from_zero(cos(x))),
             FFunc::Asin => each(arg(0), |x| {
                 let x = clamp(x, -one, one);
                 atan2(x, sqrt(max(one - x * x, zero)))
@@ -256,7 +267,7 @@ impl<F: Num> Run<'_, F> {
             FFunc::Acos => each(arg(0), |x| acos(clamp(x, -one, one))),
             FFunc::Atan => each(arg(0), |x| atan2(x, one)),
             FFunc::Atan2 => zip(arg(0), arg(1), atan2),
-            FFunc::Exp => each(arg(0), |x| exp2(x * F::lit(core::f64::consts::LOG2_E))),
+            FFunc::Exp => each(arg(0), |x| exp2(min(x, F::lit(EXP_MAX)) * F::lit(core::f64::consts::LOG2_E))),
             FFunc::Ln => each(arg(0), |x| ln(max(x, F::lit(TINY)))),
             FFunc::Pow => {
                 let literal = self.literal(&args[1]);

@@ -85,6 +85,9 @@ pub enum CallArg {
     Count(u32),
 }
 
+/// A fractal's leaf function with its arguments after the point.
+pub type LeafCallOf = (Leaf, Vec<CallArg>);
+
 /// What a fractal family is, declared once.
 pub struct FractalDecl {
     pub name: &'static str,
@@ -96,7 +99,7 @@ pub struct FractalDecl {
     pub settings: &'static [(Setting, f64)],
     /// The leaf function and its arguments after the point; `None` for a formula written in the scene language,
     /// which runs as [`crate::formula::user`] runs it.
-    pub call: fn(&Fractal) -> Option<(Leaf, Vec<CallArg>)>,
+    pub call: fn(&Fractal) -> Option<LeafCallOf>,
     /// Factor on the estimate so a step never overshoots the surface (measured; see `crate::vocab::fractals`).
     pub step_factor: fn(&Fractal) -> f64,
     /// A conservative bound; `None` when no bound is known for the values' ranges.
@@ -256,7 +259,7 @@ impl Fractal {
         self.step_factor.unwrap_or_else(|| (self.kind.0.step_factor)(self))
     }
     /// The leaf function and its arguments after the point; `None` for a formula.
-    pub fn call(&self) -> Option<(Leaf, Vec<CallArg>)> {
+    pub fn call(&self) -> Option<LeafCallOf> {
         (self.kind.0.call)(self)
     }
 }

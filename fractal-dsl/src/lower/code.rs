@@ -411,8 +411,13 @@ impl Builder {
     /// Scalar arithmetic with folding (two literals) and identities (x+0, x−0, 0−x, x·1, x/1, x·−1, x·0).
     pub fn bin(&mut self, op: BinOp, a: Val, b: Val) -> Val {
         let (la, lb) = (self.lit_value(a), self.lit_value(b));
+        // A fold that leaves the finite numbers (1/0, a formula's overflow) stays an operation: no language spells
+        // an infinite literal alike, and the device computes it as it computes any other.
         if let (Some(x), Some(y)) = (la, lb) {
-            return self.lit(op.apply(x, y));
+            let v = op.apply(x, y);
+            if v.is_finite() {
+                return self.lit(v);
+            }
         }
         match (op, la, lb) {
             (BinOp::Add, Some(0.0), _) => return b,
@@ -430,7 +435,10 @@ impl Builder {
 
     pub fn math(&mut self, f: MathFn, args: Vec<Val>) -> Val {
         if let Some(lits) = args.iter().map(|a| self.lit_value(*a)).collect::<Option<Vec<f64>>>() {
-            return self.lit(f.fold(&lits));
+            let v = f.fold(&lits);
+            if v.is_finite() {
+                return self.lit(v);
+            }
         }
         if matches!(f, MathFn::Min | MathFn::Max) && args[0] == args[1] {
             return args[0];

@@ -20,7 +20,8 @@ pub mod families {
     use crate::formula::Leaf;
     use crate::geom::{Aabb, Interval};
     use crate::ir::fractal::{
-        CallArg, FractalArg, FractalArgShape, FractalDecl, FractalRule, Iterations, Membership, Setting, MAX_ITERATIONS,
+        CallArg, FractalArg, FractalArgShape, FractalDecl, FractalRule, Iterations, LeafCallOf, Membership, Setting,
+        MAX_ITERATIONS,
     };
     use crate::ir::prim::PrimBound;
     use crate::ir::Fractal;
@@ -264,7 +265,7 @@ pub mod families {
         name: &'static str,
         doc: &'static str,
         what: &'static str,
-        call: fn(&Fractal) -> Option<(Leaf, Vec<CallArg>)>,
+        call: fn(&Fractal) -> Option<LeafCallOf>,
         leaves: &'static [(Leaf, Leaf)],
     ) -> FractalDecl {
         FractalDecl {

@@ -56,7 +56,10 @@ pub fn accuracy(args: &AccuracyArgs, library: &SceneLibrary) -> Result<(), CliEr
         prepare_output(&out)?;
     }
     if args.estimators {
-        let _ = estimator_study(args.estimator_samples as usize);
+        match &args.scene {
+            Some(name) => scene_estimator_study(name, library, args.estimator_samples as usize)?,
+            None => drop(estimator_study(args.estimator_samples as usize)),
+        }
         return Ok(());
     }
     let names: Vec<String> = match (&args.scene, args.report) {
@@ -321,7 +324,71 @@ fn mask_moved(a: impl IntoIterator<Item = bool>, b: &Truth) -> f64 {
 }
 
 /// Every studied fractal's estimate against its true distance: printed, and returned as a Markdown section.
+/// The estimator study of the fractals of one scene: the table, and for each formula written in the scene language
+/// the step factor its ratios ask for, recorded for later loads of the formula ([`crate::step_factors`]).
+fn scene_estimator_study(name: &str, library: &SceneLibrary, samples: usize) -> Result<(), CliError> {
+    let loaded = LoadedScene::load(name, library)?;
+    let mut fractals = Vec::new();
+    collect_fractals(&loaded.scene.root, &mut fractals);
+    if fractals.is_empty() {
+        return Err(CliError::usage(format!("{name} has no fractal to study")));
+    }
+    let many = fractals.len() > 1;
+    let named: Vec<(String, fractal_dsl::Fractal)> = fractals
+        .into_iter()
+        .enumerate()
+        .map(|(i, f)| {
+            let number = if many { format!(" #{}", i + 1) } else { String::new() };
+            (format!("{}{number}: {}", loaded.name, f.name()), f)
+        })
+        .collect();
+    let mut worst: Vec<(usize, f64)> = Vec::new();
+    let _ = estimator_table(&named, samples, &mut |i, row| worst.push((i, row.p999)));
+    let out = &mut std::io::stdout().lock();
+    for (i, (short, fractal)) in named.iter().enumerate() {
+        let measured = crate::step_factors::from_ratios(worst.iter().filter(|(j, _)| *j == i).map(|(_, r)| *r));
+        let Some(factor) = measured else {
+            let _ = writeln!(out, "{short}: no point near the set was found; no step factor measured");
+            continue;
+        };
+        let _ =
+            writeln!(out, "{short}: measured step factor {factor} (1 / the largest p99.9 ratio, rounded down to 0.05)");
+        if let Some(formula) = fractal.formula() {
+            match crate::step_factors::record(formula, factor) {
+                Ok(path) => {
+                    let _ = writeln!(
+                        out,
+                        "  recorded in {}: loads of this formula without .step_factor(k) use it",
+                        path.display()
+                    );
+                }
+                Err(e) => eprintln!("fractal: {e}"),
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The fractals of a tree, each as written (its own step factor, none of the transforms above it).
+fn collect_fractals(node: &fractal_dsl::Node, out: &mut Vec<fractal_dsl::Fractal>) {
+    if let fractal_dsl::Node::Fractal(f) = node {
+        out.push((**f).clone());
+    }
+    for c in node.children() {
+        collect_fractals(c, out);
+    }
+}
+
 fn estimator_study(samples: usize) -> String {
+    estimator_table(&truth::estimate::studied(), samples, &mut |_, _| {})
+}
+
+/// Studies each fractal and prints the table; returns it as Markdown. `each` sees every row with its fractal's index.
+fn estimator_table(
+    fractals: &[(String, fractal_dsl::Fractal)],
+    samples: usize,
+    each: &mut dyn FnMut(usize, &truth::estimate::RatioStudy),
+) -> String {
     let started = Instant::now();
     let out = &mut std::io::stdout().lock();
     let mut md = format!(
@@ -353,8 +420,9 @@ fn estimator_study(samples: usize) -> String {
     let headers =
         ["fractal", "region", "factor", "points", "median", "p99.9", "max", ">1 %", "unsafe %", "unsafe below"];
     let _ = writeln!(out, "{}", aligned(&headers));
-    for (name, fractal) in truth::estimate::studied() {
-        for row in truth::estimate::study(&name, fractal, samples, CONVERGED_FACTOR, 0x5eed) {
+    for (i, (name, fractal)) in fractals.iter().enumerate() {
+        for row in truth::estimate::study(name, fractal.clone(), samples, CONVERGED_FACTOR, 0x5eed) {
+            each(i, &row);
             let cells = [
                 format!("{:.2}", row.step_factor),
                 row.samples.to_string(),

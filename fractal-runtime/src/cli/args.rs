@@ -313,8 +313,9 @@ pub struct AccuracyArgs {
     /// Write a time-against-error plot of each scene, SCENE.svg, into this folder
     #[arg(long, value_name = "DIR")]
     pub plot: Option<PathBuf>,
-    /// Measure each fractal family's distance estimate against the true distance instead (also part of --report)
-    #[arg(long, conflicts_with = "scene")]
+    /// Measure each fractal family's distance estimate against the true distance instead (also part of --report);
+    /// with a scene, its own fractals, recording the step factor each formula written in the scene language measures
+    #[arg(long)]
     pub estimators: bool,
     /// Points per family and region for the estimator study
     #[arg(long, value_name = "N", default_value_t = 300, value_parser = clap::value_parser!(u32).range(1..=100_000))]

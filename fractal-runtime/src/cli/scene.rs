@@ -80,8 +80,11 @@ impl<'a> LoadedScene<'a> {
         }
         let text = fractal_dsl::parse::read_source(path)
             .map_err(|e| CliError::failure(format!("cannot read scene file {}: {e}", path.display())))?;
-        let scene =
+        let mut scene =
             fractal_dsl::parse::parse_str(&text).map_err(|e| CliError::failure(format!("{}:{e}", path.display())))?;
+        for note in crate::step_factors::apply_recorded(&mut scene, arg) {
+            eprintln!("fractal: {note}");
+        }
         let invalid = |e: fractal_dsl::validate::InvalidScene| CliError::failure(format!("{}: {e}", path.display()));
         let kernels = fractal_dsl::compile(&scene).map_err(invalid)?;
         let interpreter = Interpreter::new(&scene).map_err(invalid)?;

@@ -223,7 +223,16 @@ fn normalize(a: [f64; 3]) -> [f64; 3] {
 pub fn study(name: &str, fractal: Fractal, samples: usize, iteration_factor: u32, seed: u64) -> Vec<RatioStudy> {
     let step_factor = fractal.step_factor_or_default();
     let scene: Scene = scene(fractal);
-    let Some(aabb) = bound(&fold_node(&scene.root)) else { return Vec::new() };
+    // A fold written in the scene language has no bound of its own: its points are drawn around its bailout.
+    let around_bailout = || {
+        let b = fractal_dsl::analyse::interval::range(&fractal_dsl::Fractal::bailout_or_default(match &scene.root {
+            fractal_dsl::Node::Fractal(f) => f,
+            _ => return None,
+        }))
+        .hi;
+        Some(fractal_dsl::geom::Aabb::cube((2.0 * b).max(2.0)))
+    };
+    let Some(aabb) = bound(&fold_node(&scene.root)).or_else(around_bailout) else { return Vec::new() };
     let membership = SceneMembership::new(&crate::quality::with_iterations_scaled(&scene, iteration_factor));
     let estimate = Interpreter::new(&scene).expect("the studied fractals are valid");
     let probe = Probe { membership: &membership, estimate: &estimate };

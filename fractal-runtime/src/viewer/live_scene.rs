@@ -61,7 +61,10 @@ impl LiveScene {
 
     /// Parses and compiles scene text; errors read `file:line:column: message`.
     pub fn from_text(name: String, path: &Path, text: &str) -> Result<LiveScene, String> {
-        let scene = fractal_dsl::parse::parse_str(text).map_err(|e| format!("{}:{e}", path.display()))?;
+        let mut scene = fractal_dsl::parse::parse_str(text).map_err(|e| format!("{}:{e}", path.display()))?;
+        for note in crate::step_factors::apply_recorded(&mut scene, &path.display().to_string()) {
+            eprintln!("fractal: {note}");
+        }
         LiveScene::from_scene(name, scene).map_err(|e| format!("{}: {e}", path.display()))
     }
 

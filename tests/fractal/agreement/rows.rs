@@ -65,6 +65,62 @@ pub fn vocabulary() -> Vec<Row> {
         row!("octahedral_kifs", Kifs, { octahedral_kifs(2.0) }).within(1.2),
         row!("icosahedral_kifs angle, iterations", Kifs, { icosahedral_kifs(2.618).angle(0.3).iterations(8) })
             .within(1.2),
+        // ---- formulas written in the scene language (the estimate's derivative derived: `formula::user`). The bulb
+        // formulas are compared off their pole axis: there sin(8θ) at θ = π is f32's rounding of 8π in f32 and 1e-15
+        // in f64, and the formula as written (unlike the built-in leaf, `polar_trig_from_the_nearer_pole`) leaves
+        // the axis in one precision only. The built-in Mandelbulb rows hold the pole-axis cases.
+        row!("escape_time bulb (trig)", Mandelbulb, {
+            escape_time(|z, c| {
+                let r = length(z);
+                let theta = acos(z.z / r) * 8.0;
+                let phi = atan2(z.y, z.x) * 8.0;
+                pow(r, 8.0) * vec3(sin(theta) * cos(phi), sin(phi) * sin(theta), cos(theta)) + c
+            })
+            .iterations(8)
+        })
+        .around([0.031, 0.047, 0.013], 1.2),
+        row!("escape_time quaternion julia, param, time, if", Julia, {
+            escape_time(|z, c| {
+                let q = qsqr(vec4(z, 0.0)) + vec4(-0.2, 0.6 + 0.1 * sin(t), 0.2, 0.0);
+                if q.w < param("w", 1.0, 0.0..2.0) {
+                    q.xyz
+                } else {
+                    q.yxz
+                }
+            })
+            .iterations(10)
+            .bailout(4.0)
+        })
+        .within(1.5)
+        .at_time(0.5),
+        row!("fold mandelbox (derived derivative)", Mandelbox, {
+            fold(|z, c| sphere_fold(box_fold(z, 1.0), 0.5, 1.0) * 2.0 + c).iterations(10).bailout(6.0)
+        })
+        .within(6.5),
+        row!("fold kifs (own scale)", Kifs, {
+            fold(|z| {
+                let a = abs(z);
+                let a = if a.x < a.y { a.yxz } else { a };
+                let a = if a.x < a.z { a.zyx } else { a };
+                let a = if a.y < a.z { a.xzy } else { a };
+                (a * 2.0 - vec3(1.0, 0.0, 0.0), 2.0)
+            })
+            .iterations(10)
+        })
+        .within(1.2),
+        row!("hybrid bulb and box fold", Mandelbulb, {
+            hybrid(
+                |z, c| {
+                    let r = length(z);
+                    let theta = atan2(length(z.xy), z.z) * 4.0;
+                    let phi = atan2(z.y, z.x) * 4.0;
+                    pow(r, 4.0) * vec3(sin(theta) * cos(phi), sin(phi) * sin(theta), cos(theta)) + c
+                },
+                |z, c| box_fold(z, 1.0) * 1.5 + c,
+            )
+            .iterations(8)
+        })
+        .around([0.031, 0.047, 0.013], 1.2),
         // ---- CSG (each child its own material, so the material rules are compared too)
         row!("union", Exact, {
             union(
@@ -291,6 +347,17 @@ pub fn hard_cases() -> Vec<Row> {
             .within(1.5)
             .with_points(&bounded),
         row!("hard: mandelbulb(32) bailout 256", Mandelbulb, { mandelbulb(32).bailout(256.0) })
+            .within(1.5)
+            .with_points(&bounded),
+        // Formulas that are NaN or infinite somewhere, never escape, or overflow: each evaluator stops the orbit at
+        // its last finite iterate alike.
+        row!("hard: formula infinite or 0/0 at every point", Mandelbulb, { escape_time(|z, c| z / (z.x * 0.0) + c) })
+            .within(1.5)
+            .with_points(&pole),
+        row!("hard: formula that never escapes", Mandelbulb, { escape_time(|z, c| z * 0.5).iterations(24) })
+            .within(1.5)
+            .with_points(&bounded),
+        row!("hard: formula past f32 in one step", Mandelbulb, { escape_time(|z, c| z * 1e30 + c).bailout(1e6) })
             .within(1.5)
             .with_points(&bounded),
         row!("hard: menger(6) on k/3 planes and 100 away", Menger, { menger(6) }).within(1.5).with_points(&planes),
