@@ -1,7 +1,7 @@
 //! Step factors of formulas written in the scene language, measured and remembered. A formula's estimate is derived
 //! by the compiler, but how far a march may trust it is measured: `fractal accuracy --estimators SCENE` runs the
-//! estimator study on the scene's fractals (`truth::estimate`), takes 1 / the largest p99.9 ratio of estimate to true
-//! distance, rounded down to 0.05, and records it here, keyed by the formula's canonical text. A scene file loaded
+//! estimator study on the scene's fractals (`truth::estimate`), takes 1 / the p99.9 ratio of estimate to true
+//! distance at points anywhere near the set, rounded down to 0.05, and records it here, keyed by the formula's canonical text. A scene file loaded
 //! later whose formula has no `.step_factor(k)` steps by the recorded factor, and says so; a formula with none steps by
 //! half its estimate ([`UNMEASURED_STEP_FACTOR`]) with a warning naming the command.
 //!
@@ -62,8 +62,8 @@ pub fn record(formula: &Formula, factor: f64) -> Result<PathBuf, String> {
     Ok(path)
 }
 
-/// The step factor the study's ratios ask for: 1 / the largest p99.9 ratio, rounded down to 0.05, within the range a
-/// scene may set.
+/// The step factor the study's ratios ask for: 1 / the largest of the p99.9 ratios given, rounded down to 0.05, within
+/// the range a scene may set.
 pub fn from_ratios(p999: impl IntoIterator<Item = f64>) -> Option<f64> {
     let worst = p999.into_iter().filter(|r| r.is_finite()).fold(f64::NAN, f64::max);
     if worst.is_nan() || worst <= 0.0 {

@@ -50,6 +50,26 @@ library! {
     SIERPINSKI_TETRAHEDRON = "sierpinski_tetrahedron";
     /// A Menger sponge and a Sierpinski tetrahedron side by side.
     SIERPINSKI_COLLECTION = "sierpinski_collection";
+    /// The quadratic White–Nylander bulb, a formula written in the scene language (triplex z² + c).
+    QUADRATIC_BULB = "quadratic_bulb";
+    /// A Julia set of the quadratic White–Nylander map, written as a formula.
+    QUADRATIC_JULIA_BULB = "quadratic_julia_bulb";
+    /// The cosine Mandelbulb (latitude from the equator), written as a formula.
+    COSINE_BULB = "cosine_bulb";
+    /// The Mandelbar bulb, a 3D tricorn (the azimuth turned backwards), written as a formula.
+    MANDELBAR_BULB = "mandelbar_bulb";
+    /// The quaternion Mandelbrot set, written as a formula with quaternion products.
+    QUATERNION_MANDELBROT = "quaternion_mandelbrot";
+    /// The Tetrabrot, z² + c in the bicomplex numbers, written as a formula with complex products.
+    TETRABROT = "tetrabrot";
+    /// Kali's box, a fold written in the scene language.
+    KALIBOX = "kalibox";
+    /// The Amazing Surf, a Mandelbox folding x and y alone, written as a fold.
+    AMAZING_SURF = "amazing_surf";
+    /// The Menger sponge as an IFS with smooth folds, written as a fold.
+    MENGER_SMOOTH = "menger_smooth";
+    /// A hybrid of the power-8 bulb and a Mandelbox step, two to one.
+    BULB_BOX_HYBRID = "bulb_box_hybrid";
     /// The 2D Mandelbrot set as the material of a plane.
     MANDELBROT = "mandelbrot";
     /// A camera path zooming into the Mandelbrot set to the f32 limit.

@@ -98,6 +98,22 @@ const HOSTILE: &[&str] = &[
     "fn",
     "self",
     "_",
+    // formulas: hostile maps, and the language's own tokens
+    "escape_time(|z, c| z / (z.x - z.x) + c)",
+    "escape_time(|z, c| z * 0.5).iterations(64)",
+    "escape_time(|z, c| pow(z, 1e9) + c).bailout(1e6)",
+    "fold(|z| (z * 1e30, 0.0))",
+    "fold(|z, c| { let k = 1.0 / dot(z, z); (z * k, ln(k)) })",
+    "hybrid(|z| z, |z, c| c)",
+    "escape_time(|z, c| if z.x < 0.0 { z.zyx } else { -z } + c)",
+    "|z, c|",
+    "&&",
+    "||",
+    "<=",
+    "else",
+    "vec4(z, 0.0)",
+    "qsqr",
+    "z.wzyx",
 ];
 
 struct Rng(u64);

@@ -8,6 +8,7 @@
 mod common;
 pub mod dual;
 mod estimate;
+pub mod lang;
 pub mod leaf;
 pub mod mandelbrot;
 mod membership;

@@ -11,8 +11,7 @@
 
 use super::common::{DR_MAX, TINY};
 use super::dual::Dual;
-use crate::ir::formula::{FCmp, FExpr, FFunc, FLogic, Formula, FormulaKind, FormulaMap};
-use crate::ir::BinOp;
+use super::lang::{FBin, FCmp, FExpr, FFunc, FLogic, Formula, FormulaKind, FormulaMap};
 use crate::number::math::*;
 use crate::number::{Mask, Num};
 
@@ -183,10 +182,10 @@ impl<F: Num> Run<'_, F> {
             FExpr::Bin(op, a, b) => {
                 let (a, b) = (self.eval(a), self.eval(b));
                 match op {
-                    BinOp::Add => zip(a, b, |x, y| x + y),
-                    BinOp::Sub => zip(a, b, |x, y| x - y),
-                    BinOp::Mul => zip(a, b, |x, y| x * y),
-                    BinOp::Div => zip(a, b, |x, y| x / away_from_zero(y)),
+                    FBin::Add => zip(a, b, |x, y| x + y),
+                    FBin::Sub => zip(a, b, |x, y| x - y),
+                    FBin::Mul => zip(a, b, |x, y| x * y),
+                    FBin::Div => zip(a, b, |x, y| x / away_from_zero(y)),
                 }
             }
             FExpr::Call(f, args) => self.call(*f, args),

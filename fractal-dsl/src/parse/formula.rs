@@ -6,8 +6,8 @@ use syn::spanned::Spanned;
 
 use super::build::{error, Lower, MAX_EVAL_DEPTH};
 use super::names::Value;
-use crate::ir::formula::{FCmp, FExpr, FFunc, FLogic, FTy, FormulaMap, Swizzle, MAX_FORMULA_NODES, MAX_LETS};
-use crate::ir::{BinOp, Expr};
+use crate::ir::formula::{FBin, FCmp, FExpr, FFunc, FLogic, FTy, FormulaMap, Swizzle, MAX_FORMULA_NODES, MAX_LETS};
+use crate::ir::Expr;
 
 type Typed = (FExpr<Expr>, FTy);
 
@@ -262,10 +262,10 @@ impl Lower {
         let left = self.typed(&b.left, scope, depth)?;
         let right = self.typed(&b.right, scope, depth)?;
         let arith = match b.op {
-            syn::BinOp::Add(_) => Some(BinOp::Add),
-            syn::BinOp::Sub(_) => Some(BinOp::Sub),
-            syn::BinOp::Mul(_) => Some(BinOp::Mul),
-            syn::BinOp::Div(_) => Some(BinOp::Div),
+            syn::BinOp::Add(_) => Some(FBin::Add),
+            syn::BinOp::Sub(_) => Some(FBin::Sub),
+            syn::BinOp::Mul(_) => Some(FBin::Mul),
+            syn::BinOp::Div(_) => Some(FBin::Div),
             _ => None,
         };
         if let Some(op) = arith {
@@ -273,7 +273,8 @@ impl Lower {
                 error(
                     b,
                     format!(
-                        "`{op}` applies to numbers and vectors of one size, found {} and {}",
+                        "`{}` applies to numbers and vectors of one size, found {} and {}",
+                        op.symbol(),
                         left.1.name(),
                         right.1.name()
                     ),

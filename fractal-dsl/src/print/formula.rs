@@ -2,7 +2,7 @@
 //! with its name, operands that are not single terms in parentheses, scene numbers as [`super::expr`] writes them.
 
 use crate::ir::formula::{FExpr, FLogic, Formula, FormulaKind, FormulaMap};
-use crate::ir::{BinOp, Expr};
+use crate::ir::Expr;
 
 /// The call that makes the fractal: `escape_time(|z, c| ..)`, `hybrid(|z, c| .., |z, c| ..)` or `fold(|z, c| ..)`.
 pub fn call(formula: &Formula) -> String {
@@ -51,20 +51,12 @@ impl Names<'_> {
 
     fn expr(&self, e: &FExpr<Expr>) -> String {
         match e {
-            FExpr::Num(n) => super::expr(n),
+            FExpr::Num(n) => super::number::expr(n),
             FExpr::Arg(i) => self.map.params.get(*i as usize).cloned().unwrap_or_else(|| "z".into()),
             FExpr::Let(i) => self.map.lets.get(*i as usize).map_or_else(|| "z".into(), |(n, _)| n.clone()),
             FExpr::Neg(a) => format!("-{}", self.operand(a)),
             FExpr::Not(a) => format!("!{}", self.operand(a)),
-            FExpr::Bin(op, a, b) => {
-                let symbol = match op {
-                    BinOp::Add => "+",
-                    BinOp::Sub => "-",
-                    BinOp::Mul => "*",
-                    BinOp::Div => "/",
-                };
-                format!("{} {symbol} {}", self.operand(a), self.operand(b))
-            }
+            FExpr::Bin(op, a, b) => format!("{} {} {}", self.operand(a), op.symbol(), self.operand(b)),
             FExpr::Call(f, args) => {
                 let args: Vec<String> = args.iter().map(|a| self.expr(a)).collect();
                 format!("{}({})", f.name(), args.join(", "))

@@ -153,6 +153,9 @@ pub fn check_fractal(f: &Fractal) -> Vec<Problem> {
         (FractalRule::Finite, _) => finite(o, arg.name, arg.what, &f.arg_exprs().iter().collect::<Vec<_>>()),
         _ => {}
     }
+    if let Some(formula) = f.formula() {
+        formula_rules(o, name, formula);
+    }
     if let Some(k) = f.step_factor {
         let (lo, hi) = STEP_FACTOR_RANGE;
         constant(o, "factor", &format!("{name} step_factor"), k, within(lo, false, hi, true));
@@ -170,6 +173,11 @@ pub fn check_fractal(f: &Fractal) -> Vec<Problem> {
         if f.applies(setting) {
             let what = format!("{name} {method}");
             match setting {
+                // A formula's escape-time estimate 0.5·r·ln r/‖J‖ is positive past a bailout of at least 1.
+                Setting::Bailout if f.formula().is_some() => {
+                    let (lo, hi) = crate::vocab::fractals::families::FORMULA_BAILOUT;
+                    number(o, method, &what, value, ge_le(lo, hi))
+                }
                 Setting::MinRadius => number(o, method, &what, value, within(0.0, false, 1.0, false)),
                 Setting::Bailout | Setting::FoldLimit => number(o, method, &what, value, gt(0.0)),
                 // The Mandelbulb's range: below 2 the map folds the sphere onto itself, above 64 f32 overflows.
@@ -188,6 +196,22 @@ pub fn check_fractal(f: &Fractal) -> Vec<Problem> {
         }
     }
     out
+}
+
+/// The size rules of a formula written in the scene language (the parser checks its types).
+fn formula_rules(o: &mut Vec<Problem>, name: &str, formula: &crate::ir::formula::Formula) {
+    use crate::ir::formula::{FormulaKind, MAX_FORMULA_NODES, MAX_HYBRID_MAPS};
+    let maps = formula.maps.len();
+    if maps == 0 {
+        o.push(Problem::new("map", format!("{name} needs a map: |z, c| ..")));
+    } else if formula.kind == FormulaKind::Fold && maps > 1 {
+        o.push(Problem::new("map", "a fold has one map: write its steps in one closure".to_string()));
+    } else if maps > MAX_HYBRID_MAPS {
+        o.push(Problem::new("maps", format!("a hybrid takes at most {MAX_HYBRID_MAPS} maps, found {maps}")));
+    }
+    if formula.size() > MAX_FORMULA_NODES {
+        o.push(Problem::new("map", format!("{name}'s formula has more than {MAX_FORMULA_NODES} nodes")));
+    }
 }
 
 /// Checks lo ≤ |value| ≤ hi over the value's whole range ("mandelbox |scale| must be in [1.05, 8]").

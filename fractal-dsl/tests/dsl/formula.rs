@@ -192,3 +192,57 @@ fn hostile_formulas_give_finite_defined_results() {
         assert!(!d64(&interp, [0.0; 3]).is_nan(), "{src} at the origin");
     }
 }
+
+/// The built-in families written as formulas (`scenes/prelude/`) draw the built-in scenes' sets: wherever the
+/// hand-written estimate puts a point clearly outside, the formula's does too, and the two estimates stay within a
+/// small factor of each other (they differ in their derivative: derived against written by hand).
+#[test]
+fn the_prelude_formulas_draw_the_built_in_sets() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join("scenes");
+    let read = |path: std::path::PathBuf| {
+        let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let scene = parse_str(&text).unwrap_or_else(|e| panic!("{}:{e}", path.display()));
+        Interpreter::new(&scene).unwrap().without_bound_guards()
+    };
+    // (prelude file, built-in scene, half the sampled cube, the built-in estimate past which a point is clearly
+    // outside: the Mandelbox's estimate is a small share of its distance everywhere)
+    let pairs = [
+        ("mandelbulb_bench", "mandelbulb_bench", 1.3, 0.065),
+        ("julia", "julia", 1.3, 0.065),
+        ("mandelbox", "mandelbox", 6.0, 0.01),
+        ("menger", "sierpinski_cube", 1.3, 0.065),
+    ];
+    let mut rng = Rng(5);
+    for (prelude, built_in, half, outside) in pairs {
+        let formula = read(root.join("prelude").join(format!("{prelude}.fractal")));
+        // The built-in scene's fractal alone, without its floor or transforms.
+        let hand = match built_in {
+            "julia" => "julia(vec4(-0.2, 0.6, 0.2, 0.0)).iterations(11)",
+            "mandelbox" => "mandelbox(2.0).iterations(14)",
+            "sierpinski_cube" => "menger(5)",
+            _ => "mandelbulb(8).iterations(8)",
+        };
+        let hand = Interpreter::new(&parse_str(hand).unwrap()).unwrap().without_bound_guards();
+        let mut ratios = Vec::new();
+        for _ in 0..3000 {
+            let p = [0, 1, 2].map(|_| (rng.unit() * 2.0 - 1.0) * half);
+            let (f, h) = (d64(&formula, p), d64(&hand, p));
+            assert!(f.is_finite(), "{prelude} at {p:?}");
+            if h > outside {
+                assert!(f > 0.0, "{prelude} at {p:?}: the formula says inside ({f}), the built-in {h} away");
+                ratios.push(f / h);
+            }
+        }
+        assert!(
+            !ratios.is_empty(),
+            "{prelude}: no point clearly outside, e.g. {} at (1, 1, 1), {} at (5.5, 5.5, 5.5)",
+            d64(&hand, [1.0; 3]),
+            d64(&hand, [5.5; 3])
+        );
+        ratios.sort_by(f64::total_cmp);
+        let median = ratios[ratios.len() / 2];
+        // The Mandelbox's hand-written dr multiplies the steps' norms, which only bounds the norm of their product:
+        // the derived Jacobian's norm is that norm, and its estimate about 3.7 times the hand-written one.
+        assert!((0.1..=5.0).contains(&median), "{prelude}: median estimate ratio formula / built-in {median}");
+    }
+}
