@@ -60,16 +60,14 @@ library! {
     MANDELBAR_BULB = "mandelbar_bulb";
     /// The quaternion Mandelbrot set, written as a formula with quaternion products.
     QUATERNION_MANDELBROT = "quaternion_mandelbrot";
-    /// The Tetrabrot, z² + c in the bicomplex numbers, written as a formula with complex products.
-    TETRABROT = "tetrabrot";
+    /// The Bristorbrot, Doug Bristor's quadratic 3D map, written as a formula.
+    BRISTORBROT = "bristorbrot";
     /// Kali's box, a fold written in the scene language.
     KALIBOX = "kalibox";
-    /// The Amazing Surf, a Mandelbox folding x and y alone, written as a fold.
-    AMAZING_SURF = "amazing_surf";
+    /// The Burning Ship bulb, the power-8 map of |z|, written as a formula.
+    BURNING_BULB = "burning_bulb";
     /// The Menger sponge as an IFS with smooth folds, written as a fold.
     MENGER_SMOOTH = "menger_smooth";
-    /// A hybrid of the power-8 bulb and a Mandelbox step, two to one.
-    BULB_BOX_HYBRID = "bulb_box_hybrid";
     /// The 2D Mandelbrot set as the material of a plane.
     MANDELBROT = "mandelbrot";
     /// A camera path zooming into the Mandelbrot set to the f32 limit.
