@@ -109,3 +109,28 @@ fn each_formula(node: &mut Node, f: &mut dyn FnMut(&mut fractal_dsl::Fractal)) {
         Node::Prim(_) => {}
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// 1 / the worst ratio, rounded down to 0.05 and kept within the range a scene may set; no finite ratio, none.
+    #[test]
+    fn the_factor_follows_the_worst_ratio() {
+        assert_eq!(from_ratios([0.659, 0.5]), Some(1.5));
+        assert_eq!(from_ratios([1.339]), Some(0.7));
+        assert_eq!(from_ratios([218.0]), Some(0.05));
+        assert_eq!(from_ratios([0.1]), Some(STEP_FACTOR_RANGE.1));
+        assert_eq!(from_ratios([f64::NAN]), None);
+        assert_eq!(from_ratios([]), None);
+    }
+
+    /// A scene's formula without a factor gets a warning naming the command when nothing is recorded for it.
+    #[test]
+    fn an_unmeasured_formula_is_warned_about() {
+        let mut scene = fractal_dsl::parse::parse_str("escape_time(|z, c| z * z.x + c * 0.987654321)").unwrap();
+        let notes = apply_recorded(&mut scene, "my.fractal");
+        assert_eq!(notes.len(), 1);
+        assert!(notes[0].contains("fractal accuracy --estimators my.fractal"), "{}", notes[0]);
+    }
+}
