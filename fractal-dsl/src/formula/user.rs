@@ -481,8 +481,7 @@ pub fn estimate<F: Num>(ready: &Ready, nums: &[F], p: V3<F>, bailout: F, signed:
 #[inline]
 pub fn membership<F: Num>(ready: &Ready, nums: &[F], p: V3<F>, bailout: F) -> F {
     let escape = escape_radius(bailout);
-    let plain = Ready { formula: without_scale(&ready.formula), ..ready.clone() };
-    let r = orbit_plain(&plain, nums, p, escape);
+    let r = orbit_plain(ready, nums, p, escape);
     let (inside, apart) = match ready.formula.kind {
         FormulaKind::EscapeTime => (le(r, escape), length(p) - escape),
         FormulaKind::Fold => (le(r, bailout), F::lit(0.0)),
@@ -490,13 +489,7 @@ pub fn membership<F: Num>(ready: &Ready, nums: &[F], p: V3<F>, bailout: F) -> F 
     select(inside, F::lit(-1.0), max(apart, F::lit(TINY)))
 }
 
-/// The formula with no map's own scale: the orbit's membership needs no derivative.
-fn without_scale(f: &Formula<u16>) -> Formula<u16> {
-    let maps = f.maps.iter().map(|m| FormulaMap { scale: None, ..m.clone() }).collect();
-    Formula { kind: f.kind, maps }
-}
-
-/// The orbit in `F` alone (no derivative), as [`orbit`] takes it; returns the last |z|.
+/// The orbit in `F` alone (no derivative, a map's own scale unread), as [`orbit`] takes it; returns the last |z|.
 #[inline]
 fn orbit_plain<F: Num>(ready: &Ready, nums: &[F], p: V3<F>, escape: F) -> F {
     let formula = &ready.formula;
