@@ -147,7 +147,7 @@ impl Truth {
     pub fn compute(scene: &Scene, frame: &Frame, settings: TruthSettings) -> Result<Truth, RenderError> {
         let scene = with_iterations_scaled(scene, settings.iteration_factor);
         let mut truth = Truth::unfilled(&scene, frame, settings)?;
-        let shading = Interpreter::new(&scene)?;
+        let shading = fractal_dsl::lower::tape::interpreter(&scene)?;
         let width = frame.width() as usize;
         let mut pixels = vec![
             TruthPixel { t: f64::INFINITY, normal: None, rough: false, colour: [0.0; 3] };

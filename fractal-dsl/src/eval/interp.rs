@@ -32,6 +32,13 @@ impl Interpreter {
         self
     }
 
+    /// The same scene with `f` applied to each fractal written in the scene language (to attach its host code:
+    /// [`crate::lower::tape::attach`]).
+    pub fn with_formula_calls(mut self, f: &mut impl FnMut(&mut crate::eval::plan::FormulaCall)) -> Interpreter {
+        self.plan.formula_calls_mut(f);
+        self
+    }
+
     /// The parameters in slot order.
     pub fn params(&self) -> &[ParamDecl] {
         &self.plan.params

@@ -250,7 +250,7 @@ impl FormulaCall {
         });
         let literals = nums.iter().map(|t| if let Term::Lit(v) = t { Some(*v) } else { None }).collect();
         FormulaCall {
-            ready: Ready { formula: indexed, literals, iterations: f.iterations_or_default() },
+            ready: Ready { formula: indexed, literals, iterations: f.iterations_or_default(), host: None },
             nums,
             bailout: Term::compile(&f.bailout_or_default(), params),
             signed,
@@ -393,6 +393,22 @@ impl Plan {
             params,
             reference,
         }
+    }
+}
+
+impl Plan {
+    /// Calls `f` on every fractal written in the scene language (to compile it for the host, say:
+    /// [`crate::lower::tape`]).
+    pub fn formula_calls_mut(&mut self, f: &mut impl FnMut(&mut FormulaCall)) {
+        fn visit(step: &mut Step, f: &mut impl FnMut(&mut FormulaCall)) {
+            match step {
+                Step::Formula { call, .. } => f(call),
+                Step::Op(op) => op.shapes.iter_mut().for_each(|(s, _)| visit(s, f)),
+                Step::Material(s, _) => visit(s, f),
+                Step::Leaf(_) | Step::Fractal { .. } | Step::Empty => {}
+            }
+        }
+        visit(&mut self.root, f)
     }
 }
 

@@ -288,8 +288,8 @@ impl<N> FormulaMap<N> {
 /// How a formula's orbit becomes a distance estimate and a membership test.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FormulaKind {
-    /// Escape time: the orbit runs while |z| ≤ bailout; the estimate is 0.5·|z|·ln|z| / ‖J‖, J the orbit's
-    /// Jacobian with respect to the point; a point is in the set when its orbit never escapes.
+    /// Escape time: the orbit runs while |z| ≤ bailout; the estimate is 0.5·|z|·ln|z| / |∇|z||, the gradient from
+    /// the orbit's Jacobian with respect to the point; a point is in the set when its orbit never escapes.
     EscapeTime,
     /// A fold (Mandelbox, KIFS): the orbit runs every iteration; the estimate is (|z| − bailout) / ‖J‖ (or the
     /// product of the maps' own scales); a point is in the set when its last iterate lies within the bailout.

@@ -91,7 +91,14 @@ pub trait CallLeaf: Num {
 }
 
 impl CallLeaf for f32 {}
-impl CallLeaf for f64 {}
+/// f64 runs a formula's host code where it has been compiled ([`user::Ready::host`]).
+impl CallLeaf for f64 {
+    #[inline]
+    fn formula(ready: &user::Ready, nums: &[Self], p: V3<Self>, bailout: Self, signed: bool) -> LeafOut<Self> {
+        let host = ready.host.as_ref().and_then(|h| h.estimate(nums, [p.x, p.y, p.z], bailout, signed));
+        LeafOut::Pair(host.unwrap_or_else(|| user::estimate(ready, nums, p, bailout, signed)))
+    }
+}
 
 /// The interpreter's packets call leaves through here (the native evaluator calls its leaves directly, inside its
 /// own AVX2 copy): the leaf's formula runs in an AVX2 copy where the CPU has one. The walker around it stays baseline

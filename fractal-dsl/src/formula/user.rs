@@ -9,6 +9,8 @@
 //! negative bases), and an orbit keeps its last iterate whose length and derivative are finite (below [`FINITE`]),
 //! stopping there as if escaped. So a NaN or an infinity never reaches an estimate.
 
+use std::sync::Arc;
+
 use super::common::{DR_MAX, TINY};
 use super::dual::Dual;
 use super::lang::{FBin, FCmp, FExpr, FFunc, FLogic, Formula, FormulaKind, FormulaMap};
@@ -339,12 +341,30 @@ fn quaternion_product<F: Num>(a: [F; 4], b: [F; 4]) -> [F; 4] {
 }
 
 /// A formula ready to run: its maps with scene numbers as indices into the numbers the caller evaluates.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct Ready {
     pub formula: Formula<u16>,
     /// Which numbers are literals, with their values.
     pub literals: Vec<Option<f64>>,
     pub iterations: u32,
+    /// The formula compiled for the host, where it has been ([`crate::lower::tape`]): what f64 runs instead of
+    /// walking the formula's tree.
+    pub host: Option<Arc<dyn HostCode>>,
+}
+
+/// Two ready formulas are alike when their formulas, numbers and iterations are: host code is compiled from those.
+impl PartialEq for Ready {
+    fn eq(&self, o: &Ready) -> bool {
+        self.formula == o.formula && self.literals == o.literals && self.iterations == o.iterations
+    }
+}
+
+/// A formula compiled for the host in f64: [`membership`] and [`estimate`] with the same arguments, computing what
+/// they compute.
+pub trait HostCode: Send + Sync + std::fmt::Debug {
+    fn membership(&self, nums: &[f64], p: [f64; 3], bailout: f64) -> f64;
+    /// None where the code was compiled for the other `signed`.
+    fn estimate(&self, nums: &[f64], p: [f64; 3], bailout: f64, signed: bool) -> Option<[f64; 2]>;
 }
 
 /// What the orbit carries: z with its Jacobian rows (as dual numbers), and [|z|, the norm of the Jacobian, the orbit
@@ -364,10 +384,10 @@ fn jacobian_norm<F: Num>(z: &[Dual<F>; 3]) -> F {
     sqrt(s)
 }
 
-/// A bound on the Jacobian's largest singular value, the norm the estimate divides by: √λ with λ the least of two
-/// bounds on the largest eigenvalue of JᵀJ, its trace and its largest absolute row sum (Gershgorin). Never below the
-/// singular value, so the estimate stays at or below the one the exact norm gives; exact for a conformal map (JᵀJ a
-/// multiple of I), where the Frobenius norm would read √3 times too much.
+/// A bound on the Jacobian's largest singular value, the norm a fold's estimate divides by: √λ with λ the least of
+/// two bounds on the largest eigenvalue of JᵀJ, its trace and its largest absolute row sum (Gershgorin). Never below
+/// the singular value, so (|z| − bailout) / it stays at or below the estimate the exact norm gives; exact for a
+/// conformal map (JᵀJ a multiple of I), where the Frobenius norm would read √3 times too much.
 #[inline(always)]
 fn spectral_bound<F: Num>(z: &[Dual<F>; 3]) -> F {
     let a = |k: usize, l: usize| z[0].d[k] * z[0].d[l] + z[1].d[k] * z[1].d[l] + z[2].d[k] * z[2].d[l];
@@ -375,6 +395,18 @@ fn spectral_bound<F: Num>(z: &[Dual<F>; 3]) -> F {
     let trace = a00 + a11 + a22;
     let rows = max(max(a00 + abs(a01) + abs(a02), a11 + abs(a01) + abs(a12)), a22 + abs(a02) + abs(a12));
     sqrt(min(trace, rows))
+}
+
+/// |∇|zₙ||, the gradient of the last iterate's length with respect to the point: Jᵀ·zₙ / |zₙ| with J the Jacobian
+/// the orbit carries (rows: the derivatives of z's components). An escape-time estimate divides by it: the potential
+/// G = ln|zₙ| / kⁿ has |∇G| = |∇|zₙ|| / (|zₙ| kⁿ), so 0.5·G / |∇G| is 0.5·|zₙ|·ln|zₙ| / |∇|zₙ|| (Hubbard and Douady's
+/// estimate, in 3D as in the plane). It reads J along zₙ only: a map that stretches space across the orbit's
+/// direction (a bulb's angles) does not shrink the estimate where that stretch does not move the potential.
+#[inline(always)]
+fn radial_gradient<F: Num>(z: &[Dual<F>; 3], r: F) -> F {
+    let g = |k: usize| z[0].v * z[0].d[k] + z[1].v * z[1].d[k] + z[2].v * z[2].d[k];
+    let (g0, g1, g2) = (g(0), g(1), g(2));
+    sqrt(g0 * g0 + g1 * g1 + g2 * g2) / max(r, F::lit(TINY))
 }
 
 /// The orbit of a formula from `p`: every map in turn, one per iteration, up to `ready.iterations`; an escape-time
@@ -463,7 +495,11 @@ fn escape_radius<F: Num>(bailout: F) -> F {
 pub fn estimate<F: Num>(ready: &Ready, nums: &[F], p: V3<F>, bailout: F, signed: bool) -> [F; 2] {
     let escape = escape_radius(bailout);
     let (z, [r, jn, trap, _, _]) = orbit(ready, nums, p, escape);
-    let jn = if ready.formula.own_scale() { jn } else { spectral_bound(&z) };
+    let jn = match ready.formula.kind {
+        _ if ready.formula.own_scale() => jn,
+        FormulaKind::EscapeTime => radial_gradient(&z, r),
+        FormulaKind::Fold => spectral_bound(&z),
+    };
     let jn = max(jn, F::lit(TINY));
     let trap = min(trap, F::lit(1.0));
     match ready.formula.kind {

@@ -10,6 +10,7 @@
 pub mod code;
 pub mod portable;
 pub mod ray;
+pub mod tape;
 pub mod trace;
 
 use std::collections::BTreeSet;

@@ -302,7 +302,7 @@ pub mod families {
     /// The iteration counts of a formula written in the scene language.
     const FORMULA_ITERATIONS: Iterations = Iterations { default: 10, min: 1, max: MAX_ITERATIONS };
 
-    /// The bailout a formula's set lies within: at least 1, so the escape-time estimate 0.5·r·ln r/‖J‖ is positive
+    /// The bailout a formula's set lies within: at least 1, so the escape-time estimate 0.5·r·ln r/|∇r| is positive
     /// past it; at most 10⁶.
     pub const FORMULA_BAILOUT: (f64, f64) = (1.0, 1e6);
 
@@ -315,8 +315,8 @@ pub mod families {
     pub static ESCAPE_TIME: FractalDecl = FractalDecl {
         name: "escape_time",
         doc: "an escape-time fractal of a map written in the scene language, z ← map(z, c) from z = c = p while \
-              |z| ≤ bailout; `hybrid(f, g, ..)` applies several maps in turn. The estimate 0.5·|z|·ln|z|/‖J‖ takes \
-              the orbit's Jacobian J, derived by the compiler",
+              |z| ≤ bailout; `hybrid(f, g, ..)` applies several maps in turn. The estimate 0.5·|z|·ln|z|/|∇|z|| takes \
+              the gradient of the orbit's last length, derived by the compiler",
         arg: FractalArg {
             name: "map",
             what: "escape_time map",

@@ -4,7 +4,6 @@
 //! Hit masks are read from the pixels, as the accuracy metrics read them ([`scene_hits`]); for the baseline the miss
 //! colour is its vertical gradient.
 
-use fractal_dsl::eval::interp::Interpreter;
 use fractal_dsl::Scene;
 use fractal_render::backend::cpu::render_scene;
 use fractal_render::error::RenderError;
@@ -42,7 +41,7 @@ impl Deviation {
 
 /// The reference image: the CPU renderer in f64 with the interpreter.
 pub fn reference(scene: &Scene, frame: &Frame) -> Result<Image, RenderError> {
-    render_scene::<f64, _>(&Interpreter::new(scene)?, scene, frame)
+    render_scene::<f64, _>(&fractal_dsl::lower::tape::interpreter(scene)?, scene, frame)
 }
 
 /// Hit mask of a baseline image: pixels unlike the baseline's background gradient.

@@ -359,7 +359,7 @@ fn scene_estimator_study(name: &str, library: &SceneLibrary, samples: usize) -> 
         };
         let _ = writeln!(
             out,
-            "{short}: measured step factor {factor} (1 / the p99.9 ratio anywhere near the set, rounded down to 0.05)"
+            "{short}: measured step factor {factor} (1 / the p99.9 ratio anywhere near the set, rounded down to 0.05, at most 1)"
         );
         if let Some(formula) = fractal.formula() {
             match crate::step_factors::record(formula, factor) {

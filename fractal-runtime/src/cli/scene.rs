@@ -87,7 +87,7 @@ impl<'a> LoadedScene<'a> {
         }
         let invalid = |e: fractal_dsl::validate::InvalidScene| CliError::failure(format!("{}: {e}", path.display()));
         let kernels = fractal_dsl::compile(&scene).map_err(invalid)?;
-        let interpreter = Interpreter::new(&scene).map_err(invalid)?;
+        let interpreter = fractal_dsl::lower::tape::interpreter(&scene).map_err(invalid)?;
         let name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| arg.to_string());
         Ok(LoadedScene {
             name,

@@ -234,7 +234,7 @@ pub fn study(name: &str, fractal: Fractal, samples: usize, iteration_factor: u32
     };
     let Some(aabb) = bound(&fold_node(&scene.root)).or_else(around_bailout) else { return Vec::new() };
     let membership = SceneMembership::new(&crate::quality::with_iterations_scaled(&scene, iteration_factor));
-    let estimate = Interpreter::new(&scene).expect("the studied fractals are valid");
+    let estimate = fractal_dsl::lower::tape::interpreter(&scene).expect("the studied fractals are valid");
     let probe = Probe { membership: &membership, estimate: &estimate };
     let centre: [f64; 3] = std::array::from_fn(|i| 0.5 * (aabb.min[i] + aabb.max[i]));
     let half: f64 = (0..3).map(|i| 0.5 * (aabb.max[i] - aabb.min[i])).fold(0.0, f64::max);

@@ -147,7 +147,7 @@ impl ImageTruth {
         settings.check().map_err(ImageTruthError::Settings)?;
         let scene = with_iterations_scaled(scene, settings.truth.iteration_factor);
         let truth = Truth::unfilled(&scene, frame, settings.truth)?;
-        let shading = Interpreter::new(&scene).map_err(RenderError::from)?;
+        let shading = fractal_dsl::lower::tape::interpreter(&scene).map_err(RenderError::from)?;
         let rules = Rules::with_bound(&scene, None);
         let width = frame.width();
         let pixels = (0..width * frame.height())

@@ -149,7 +149,19 @@ impl CallLeaf for Member {
     /// A formula written in the scene language answers its own membership test, its orbit alone.
     #[inline(always)]
     fn formula(ready: &Ready, nums: &[Self], p: V3<Self>, bailout: Self, _signed: bool) -> LeafOut<Self> {
-        LeafOut::F(user::membership(ready, nums, p, bailout))
+        // Host code where it has been compiled ([`SceneMembership::new`] compiles it), else the formula's tree.
+        let host = ready.host.as_ref().map(|h| {
+            let run = |nums: &[f64]| Member(h.membership(nums, [p.x.0, p.y.0, p.z.0], bailout.0));
+            let mut few = [0.0; 32];
+            match few.get_mut(..nums.len()) {
+                Some(few) => {
+                    few.iter_mut().zip(nums).for_each(|(f, n)| *f = n.0);
+                    run(few)
+                }
+                None => run(&nums.iter().map(|n| n.0).collect::<Vec<f64>>()),
+            }
+        });
+        LeafOut::F(host.unwrap_or_else(|| user::membership(ready, nums, p, bailout)))
     }
 }
 
@@ -160,7 +172,9 @@ pub struct SceneMembership {
 
 impl SceneMembership {
     pub fn new(scene: &Scene) -> SceneMembership {
-        SceneMembership { plan: Plan::new(scene) }
+        let mut plan = Plan::new(scene);
+        plan.formula_calls_mut(&mut fractal_dsl::lower::tape::attach);
+        SceneMembership { plan }
     }
 
     /// ≤ 0 inside the scene, > 0 outside; the exact distance where no fractal is involved, otherwise a sign only (a
