@@ -68,6 +68,8 @@ library! {
     BURNING_BULB = "burning_bulb";
     /// The Menger sponge as an IFS with smooth folds, written as a fold.
     MENGER_SMOOTH = "menger_smooth";
+    /// The Amazing Surf, a Mandelbox variant folding only x and y, written as a fold.
+    AMAZING_SURF = "amazing_surf";
     /// The 2D Mandelbrot set as the material of a plane.
     MANDELBROT = "mandelbrot";
     /// A camera path zooming into the Mandelbrot set to the f32 limit.
