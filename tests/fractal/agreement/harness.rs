@@ -27,6 +27,8 @@ pub enum Family {
     Mandelbox,
     Juliabulb,
     Kifs,
+    /// A hybrid of a trigonometric bulb map and a box fold written as formulas.
+    Hybrid,
     /// Shapes whose material reads the point (noise, the Mandelbrot pattern): exact distances.
     Pattern,
 }

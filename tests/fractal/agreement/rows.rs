@@ -108,7 +108,7 @@ pub fn vocabulary() -> Vec<Row> {
             .iterations(10)
         })
         .within(1.2),
-        row!("hybrid bulb and box fold", Mandelbulb, {
+        row!("hybrid bulb and box fold", Hybrid, {
             hybrid(
                 |z, c| {
                     let r = length(z);
