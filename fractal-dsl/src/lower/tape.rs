@@ -89,14 +89,6 @@ impl Tape {
             }
         })
     }
-
-    /// The number of instructions (for tests and reports).
-    pub fn len(&self) -> usize {
-        self.code.len()
-    }
-    pub fn is_empty(&self) -> bool {
-        self.code.is_empty()
-    }
 }
 
 /// The machine: one pass over the code from its first instruction to its end.
