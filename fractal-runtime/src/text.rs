@@ -1,5 +1,5 @@
-//! Text on images in the public-domain 8×8 bitmap font (no font file needed): the gallery's labels and the viewer's
-//! panel.
+//! Text on images in the public-domain 8×8 bitmap font (no font file needed): the gallery contact sheet's labels.
+//! (The viewer's UI is egui's, module `viewer::ui`.)
 
 use font8x8::legacy::BASIC_LEGACY;
 use fractal_render::image::{pack_rgba8, Image};
@@ -23,17 +23,12 @@ pub fn draw_text(image: &mut Image, text: &str, x: u32, y: u32, scale: u32, rgba
 }
 
 /// Fills the rectangle at (x, y) of `w`×`h` pixels with the packed colour, cut to the image.
-pub fn fill(image: &mut Image, x: u32, y: u32, w: u32, h: u32, packed: u32) {
+fn fill(image: &mut Image, x: u32, y: u32, w: u32, h: u32, packed: u32) {
     for py in y..(y + h).min(image.height) {
         for px in x..(x + w).min(image.width) {
             image.pixels[(py * image.width + px) as usize] = packed;
         }
     }
-}
-
-/// Width in pixels of `text` at `scale`.
-pub fn text_width(text: &str, scale: u32) -> u32 {
-    text.chars().count() as u32 * GLYPH * scale
 }
 
 #[cfg(test)]
@@ -49,7 +44,7 @@ mod tests {
             .filter(|&(x, y)| image.pixels[(y * 40 + x) as usize] != 0)
             .collect();
         assert!(lit.len() > 10);
-        assert!(lit.iter().all(|&(x, y)| (2..2 + text_width("Hi", 1)).contains(&x) && (2..10).contains(&y)));
+        assert!(lit.iter().all(|&(x, y)| (2..2 + 2 * GLYPH).contains(&x) && (2..10).contains(&y)));
         // Drawing past the edge is cut, not a panic.
         draw_text(&mut image, "far away", 36, 8, 2, [1, 2, 3, 255]);
     }

@@ -21,6 +21,7 @@
 mod headless;
 mod precision;
 mod still;
+mod ui;
 
 use fractal_render::device::backends_required;
 use std::ffi::OsString;
@@ -169,7 +170,7 @@ fn the_window_shows_the_offline_render_of_the_scripted_pose() {
     if xwd.is_none() {
         eprintln!("note: not comparing the X server's copy of the window (needs our own Xvfb and xwd)");
     }
-    for mode in ["auto", "cpu-softbuffer", "hot-reload", "animated", "still-auto", "still-cpu", "deep"] {
+    for mode in ["auto", "cpu-softbuffer", "hot-reload", "animated", "still-auto", "still-cpu", "deep", "ui"] {
         let dir = scratch_dir(mode);
         let mut child = spawn_child(mode, &dir, &display);
         let last_shot = dir.join(LAST_SHOT);
@@ -221,7 +222,7 @@ fn the_window_shows_the_offline_render_of_the_scripted_pose() {
             let _ = std::fs::remove_dir_all(&dir);
             continue;
         }
-        if mode.starts_with("still") {
+        if mode.starts_with("still") || mode == "ui" {
             let _ = std::fs::remove_dir_all(&dir);
             continue;
         }
@@ -274,6 +275,8 @@ fn viewer_child_process() {
         "still-cpu" => return still::still_child(&dir, true),
         "still-figures" => return still::figures_child(&dir),
         "deep" => return precision::deep_child(&dir),
+        "ui" => return ui::ui_child(&dir),
+        "picture" => return ui::picture_child(&dir),
         _ => {}
     }
     let (backend, present, presenter) = match mode.as_str() {
@@ -303,6 +306,8 @@ fn scripted_steps(dir: &Path) -> Vec<ScriptedStep> {
         ScriptedStep::Look { dx: TURN_PIXELS, dy: 0.0 },
         ScriptedStep::Screenshot(dir.join("moved.png")),
         ScriptedStep::Trigger(Action::TogglePanel),
+        // egui lays a new window out unseen on its first frame (to size it), and shows it from the next.
+        ScriptedStep::Frames(2),
         ScriptedStep::Screenshot(dir.join("panel.png")),
         ScriptedStep::Trigger(Action::TogglePanel),
         ScriptedStep::Trigger(Action::CycleShadows),
@@ -380,11 +385,13 @@ fn check_scripted_run(summary: &ViewerSummary, presenter: &str) {
     // The panel (O) is drawn over the same frame in the window's top-left corner, and nowhere else.
     let with_panel = read_png(&panel.path).expect("read the panel screenshot");
     assert_eq!(panel.pose.position, moved.pose.position);
+    let (px, py, pw, ph) = panel.ui_rect.expect("the panel was drawn");
+    assert!(px < 40 && py < 40, "the panel sits in the top-left corner, at ({px}, {py})");
     let mut inside = 0;
     for y in 0..WINDOW.1 {
         for x in 0..WINDOW.0 {
             if with_panel.rgba(x, y) != images[1].rgba(x, y) {
-                assert!(y < WINDOW.1 * 3 / 4, "the panel reaches ({x}, {y})");
+                assert!(x >= px && y >= py && x < px + pw && y < py + ph, "the panel reaches ({x}, {y})");
                 inside += 1;
             }
         }

@@ -34,7 +34,7 @@ fn points_around(b: &Aabb, margin: f64, n: usize, rng: &mut Rng) -> Vec<[f64; 3]
         let axis = (rng.next() % 3) as usize;
         let mut p = [0, 1, 2].map(|i| rng.between(b.min[i], b.max[i]));
         let out_by = rng.unit() * 0.01 * margin + 1e-9;
-        p[axis] = if rng.next() % 2 == 0 { b.min[axis] - out_by } else { b.max[axis] + out_by };
+        p[axis] = if rng.next().is_multiple_of(2) { b.min[axis] - out_by } else { b.max[axis] + out_by };
         out.push(p);
     }
     out

@@ -501,8 +501,8 @@ pub struct ViewArgs {
     /// Render this fraction of the window, 0.05..=1 [default: adapts to hold 30 frames/s; 1 with --headless]
     #[arg(long, value_name = "FRACTION", value_parser = parse_scale)]
     pub scale: Option<f64>,
-    /// Run the viewer with no window: its frames (without the panel) go to a target of the window's size, time
-    /// advances 1/60 s per frame, and the frame times are printed
+    /// Run the viewer with no window: its frames (with the panel only with --panel) go to a target of the window's
+    /// size, time advances 1/60 s per frame, and the frame times are printed
     #[arg(long)]
     pub headless: bool,
     /// With --headless: how many frames to draw
@@ -515,6 +515,9 @@ pub struct ViewArgs {
     /// With --headless: save the last frame, as a window would show it, to this PNG
     #[arg(long, value_name = "PATH", requires = "headless")]
     pub screenshot: Option<PathBuf>,
+    /// With --headless: draw the panel over every frame too (its layout and drawing count in the frame times)
+    #[arg(long, requires = "headless")]
+    pub panel: bool,
 }
 
 /// A render scale: a fraction of the window in 0.05..=1.

@@ -39,6 +39,7 @@ pub fn view(args: &ViewArgs, library: &SceneLibrary) -> Result<(), CliError> {
         params: args.params.clone(),
         samples: args.samples,
         accumulate: !args.no_accumulate,
+        panel: args.panel.then_some(true),
         precision: args.device.precision,
         render_scale: match (args.scale, args.headless) {
             (Some(scale), _) => RenderScale::Fixed(scale),

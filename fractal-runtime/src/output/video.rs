@@ -65,7 +65,7 @@ impl VideoWriter {
             path: path.to_path_buf(),
             message: "unknown video container: use .mp4, .webm, .mkv or .mov".into(),
         })?;
-        if width % 2 != 0 || height % 2 != 0 {
+        if !width.is_multiple_of(2) || !height.is_multiple_of(2) {
             // yuv420p stores colour at half resolution; encoders refuse odd sizes.
             return Err(OutputError::Video {
                 path: path.to_path_buf(),

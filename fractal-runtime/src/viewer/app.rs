@@ -21,6 +21,8 @@ use winit::window::Window;
 mod headless;
 mod input;
 mod passes;
+mod source;
+mod views;
 mod window;
 
 pub use headless::{run_headless, FrameKind, HeadlessRun};
@@ -28,12 +30,13 @@ pub use window::run;
 
 use crate::frame_precision::FramePrecision;
 
+use super::bookmarks::Bookmarks;
 use super::camera_control::{FlyCamera, SPRINT_FACTOR};
 use super::controls::Move;
-use super::effects::{describe, describe_quality, EffectOverrides};
+use super::effects::{describe, EffectOverrides};
 use super::engine::{Engine, EngineChain};
+use super::flight::Flight;
 use super::live_scene::{FileWatch, LiveScene};
-use super::panel::{Overlay, PanelContent, SliderTarget};
 use super::params::ParamControl;
 use super::path_file::{load_camera_path, CameraPathFile};
 use super::present::{GpuFrameError, GpuPresenter, SoftPresenter};
@@ -43,11 +46,16 @@ use super::script::ScriptPlayer;
 use super::session::{PresentMode, ScreenshotInfo, ViewerError, ViewerOptions, ViewerScene, ViewerSummary};
 use super::still::{Accumulator, Plan, StillKey};
 use super::title::{title, FrameClock, TitleFacts};
+use super::ui::{Overlay, PanelView, Ui, UiAction};
 
 /// Longest time step of one frame: after a stall (a slow recompile, a dragged window) the camera does not jump.
 const MAX_DT: f64 = 0.25;
 /// The time slider's range when the scene has no camera path to take it from.
 const DEFAULT_TIME_SPAN: f64 = 60.0;
+/// The size of a still (F9) until the panel changes it.
+const DEFAULT_STILL_SIZE: (u32, u32) = (1920, 1080);
+/// Progressive passes of a still until the panel changes it: 64 samples a pixel, box-filtered.
+const DEFAULT_STILL_PASSES: u32 = 64;
 
 impl App {
     /// The viewer's state for `scene`, with its engine open; `headless` draws to a window-sized target with no
@@ -77,9 +85,10 @@ impl App {
             println!("{note}");
         }
         let mut app = App::new(scene, options, live, path_file, watch, chain, engine?)?;
+        app.ui.editor = Some(app.editor());
         app.headless = headless;
         // No one sees a headless run's panel unless a script shows it (its screenshots are the frame's).
-        app.panel_shown &= !headless;
+        app.panel_shown = app.options.panel.unwrap_or(app.panel_shown && !headless);
         Ok(app)
     }
 
@@ -155,11 +164,18 @@ struct App {
     fatal: Option<ViewerError>,
     /// The last message printed by a per-frame check, so a persisting problem is printed once.
     last_report: Option<String>,
-    /// Whether the panel is shown (`O`), the panel as last drawn, the slider being dragged and the cursor.
+    /// Whether the panel is shown (`O`); the UI (panel and editor), its pixels as last drawn and the changes made in
+    /// it, applied at the start of the next frame.
     panel_shown: bool,
+    ui: Ui,
     overlay: Option<Overlay>,
-    dragging: Option<SliderTarget>,
-    cursor: (f64, f64),
+    ui_actions: Vec<UiAction>,
+    /// The bookmarks beside the scene (read when first needed) and the size stills are rendered at.
+    bookmarks: Option<Bookmarks>,
+    still_size: (u32, u32),
+    still_passes: u32,
+    /// The flight being recorded (R).
+    flight: Option<Flight>,
     /// Progressive passes while the view stands still.
     still: Accumulator,
     /// Input arrived since the last frame: a resting viewer draws the next frame now.
@@ -222,9 +238,13 @@ impl App {
             last_report: None,
             // A scripted run (tests, benchmarks) draws the frame alone, so its screenshots are the render's.
             panel_shown: options.script.is_none(),
+            ui: Ui::new(None),
             overlay: None,
-            dragging: None,
-            cursor: (0.0, 0.0),
+            ui_actions: Vec::new(),
+            bookmarks: None,
+            still_size: DEFAULT_STILL_SIZE,
+            still_passes: DEFAULT_STILL_PASSES,
+            flight: None,
             still: Accumulator::new(options.accumulate),
             woken: false,
             precision: FramePrecision::new(options.precision, ""),
@@ -273,43 +293,53 @@ impl App {
         }
     }
 
-    /// The panel for the current state, or `None` while it is hidden.
-    fn panel(&self, window_width: u32) -> Option<Overlay> {
-        if !self.panel_shown {
-            return None;
-        }
+    /// Lays the UI out and draws it for this frame (the panel while shown, the editor while open); what the user
+    /// changed is applied at the start of the next frame.
+    fn draw_ui(&mut self, window_size: (u32, u32)) {
+        let bookmarks = if self.panel_shown { self.bookmark_names() } else { Vec::new() };
+        let view = self.panel_shown.then(|| self.panel_view(bookmarks));
+        let window = self.window.clone();
+        let (overlay, actions) = self.ui.frame(window.as_deref(), window_size, view.as_ref());
+        self.overlay = overlay;
+        self.ui_actions.extend(actions);
+    }
+
+    /// What the panel shows of the current state.
+    fn panel_view(&self, bookmarks: Vec<String>) -> PanelView {
         let timing = match self.clock.average() {
             Some(s) => format!("{:.1} ms, {:.0} FPS", s * 1e3, 1.0 / s.max(1e-9)),
             None => "measuring".to_string(),
         };
         let settings = &self.live.scene.settings;
         let (params, selected) = self.params.rows();
-        let mut status = vec![
-            self.live.name.clone(),
-            match self.precision.said() {
-                Some(Precision::F64) => format!(
-                    "{} in f64 (the view asks for it), {timing}, {}x{}",
-                    self.wide_backend, self.render_size.0, self.render_size.1
-                ),
-                _ => {
-                    format!("{}, {timing}, {}x{}", self.engine.device().backend, self.render_size.0, self.render_size.1)
-                }
-            },
-        ];
-        status.extend(self.still.describe().map(|passes| format!("still: {passes}")));
-        let content = PanelContent {
+        let (w, h) = self.render_size;
+        let status = match self.precision.said() {
+            Some(Precision::F64) => format!("{} in f64 (the view asks for it), {timing}, {w}x{h}", self.wide_backend),
+            _ => format!("{} in f32, {timing}, {w}x{h}", self.engine.device().backend),
+        } + if self.flight.is_some() { ", recording a flight (R stops)" } else { "" };
+        PanelView {
+            scene: self.live.name.clone(),
             status,
+            still: self.still.describe(),
             time: self.time,
             time_span: self.time_span(),
             paused: self.paused,
-            quality: vec![
-                format!("{} (0/9, 8/7)", describe_quality(settings)),
-                format!("{} (1-4)", describe(settings)),
-            ],
+            samples: settings.samples,
+            steps: settings.max_steps,
+            epsilon: settings.epsilon,
+            shadows: settings.shadows,
+            ambient_occlusion: settings.ambient_occlusion.is_some(),
+            glow: settings.glow.is_some(),
+            fog: settings.fog.is_some(),
             params,
             selected,
-        };
-        Some(super::panel::draw(&content, super::panel::scale_for(window_width)))
+            following_path: self.fly.is_none(),
+            editable: true,
+            editor_open: self.ui.editor.as_ref().is_some_and(|e| e.open),
+            bookmarks,
+            still_size: self.still_size,
+            still_passes: self.still_passes,
+        }
     }
 
     /// The time slider's range: to the scene's last camera key, or a minute.
@@ -319,34 +349,6 @@ impl App {
                 keys.last().map_or(DEFAULT_TIME_SPAN, |k| k.time).max(self.time).max(1.0)
             }
             _ => DEFAULT_TIME_SPAN.max(self.time),
-        }
-    }
-
-    fn poll_reload(&mut self) {
-        let (Some(watch), ViewerScene::File(path)) = (&mut self.watch, &self.source) else {
-            return;
-        };
-        let Some(text) = watch.poll() else {
-            return;
-        };
-        let loaded = text
-            .and_then(|text| LiveScene::from_text(self.live.name.clone(), path, &text))
-            .and_then(|loaded| loaded.with_overrides(&self.overrides));
-        match loaded {
-            Ok(loaded) => {
-                println!("reloaded {}", path.display());
-                let next = loaded;
-                let params = ParamControl::new(&next.scene, Some(&self.params));
-                let previous = std::mem::replace(&mut self.live, next);
-                let previous_params = std::mem::replace(&mut self.params, params);
-                if self.last_good.is_none() {
-                    self.last_good =
-                        Some(LastGood { live: previous, params: previous_params, overrides: self.overrides.clone() });
-                }
-                self.last_report = None;
-            }
-            // The last good scene stays on screen.
-            Err(e) => eprintln!("{e}"),
         }
     }
 
@@ -403,12 +405,23 @@ impl App {
             if step.screenshot.is_some() {
                 self.screenshot_request = step.screenshot;
             }
+            for input in &step.ui {
+                if let Err(e) = self.ui.script(input) {
+                    self.stop(ViewerError::Script(e));
+                    return;
+                }
+            }
         }
+        self.apply_ui_actions();
         self.poll_reload();
+        self.poll_editor(now);
 
         if let Some(fly) = &mut self.fly {
             let speed = self.move_speed * if self.sprint { SPRINT_FACTOR } else { 1.0 };
             fly.step(self.held.iter().copied(), speed, dt);
+        }
+        if let (Some(flight), Some(pose)) = (&mut self.flight, self.fly.map(|f| f.pose()).or(self.last_pose)) {
+            flight.record(&pose, dt);
         }
         if let Some(window_size) = self.window_size() {
             self.draw_frame(window_size);
@@ -463,7 +476,7 @@ impl App {
         self.last_plan = Some((plan, precision));
         let drawn = match (plan, precision) {
             (Plan::Frame, Precision::F32) => {
-                self.overlay = self.panel(window_size.0);
+                self.draw_ui(window_size);
                 self.draw(&frame, window_size, want_screenshot)
             }
             (Plan::Frame, _) => self.draw_wide(&frame, window_size, want_screenshot),
@@ -530,6 +543,11 @@ impl App {
                     device: self.engine.device(),
                     presenter: self.presenter.as_ref().map_or("none", Presenter::name),
                     passes: self.still.shown(),
+                    ui_rect: self.overlay.as_ref().map(|o| (o.origin.0, o.origin.1, o.image.width, o.image.height)),
+                    source_error: self.ui.editor.as_ref().and_then(|e| e.error.as_ref()).map(|e| match e.at {
+                        Some((line, column)) => format!("{line}:{column}: {}", e.message),
+                        None => e.message.clone(),
+                    }),
                 });
             }
             Err(e) => eprintln!("cannot save the screenshot {}: {e}", path.display()),

@@ -46,6 +46,14 @@ pub enum Action {
     Help,
     /// Show or hide the panel (sliders for time and parameters, quality, frame time).
     TogglePanel,
+    /// Show or hide the scene's source beside the picture.
+    ToggleEditor,
+    /// Save the current view (camera, time, parameters) as a bookmark beside the scene.
+    Bookmark,
+    /// Start recording a flight, or end it and write it beside the scene (a `.fractal` and a glTF camera).
+    RecordFlight,
+    /// Render the current view at the still size (the panel's) to a PNG beside the scene.
+    RenderStill,
     /// Max steps ×2 / ÷2 (recompiles the kernels).
     MoreSteps,
     FewerSteps,
@@ -94,6 +102,10 @@ pub fn binding(key: KeyCode, shift: bool) -> Option<Action> {
         Escape => Action::ReleaseOrQuit,
         KeyH | F1 => Action::Help,
         KeyO => Action::TogglePanel,
+        F2 => Action::ToggleEditor,
+        KeyB => Action::Bookmark,
+        F9 => Action::RenderStill,
+        KeyR => Action::RecordFlight,
         Digit0 | Numpad0 => Action::MoreSteps,
         Digit9 | Numpad9 => Action::FewerSteps,
         Digit8 | Numpad8 => Action::FinerEpsilon,
@@ -112,7 +124,11 @@ controls:
   P                 print the camera pose (as a .fractal camera(..) line, a key(..) and a TOML [[key]])
   1 2 3 4           shadows none/hard/soft, ambient occlusion, glow, fog (recompiles the kernels)
   0 / 9, 8 / 7      max steps x2 / /2, hit epsilon /2 / x2 (recompiles the kernels)
-  O                 show / hide the panel: drag its sliders to scrub time and set each param(..)
+  O                 show / hide the panel: time, quality, effects and a slider (or typed value) per param(..)
+  F2                show / hide the scene's source: edits recompile when you pause, Ctrl+S saves
+  B                 bookmark this view (camera, time, params) beside the scene; the panel restores it
+  R                 record a flight / stop and write it beside the scene (a camera_path .fractal and a glTF)
+  F9                render this view at the panel's still size to a PNG beside the scene
   Space             pause / resume time           <- / -> time -1 s / +1 s
   Tab / Shift+Tab   next / previous param(..)     Up / Down  change it (Shift: 5x)   Backspace  reset it
   F12 or K          save a PNG screenshot         H       this help
@@ -134,6 +150,10 @@ mod tests {
             (KeyCode::Escape, Action::ReleaseOrQuit),
             (KeyCode::Digit1, Action::CycleShadows),
             (KeyCode::KeyO, Action::TogglePanel),
+            (KeyCode::F2, Action::ToggleEditor),
+            (KeyCode::KeyB, Action::Bookmark),
+            (KeyCode::F9, Action::RenderStill),
+            (KeyCode::KeyR, Action::RecordFlight),
             (KeyCode::Digit0, Action::MoreSteps),
             (KeyCode::Digit9, Action::FewerSteps),
             (KeyCode::Digit8, Action::FinerEpsilon),

@@ -59,6 +59,24 @@ impl EffectOverrides {
         self
     }
 
+    /// `samples` rays per pixel (the panel's entry).
+    pub fn set_samples(&mut self, samples: u32) {
+        self.samples = Some(samples.max(1));
+    }
+
+    /// A step budget of `steps`, within 8..=4096 (the panel's entry).
+    pub fn set_steps(&mut self, steps: u32) {
+        self.max_steps = Some(steps.clamp(STEPS_RANGE.0, STEPS_RANGE.1));
+    }
+
+    /// The hit epsilon (the panel's entry), within the ranges [`EffectOverrides::scale_epsilon`] keeps.
+    pub fn set_epsilon(&mut self, epsilon: HitEpsilon) {
+        self.epsilon = Some(match epsilon {
+            HitEpsilon::Fixed(e) => HitEpsilon::Fixed(e.clamp(1e-7, 1.0)),
+            HitEpsilon::Pixel(k) => HitEpsilon::Pixel(k.clamp(1e-3, 64.0)),
+        });
+    }
+
     /// The step budget times `factor`, within 8..=4096.
     pub fn scale_steps(&mut self, authored: &RenderSettings, factor: f64) {
         let now = self.apply(authored).max_steps as f64;
@@ -103,15 +121,6 @@ impl EffectOverrides {
         let default = || Fog { color: authored.background, density: DEFAULT_FOG_DENSITY };
         self.fog = Some(if on { None } else { Some(authored.fog.clone().unwrap_or_else(default)) });
     }
-}
-
-/// The step budget and hit epsilon of `settings`, e.g. `steps 128, epsilon 0.5 px`.
-pub fn describe_quality(settings: &RenderSettings) -> String {
-    let epsilon = match settings.epsilon {
-        HitEpsilon::Fixed(e) => format!("{e}"),
-        HitEpsilon::Pixel(k) => format!("{k} px"),
-    };
-    format!("steps {}, epsilon {epsilon}", settings.max_steps)
 }
 
 /// A short description of the effects in `settings`, e.g. `shadows soft(16), AO, fog`.

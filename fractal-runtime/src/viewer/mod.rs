@@ -18,6 +18,8 @@
 //!   effects, scene, sizes), each frame adds a progressive pass and the window shows their mean, refining it to the
 //!   pixel-integrated image, up to 256 passes; any change starts over (module `still`;
 //!   [`ViewerOptions::accumulate`] turns it off).
+//! - The panel and the scene editor are egui, drawn on the host into an overlay both presenters blend (module `ui`);
+//!   bookmarks (module `bookmarks`) and flights (module `flight`) are written beside the scene.
 //! - With no display, [`run`] returns [`ViewerError::NoDisplay`] and [`run_or_render`] renders a PNG instead.
 //!
 //! Controls (also printed at start-up, and again with H):
@@ -41,16 +43,19 @@
 //! | ↑ / ↓ | increase / decrease the selected parameter (Shift: 5× the step), within its range |
 //! | Backspace | reset the selected parameter to its default |
 //! | F12 or K | save a PNG screenshot (the file name is printed) |
+//! | O / F2 | show or hide the panel / the scene's source (edits recompile on a pause; Ctrl+S saves) |
+//! | B / F9 / R | bookmark the view / render a still beside the scene / start or stop recording a flight |
 //! | H | print the controls |
 
 mod app;
+mod bookmarks;
 mod camera_control;
 pub mod controls;
 mod effects;
 mod engine;
 mod fallback;
+mod flight;
 mod live_scene;
-mod panel;
 mod params;
 pub mod path_file;
 mod present;
@@ -60,6 +65,7 @@ mod script;
 mod session;
 mod still;
 mod title;
+mod ui;
 
 use std::path::{Path, PathBuf};
 
@@ -74,6 +80,7 @@ pub use scale::RenderScale;
 pub use screenshot::{read_png, write_png};
 pub use script::{ScriptedStep, MAX_IDLE};
 pub use session::{PresentMode, ScreenshotInfo, ViewerError, ViewerOptions, ViewerScene, ViewerSummary};
+pub use ui::UiInput;
 
 /// Opens the viewer and runs it until the window is closed (or the script ends). Returns
 /// [`ViewerError::NoDisplay`] when there is no window system; [`run_or_render`] falls back to a PNG then.

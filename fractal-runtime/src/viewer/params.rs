@@ -76,14 +76,13 @@ impl ParamControl {
         self.describe()
     }
 
-    /// `name = value (min..max)` of the selected parameter.
     /// Every parameter as the panel shows it, and which is selected.
-    pub fn rows(&self) -> (Vec<super::panel::ParamRow>, usize) {
+    pub fn rows(&self) -> (Vec<super::ui::ParamRow>, usize) {
         let rows = self
             .values
             .decls()
             .iter()
-            .map(|d| super::panel::ParamRow {
+            .map(|d| super::ui::ParamRow {
                 name: d.name.clone(),
                 value: self.values.get(&d.name).unwrap_or(d.default),
                 min: d.min,
@@ -101,6 +100,14 @@ impl ParamControl {
         self.describe()
     }
 
+    /// Puts the parameter at `index` back to its default and selects it.
+    pub fn reset_index(&mut self, index: usize) -> Option<String> {
+        self.values.decls().get(index)?;
+        self.selected = index;
+        self.reset()
+    }
+
+    /// `name = value (min..max)` of the selected parameter.
     pub fn describe(&self) -> Option<String> {
         let decl = self.values.decls().get(self.selected)?;
         let value = self.values.get(&decl.name).unwrap_or(decl.default);

@@ -6,6 +6,7 @@ use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 use super::controls::Action;
+use super::ui::UiInput;
 
 /// How long a scripted [`ScriptedStep::Idle`] may last at most; longer requests are clamped so a script always ends.
 pub const MAX_IDLE: Duration = Duration::from_secs(600);
@@ -29,6 +30,9 @@ pub enum ScriptedStep {
     /// Save the next frame drawn, as presented in the window, to this PNG file; the steps after it apply to the
     /// frames after that one.
     Screenshot(PathBuf),
+    /// Input to the UI through egui, as a pointer and keyboard give it: press a widget, type, … (it applies to the
+    /// next frame drawn; a press and its release need a frame between them, as a click does).
+    Ui(UiInput),
     /// Keep drawing frames for this long (at most [`MAX_IDLE`]), e.g. while another program looks at the
     /// window.
     Idle(Duration),
@@ -42,6 +46,7 @@ pub struct ScriptFrame {
     pub trigger: Vec<Action>,
     pub look: (f64, f64),
     pub screenshot: Option<PathBuf>,
+    pub ui: Vec<UiInput>,
     /// The script is over: draw nothing more and exit.
     pub finished: bool,
 }
@@ -83,6 +88,7 @@ impl ScriptPlayer {
                 ScriptedStep::Press(a) => frame.press.push(*a),
                 ScriptedStep::Release(a) => frame.release.push(*a),
                 ScriptedStep::Trigger(a) => frame.trigger.push(*a),
+                ScriptedStep::Ui(input) => frame.ui.push(input.clone()),
                 ScriptedStep::Look { dx, dy } => {
                     frame.look.0 += *dx;
                     frame.look.1 += *dy;

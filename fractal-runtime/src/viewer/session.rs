@@ -119,6 +119,8 @@ pub struct ViewerOptions {
     pub accumulate: bool,
     /// The number type of each frame; a frame in f64 is drawn by the CPU renderer whatever the backend.
     pub precision: PrecisionChoice,
+    /// Whether the panel shows at start (`None`: in a window without a script, yes; scripted or headless, no).
+    pub panel: Option<bool>,
 }
 
 impl Default for ViewerOptions {
@@ -143,6 +145,7 @@ impl Default for ViewerOptions {
             print_help: true,
             samples: None,
             accumulate: true,
+            panel: None,
             precision: PrecisionChoice::Auto,
         }
     }
@@ -166,6 +169,10 @@ pub struct ScreenshotInfo {
     pub presenter: &'static str,
     /// The progressive passes whose mean the window showed (the view stood still); 0 for a frame drawn as usual.
     pub passes: u32,
+    /// Where the UI (panel, editor, error line) was drawn over the frame: x, y, width, height in window pixels.
+    pub ui_rect: Option<(u32, u32, u32, u32)>,
+    /// The editor's text as `line:column: message` when it did not compile (the picture is the last good one).
+    pub source_error: Option<String>,
 }
 
 /// What a viewer session did.
@@ -173,6 +180,10 @@ pub struct ScreenshotInfo {
 pub struct ViewerSummary {
     pub frames: u64,
     pub screenshots: Vec<ScreenshotInfo>,
+    /// The stills rendered (F9), in order.
+    pub stills: Vec<PathBuf>,
+    /// The flights recorded (R), as the scene files written.
+    pub flights: Vec<PathBuf>,
     /// The device of the last frame drawn.
     pub device: Option<DeviceInfo>,
     pub presenter: Option<&'static str>,
@@ -200,4 +211,7 @@ pub enum ViewerError {
     Window(String),
     #[error("cannot write {path}: {message}")]
     Output { path: PathBuf, message: String },
+    /// A scripted step could not be played (a UI input naming a widget that is not on screen).
+    #[error("{0}")]
+    Script(String),
 }

@@ -109,7 +109,7 @@ fn mesh_writes_every_format() {
     let indices: Vec<u32> = reader.read_indices().expect("indices").into_u32().collect();
     assert_eq!(reader.read_normals().expect("normals").count(), positions.len());
     assert_eq!(reader.read_colors(0).expect("colours").into_rgb_f32().count(), positions.len());
-    assert!(indices.len() % 3 == 0 && indices.iter().all(|&i| (i as usize) < positions.len()));
+    assert!(indices.len().is_multiple_of(3) && indices.iter().all(|&i| (i as usize) < positions.len()));
     // hello_world's sphere of radius 1 at the origin: every vertex within a cell (2/24 of a side) of it.
     let cell = 2.0 / 24.0;
     assert!(positions.iter().all(|p| ((p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt() - 1.0).abs() < cell));

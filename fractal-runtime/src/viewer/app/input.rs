@@ -9,9 +9,9 @@ use super::{App, LastGood};
 use crate::viewer::camera_control::{camera_line, describe_pose, FlyCamera};
 use crate::viewer::controls::{binding, Action, HELP};
 use crate::viewer::effects::describe;
-use crate::viewer::panel::SliderTarget;
 use crate::viewer::params::ParamControl;
 use crate::viewer::screenshot::next_screenshot_path;
+use crate::viewer::ui::UiAction;
 
 /// Factor of one press of +/− or [/].
 const SPEED_STEP: f64 = 1.25;
@@ -186,6 +186,14 @@ impl App {
             }
             Action::Help => println!("{HELP}"),
             Action::TogglePanel => self.panel_shown = !self.panel_shown,
+            Action::Bookmark => self.save_bookmark(),
+            Action::RenderStill => self.render_still(),
+            Action::RecordFlight => self.toggle_flight(),
+            Action::ToggleEditor => {
+                if let Some(editor) = &mut self.ui.editor {
+                    editor.open = !editor.open;
+                }
+            }
             Action::MoreSteps | Action::FewerSteps => {
                 self.overrides.scale_steps(&authored, if action == Action::MoreSteps { 2.0 } else { 0.5 });
                 self.apply_overrides();
@@ -197,17 +205,36 @@ impl App {
         }
     }
 
-    /// A slider set from window column `x`: the time, or a parameter (a uniform: nothing recompiles).
-    pub(super) fn slide(&mut self, target: SliderTarget, x: f64) {
-        let Some(slider) = self.overlay.as_ref().and_then(|o| o.sliders.iter().find(|s| s.target == target).copied())
-        else {
-            return;
-        };
-        let value = slider.value_at(x);
-        match target {
-            SliderTarget::Time => self.time = value,
-            SliderTarget::Param(i) => {
-                self.params.set_index(i, value);
+    /// Applies what the user changed in the UI last frame: what a key does for the same change, so both stay one.
+    pub(super) fn apply_ui_actions(&mut self) {
+        for action in std::mem::take(&mut self.ui_actions) {
+            match action {
+                UiAction::SetTime(t) => self.time = t,
+                UiAction::SetParam(i, value) => {
+                    self.params.set_index(i, value);
+                }
+                UiAction::ResetParam(i) => self.say_param(|p| p.reset_index(i)),
+                UiAction::SetSamples(n) => {
+                    self.overrides.set_samples(n);
+                    self.apply_overrides();
+                }
+                UiAction::SetSteps(n) => {
+                    self.overrides.set_steps(n);
+                    self.apply_overrides();
+                }
+                UiAction::SetEpsilon(e) => {
+                    self.overrides.set_epsilon(e);
+                    self.apply_overrides();
+                }
+                UiAction::Key(action) => self.trigger(action),
+                UiAction::ToggleEditor => self.trigger(Action::ToggleEditor),
+                UiAction::SourceEdited => {}
+                UiAction::SaveSource => self.save_source(),
+                UiAction::GoToBookmark(name) => self.go_to_bookmark(&name),
+                UiAction::SetStill((w, h), passes) => {
+                    self.still_size = (w.max(1), h.max(1));
+                    self.still_passes = passes.max(1);
+                }
             }
         }
     }

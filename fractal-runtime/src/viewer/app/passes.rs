@@ -58,7 +58,7 @@ impl App {
         screenshot: bool,
     ) -> Result<Option<Image>, DrawError> {
         // After the pass, so the panel counts it.
-        self.overlay = self.panel(window_size.0);
+        self.draw_ui(window_size);
         let overlay = self.overlay.as_ref();
         match (&mut self.presenter, &mut self.engine) {
             (Some(Presenter::Gpu(gpu)), Engine::Wgpu(renderer)) => {

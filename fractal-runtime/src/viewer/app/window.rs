@@ -69,6 +69,7 @@ impl App {
             .create_window(attributes)
             .map(Arc::new)
             .map_err(|e| ViewerError::NoDisplay(format!("cannot open a window: {e}")))?;
+        self.ui.attach(&window);
         self.window = Some(window);
         self.presenter = Some(self.make_presenter()?);
         println!(
@@ -100,38 +101,28 @@ impl ApplicationHandler for App {
         if !matches!(event, WindowEvent::RedrawRequested) {
             self.woken = true;
         }
+        // The UI sees every event first; what it uses (a click on the panel, typing in the editor) goes no further.
+        let used_by_ui = match (&self.window, scripted) {
+            (Some(window), false) if !self.captured => {
+                let window = window.clone();
+                self.ui.on_window_event(&window, &event)
+            }
+            _ => false,
+        };
         match event {
             WindowEvent::CloseRequested => event_loop.exit(),
             WindowEvent::RedrawRequested => self.frame(),
             // A script drives the camera on its own; the user's keys and mouse would make the run irreproducible.
-            _ if scripted => {}
+            _ if scripted || used_by_ui => {}
             WindowEvent::KeyboardInput { event, .. } => {
                 if let PhysicalKey::Code(code) = event.physical_key {
                     self.key(code, event.state, event.repeat);
                 }
             }
-            WindowEvent::CursorMoved { position, .. } => {
-                self.cursor = (position.x, position.y);
-                if let Some(target) = self.dragging {
-                    self.slide(target, position.x);
-                }
-            }
             WindowEvent::MouseInput { state: ElementState::Pressed, button: MouseButton::Left, .. }
                 if !self.captured =>
             {
-                let (x, y) = self.cursor;
-                match self.overlay.as_ref().map(|o| (o.contains(x, y), o.slider_at(x, y))) {
-                    Some((_, Some(slider))) => {
-                        self.dragging = Some(slider.target);
-                        self.slide(slider.target, x);
-                    }
-                    // A click on the panel's text does nothing; anywhere else it takes the mouse to look around.
-                    Some((true, None)) => {}
-                    _ => self.capture_mouse(),
-                }
-            }
-            WindowEvent::MouseInput { state: ElementState::Released, button: MouseButton::Left, .. } => {
-                self.dragging = None;
+                self.capture_mouse()
             }
             WindowEvent::MouseWheel { delta, .. } => {
                 let lines = match delta {

@@ -1,11 +1,11 @@
 //! The full-screen pass that draws a frame's pixel buffer to the window (or to the texture that stands in for it),
-//! stretched by the rule of module `stretch`, with the panel blended over its rectangle. Its uniform, the panel's
-//! buffer and the bind group are kept from frame to frame and rewritten in place (`Queue::write_buffer` lands at the
-//! next submission, in queue order), so a frame allocates nothing on the device.
+//! stretched by the rule of module `stretch`, with the UI overlay blended over its rectangle. Its uniform, the
+//! overlay's buffer and the bind group are kept from frame to frame and rewritten in place (`Queue::write_buffer`
+//! lands at the next submission, in queue order), so a frame allocates nothing on the device.
 
 use wgpu::util::DeviceExt;
 
-use crate::viewer::panel::Overlay;
+use crate::viewer::ui::Overlay;
 
 const BLIT_WGSL: &str = r#"
 struct Blit {
@@ -21,7 +21,7 @@ struct Blit {
 
 @group(0) @binding(0) var<storage, read> pixels: array<u32>;
 @group(0) @binding(1) var<uniform> blit: Blit;
-// The panel (RGBA8 with alpha, R in the low byte), blended over its rectangle of the window.
+// The UI overlay (RGBA8 with straight alpha, R in the low byte), blended over its rectangle of the window.
 @group(0) @binding(2) var<storage, read> overlay: array<u32>;
 
 @vertex
@@ -68,7 +68,7 @@ pub struct Blit {
     pipeline: wgpu::RenderPipeline,
     format: wgpu::TextureFormat,
     uniform: wgpu::Buffer,
-    /// The panel's pixels; grown (never shrunk) when a larger panel comes.
+    /// The overlay's pixels; grown (never shrunk) when a larger overlay comes.
     overlay: wgpu::Buffer,
     /// The bind group and the pixel buffer it binds; made again when either buffer is.
     group: Option<(wgpu::Buffer, wgpu::BindGroup)>,
@@ -86,7 +86,7 @@ impl Blit {
         Blit { pipeline: pipeline(device, format), format, uniform, overlay: overlay_buffer(device, &[0]), group: None }
     }
 
-    /// Writes this frame's uniform and panel (which land at the next submission) and returns the bind group that
+    /// Writes this frame's uniform and overlay (which land at the next submission) and returns the bind group that
     /// draws `pixels`, `src` pixels in size, over a target of `window` pixels. Call inside an error scope.
     pub fn prepare(
         &mut self,
@@ -95,7 +95,7 @@ impl Blit {
         window: (u32, u32),
         overlay: Option<&Overlay>,
     ) -> wgpu::BindGroup {
-        // No panel: an empty rectangle (a binding cannot be empty, so the buffer keeps at least a word).
+        // No overlay: an empty rectangle (a binding cannot be empty, so the buffer keeps at least a word).
         let (origin, size, words) = match overlay {
             Some(o) => (o.origin, (o.image.width, o.image.height), o.image.pixels.as_slice()),
             None => ((0, 0), (0, 0), &[][..]),
@@ -161,7 +161,7 @@ impl Blit {
 
 fn overlay_buffer(device: &wgpu::Device, words: &[u32]) -> wgpu::Buffer {
     device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("panel"),
+        label: Some("ui overlay"),
         contents: bytemuck::cast_slice(if words.is_empty() { &[0u32][..] } else { words }),
         usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
     })

@@ -18,7 +18,7 @@ use winit::window::Window;
 
 use super::blit::Blit;
 use super::stretch::upscale;
-use crate::viewer::panel::Overlay;
+use crate::viewer::ui::Overlay;
 
 /// Frames a texture target keeps in flight: the surface's `desired_maximum_frame_latency`.
 const MAX_LATENCY: usize = 2;

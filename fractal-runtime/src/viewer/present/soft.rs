@@ -8,7 +8,7 @@ use fractal_render::image::Image;
 use winit::window::Window;
 
 use super::stretch::upscale_into;
-use crate::viewer::panel::Overlay;
+use crate::viewer::ui::Overlay;
 
 /// Kernel pixels (R in the low byte) to softbuffer pixels (0x00RRGGBB).
 fn to_softbuffer(p: u32) -> u32 {
