@@ -52,6 +52,8 @@ pub enum Action {
     Bookmark,
     /// Start recording a flight, or end it and write it beside the scene (a `.fractal` and a glTF camera).
     RecordFlight,
+    /// While recording a flight: a key at the current view now (besides the one a second).
+    FlightKey,
     /// Render the current view at the still size (the panel's) to a PNG beside the scene.
     RenderStill,
     /// Max steps ×2 / ÷2 (recompiles the kernels).
@@ -106,6 +108,7 @@ pub fn binding(key: KeyCode, shift: bool) -> Option<Action> {
         KeyB => Action::Bookmark,
         F9 => Action::RenderStill,
         KeyR => Action::RecordFlight,
+        Enter | NumpadEnter => Action::FlightKey,
         Digit0 | Numpad0 => Action::MoreSteps,
         Digit9 | Numpad9 => Action::FewerSteps,
         Digit8 | Numpad8 => Action::FinerEpsilon,
@@ -127,7 +130,8 @@ controls:
   O                 show / hide the panel: time, quality, effects and a slider (or typed value) per param(..)
   F2                show / hide the scene's source: edits recompile when you pause, Ctrl+S saves
   B                 bookmark this view (camera, time, params) beside the scene; the panel restores it
-  R                 record a flight / stop and write it beside the scene (a camera_path .fractal and a glTF)
+  R                 record a flight / stop and write it beside the scene (a camera_path .fractal and a glTF);
+                    a key a second, and Enter adds one where you are
   F9                render this view at the panel's still size to a PNG beside the scene
   Space             pause / resume time           <- / -> time -1 s / +1 s
   Tab / Shift+Tab   next / previous param(..)     Up / Down  change it (Shift: 5x)   Backspace  reset it
@@ -154,6 +158,7 @@ mod tests {
             (KeyCode::KeyB, Action::Bookmark),
             (KeyCode::F9, Action::RenderStill),
             (KeyCode::KeyR, Action::RecordFlight),
+            (KeyCode::Enter, Action::FlightKey),
             (KeyCode::Digit0, Action::MoreSteps),
             (KeyCode::Digit9, Action::FewerSteps),
             (KeyCode::Digit8, Action::FinerEpsilon),

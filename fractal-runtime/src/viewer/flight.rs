@@ -1,5 +1,5 @@
-//! Flights: R starts recording the camera as the user flies, a key every [`KEY_INTERVAL`] seconds of flight (and one
-//! where it stops); R again ends it and writes the flight beside the scene as a scene file whose camera is that
+//! Flights: R starts recording the camera as the user flies, a key every [`KEY_INTERVAL`] seconds of flight, one
+//! wherever the user presses Enter, and one where it stops; R again ends it and writes the flight beside the scene as a scene file whose camera is that
 //! `camera_path(..)` (`NAME-flight-NNNN.fractal`, to open, render or edit) and as a glTF camera animation
 //! (`NAME-flight-NNNN.gltf`, from the same exporter as `fractal export --camera`).
 
@@ -17,8 +17,9 @@ const GLTF_FPS: f64 = 30.0;
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Flight {
     keys: Vec<CameraKey>,
-    /// Seconds since recording started, and the last pose seen.
+    /// Seconds since recording started, when the next timed key is due, and the last pose seen.
     elapsed: f64,
+    next_tick: f64,
     last: Option<Pose>,
     fov_degrees: f64,
 }
@@ -29,12 +30,25 @@ impl Flight {
         if !self.keys.is_empty() {
             self.elapsed += dt.max(0.0);
         }
-        let due = self.keys.last().is_none_or(|k| self.elapsed - k.time >= KEY_INTERVAL - 1e-9);
-        if due {
-            self.keys.push(key(self.elapsed, pose));
+        // Timed keys fall on whole intervals from the start, whatever keys Enter added between them.
+        if self.keys.is_empty() || self.elapsed >= self.next_tick - 1e-9 {
+            if self.keys.last().is_none_or(|k| self.elapsed - k.time > 1e-6) {
+                self.keys.push(key(self.elapsed, pose));
+            }
+            self.next_tick = (self.elapsed / KEY_INTERVAL + 1e-9).floor() * KEY_INTERVAL + KEY_INTERVAL;
         }
         self.last = Some(*pose);
         self.fov_degrees = pose.fov_degrees;
+    }
+
+    /// A key at the last pose seen, now (unless one is there already).
+    pub fn key_now(&mut self) {
+        let Some(pose) = self.last else {
+            return;
+        };
+        if self.keys.last().is_none_or(|k| self.elapsed - k.time > 1e-6) {
+            self.keys.push(key(self.elapsed, &pose));
+        }
     }
 
     /// The recorded keys, with one at the last pose seen if it is not a key already.
@@ -104,13 +118,17 @@ mod tests {
         flight.record(&pose(-3.0), 0.5);
         for i in 1..=25 {
             flight.record(&pose(-3.0 + i as f64 * 0.1), 0.1);
+            if i == 13 {
+                flight.key_now();
+                flight.key_now();
+            }
         }
         let keys = flight.clone().finish();
         let times: Vec<f64> = keys.iter().map(|k| (k.time * 1e6).round() / 1e6).collect();
-        assert_eq!(times, vec![0.0, 1.0, 2.0, 2.5], "a key a second from the first, and one at the end");
+        assert_eq!(times, vec![0.0, 1.0, 1.3, 2.0, 2.5], "a key a second from the first, one on Enter, one at the end");
         assert_eq!(keys[0].position, [0.0, 0.0, -3.0]);
         assert_eq!(keys[0].target, [0.0, 0.0, -2.0]);
-        assert!((keys[3].position[2] + 0.5).abs() < 1e-9);
+        assert!((keys[4].position[2] + 0.5).abs() < 1e-9);
 
         let scene = fractal_dsl::builder::scene(fractal_dsl::builder::sphere(1.0));
         let flown = scene_with_flight(&scene, keys, flight.fov_degrees());

@@ -44,7 +44,7 @@
 //! | Backspace | reset the selected parameter to its default |
 //! | F12 or K | save a PNG screenshot (the file name is printed) |
 //! | O / F2 | show or hide the panel / the scene's source (edits recompile on a pause; Ctrl+S saves) |
-//! | B / F9 / R | bookmark the view / render a still beside the scene / start or stop recording a flight |
+//! | B / F9 / R / Enter | bookmark the view / render a still beside the scene / start or stop recording a flight / add a flight key |
 //! | H | print the controls |
 
 mod app;

@@ -91,7 +91,9 @@ pub(super) fn ui_child(dir: &Path) {
     }
     script.push(ScriptedStep::Trigger(Action::RenderStill));
     script.extend([ScriptedStep::Trigger(Action::RecordFlight), ScriptedStep::Press(Action::Move(Move::Forward))]);
-    script.extend([ScriptedStep::Frames(FLIGHT_FRAMES), ScriptedStep::Release(Action::Move(Move::Forward))]);
+    // Enter adds a key between the timed ones (at 0.5 s).
+    script.extend([ScriptedStep::Frames(15), ScriptedStep::Trigger(Action::FlightKey)]);
+    script.extend([ScriptedStep::Frames(FLIGHT_FRAMES - 15), ScriptedStep::Release(Action::Move(Move::Forward))]);
     script.extend([ScriptedStep::Trigger(Action::RecordFlight), ScriptedStep::Trigger(Action::FollowScenePath)]);
     script.push(ScriptedStep::Frames(1));
     script.extend([ScriptedStep::Trigger(Action::TogglePanel), ScriptedStep::Trigger(Action::ToggleEditor)]);
@@ -156,7 +158,8 @@ pub(super) fn ui_child(dir: &Path) {
         panic!("the flight's camera is a path: {:?}", flown.camera.placement)
     };
     let seconds = FLIGHT_FRAMES as f64 * STEP;
-    assert!(keys.len() >= 2 && (keys.last().unwrap().time - seconds).abs() < 2.0 * STEP, "{keys:?}");
+    assert!(keys.len() >= 3 && (keys.last().unwrap().time - seconds).abs() < 2.0 * STEP, "{keys:?}");
+    assert!(keys.iter().any(|k| (k.time - 0.5).abs() < 1.5 * STEP), "the key added with Enter: {keys:?}");
     let travelled = glam::DVec3::from(keys[0].position).distance(keys.last().unwrap().position.into());
     assert!(travelled > 0.5 * seconds, "the flight moved forward {travelled}");
     assert!(flight.with_extension("gltf").exists(), "the glTF camera beside it");

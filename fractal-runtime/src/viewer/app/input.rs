@@ -189,6 +189,13 @@ impl App {
             Action::Bookmark => self.save_bookmark(),
             Action::RenderStill => self.render_still(),
             Action::RecordFlight => self.toggle_flight(),
+            Action::FlightKey => match &mut self.flight {
+                Some(flight) => {
+                    flight.key_now();
+                    println!("flight key added");
+                }
+                None => println!("not recording a flight (R starts one)"),
+            },
             Action::ToggleEditor => {
                 if let Some(editor) = &mut self.ui.editor {
                     editor.open = !editor.open;
