@@ -29,12 +29,14 @@ fn main() {
         Some("install") => install(),
         Some("layers") => layers(args.get(1).map(String::as_str)),
         Some("fuzz") => fuzz(args.get(1).map(String::as_str).unwrap_or("1000000")),
+        Some("engines") => engines(&args[1..]),
         _ => {
             eprintln!("usage: cargo xtask test [extra cargo test args]   (installs system packages, runs all tests)");
             eprintln!("       cargo xtask install                       (only installs system packages)");
             eprintln!("       cargo xtask layers                        (module cycles in any crate)");
             eprintln!("       cargo xtask layers CRATE/src              (that crate's file dependencies)");
             eprintln!("       cargo xtask fuzz [N]                      (N random scene texts, default 10^6)");
+            eprintln!("       cargo xtask engines [--bevy]              (the packages in WebGL2, Godot [and Bevy])");
             exit(2);
         }
     }
@@ -127,6 +129,38 @@ fn fuzz(cases: &str) {
         .args(["test", "--features", "opencl", "--test", "fuzz", "--", "--nocapture"])
         .env("FRACTAL_FUZZ_CASES", cases)
         .env("FRACTAL_FUZZ_RENDERS", "200"));
+}
+
+/// The engine packages in the engines themselves (`tests/engines/*/run.sh`, docs/engines.md): WebGL2 and the Godot web
+/// build in headless Chromium, and with `--bevy` a Bevy app (a long first build). Not part of `test`: they need
+/// Chromium, node and Python packages, and Bevy's own toolchain.
+fn engines(args: &[String]) {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("xtask lives in the workspace");
+    let out = root.join("target").join("engines");
+    install();
+    let apt = |package: &str| {
+        let present = Command::new("dpkg-query")
+            .args(["-W", "-f=${Status}", package])
+            .output()
+            .is_ok_and(|o| String::from_utf8_lossy(&o.stdout).contains("install ok installed"));
+        if !present && is_root() {
+            run(Command::new("apt-get").args(["install", "-y", "-qq", "--no-install-recommends", package]));
+        }
+    };
+    for package in ["chromium-headless-shell", "nodejs", "npm"] {
+        apt(package);
+    }
+    run(Command::new("python3").args(["-m", "pip", "install", "--quiet", "numpy", "pillow", "OpenEXR"]));
+    run(Command::new("cargo").args(["build", "--release", "--bin", "fractal"]).current_dir(root));
+    run(Command::new(root.join("tests/engines/webgl/run.sh")).arg(out.join("webgl")));
+    for scene in ["amazing_box", "kifs", "sphere_box"] {
+        run(Command::new(root.join("tests/engines/godot/run.sh")).arg(scene).arg(out.join("godot").join(scene)));
+    }
+    if args.iter().any(|a| a == "--bevy") {
+        for scene in ["amazing_box", "kifs", "sphere_box"] {
+            run(Command::new(root.join("tests/engines/bevy/run.sh")).arg(scene).arg(out.join("bevy").join(scene)));
+        }
+    }
 }
 
 fn run(cmd: &mut Command) {

@@ -339,6 +339,9 @@ pub mod library {
     /// `vec3 sdf_display(vec3 col)`: clamps a linear colour and encodes it with the scene's gamma, as the viewer
     /// does before writing a pixel (for targets that are not sRGB).
     pub const DISPLAY: &str = "sdf_display";
+    /// `vec3 sdf_display_linear(vec3 col)`: the linear colour whose sRGB encoding is `sdf_display(col)`, for sRGB
+    /// targets and engines' tonemappers: the pixel then shows as the viewer's does.
+    pub const DISPLAY_LINEAR: &str = "sdf_display_linear";
     /// Constant: the scene's bound, min corner (a box of ±max distance for an unbounded scene).
     pub const BOUND_MIN: &str = "SDF_BOUND_MIN";
     /// Constant: the bound's max corner.
@@ -656,8 +659,10 @@ impl<'a, D: Dialect> Kernel<'a, D> {
         let hit = |s: &Spelling| self.d.construct(vec4, &format!("{}, {}", s.value(colour), s.value(t)));
         self.traced_function_with(vec4, library::RAYMARCH, (&params, false), &body, &[colour, t], hit);
 
-        let (body, shown) = ray::display(self.p);
+        let (body, shown) = ray::display(self.p, false);
         self.traced_function(vec3, library::DISPLAY, &[("colour", vec3)], &body, &[shown], false);
+        let (body, shown) = ray::display(self.p, true);
+        self.traced_function(vec3, library::DISPLAY_LINEAR, &[("colour", vec3)], &body, &[shown], false);
     }
 
     /// A function whose body is `body`, returning its one result; it takes the frame where it `reads_frame`.

@@ -284,12 +284,13 @@ pub fn normal(program: &Program, epsilon: &'static str) -> (Body, Val) {
     (body.pruned(&[val]), val)
 }
 
-/// A library's `sdf_display` body: the linear colour `colour` (V3 argument) as the viewer displays it.
-pub fn display(program: &Program) -> (Body, Val) {
+/// A library's `sdf_display` body: the linear colour `colour` (V3 argument) as the viewer displays it; with `linear`,
+/// `sdf_display_linear`'s: that display value decoded from sRGB (what an sRGB target must be given to show it).
+pub fn display(program: &Program, linear: bool) -> (Body, Val) {
     let rules = program.rules();
     let (body, val) = trace(|| {
         let colour = Sym::components(Sym::arg_of("colour", Ty::V3));
-        Sym::vector(shade::display(&rules, colour))
+        Sym::vector(if linear { shade::display_linear(&rules, colour) } else { shade::display(&rules, colour) })
     });
     (body.pruned(&[val]), val)
 }

@@ -120,3 +120,14 @@ pub fn display<N: Num>(rules: &Rules, colour: V3<N>) -> V3<N> {
         clamped.map(|c| N::pow(c, e))
     }
 }
+
+/// The linear colour whose sRGB encoding is [`display`]'s: what an engine writes into an sRGB target (or hands its
+/// tonemapper) so that the pixel shows as the viewer's does, whatever the scene's gamma.
+#[inline(always)]
+pub fn display_linear<N: Num>(rules: &Rules, colour: V3<N>) -> V3<N> {
+    display(rules, colour).map(|c| {
+        let low = c / N::lit(12.92);
+        let high = N::pow((c + N::lit(0.055)) / N::lit(1.055), N::lit(2.4));
+        N::select(N::le(c, N::lit(0.04045)), low, high)
+    })
+}

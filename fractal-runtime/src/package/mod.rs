@@ -31,7 +31,7 @@ pub use source::{PackageError, PackageFile};
 /// An engine (or language) a scene can be packaged for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Engine {
-    /// Bevy: a naga_oil WGSL module and a `Material` fragment shader importing it.
+    /// Bevy 0.20: a WESL module and a `Material` fragment shader importing it.
     Bevy,
     /// Godot 4: a `.gdshaderinc` library and a `spatial` `.gdshader` including it.
     Godot,

@@ -80,7 +80,9 @@ pub(super) fn glsl(s: &Source) -> Vec<PackageFile> {
         "{}\n## Use\n\nPaste or `#include` `{file}` after your `#version` line (GLSL 4.50, or GLSL ES 3.00 with\n\
          `precision highp float;`), set the uniforms, and call the functions:\n\n\
          ```glsl\nvec4 hit = sdf_raymarch(camera_position, ray_direction, 2.0 * tan(0.5 * fov) / height);\n\
-         if (hit.w < 0.0) discard;\ncolour = vec4(sdf_display(hit.rgb), 1.0);\n```\n\n{}",
+         if (hit.w < 0.0) discard;\ncolour = vec4(sdf_display(hit.rgb), 1.0);\n```\n\n\
+         Tested in a real WebGL2 context (headless Chromium, `tests/engines/webgl/run.sh` in the fractal repository):\n\
+         every built-in scene's library, driven with the scene's camera, matches the project's own render of it.\n\n{}",
         s.readme_head("GLSL", &format!("`{file}`: the function library."), "vec3"),
         s.param_table(HostParam::global)
     );

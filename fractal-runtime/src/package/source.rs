@@ -132,6 +132,7 @@ impl<'a> Source<'a> {
              | `{vec3} sdf_material({vec3} p)` | the surface's albedo at p |\n\
              | `sdf_raymarch(ro, rd, footprint)` | the viewer's march and shading along the unit ray (ro, rd): xyz = linear colour, w = the hit's distance t, or −1 for a miss; `footprint` = 2·tan(fov/2)/height, the pixel's angle |\n\
              | `sdf_display(colour)` | clamp and gamma as the viewer writes a pixel (for non-sRGB targets) |\n\
+             | `sdf_display_linear(colour)` | the linear colour whose sRGB encoding is `sdf_display(colour)` (for sRGB targets) |\n\
              | `SDF_BOUND_MIN`, `SDF_BOUND_MAX`, `SDF_BOUND_CENTER`, `SDF_BOUND_RADIUS` | the scene's bounding box and sphere: size the proxy mesh to them |\n\n\
              Coordinates are the scene's: left-handed, y up (Unity's convention). Lights are constants (their values at t = 0).\n",
             name = self.name,

@@ -8,10 +8,33 @@ use super::source::{float, PackageFile, Source, TIME_GLOBAL};
 
 /// A Custom Function entry point: `name_float(inputs…, Time, params…, out outputs…)` assigning the globals, then
 /// `body`.
-fn custom_function(s: &Source, name: &str, inputs: &str, outputs: &str, body: &str) -> String {
+/// Shader Graph picks `_float` or `_half` by the node's precision; the `_half` one widens its inputs, calls the
+/// `_float` one and narrows its outputs.
+fn custom_function(s: &Source, name: &str, inputs: &[(&str, &str)], outputs: &[(&str, &str)], body: &str) -> String {
     let params: String = s.params.iter().map(|p| format!(", float {}", p.ident)).collect();
     let assign: String = s.params.iter().map(|p| format!("    {} = {};\n", p.global(), p.ident)).collect();
-    format!("void {name}_float({inputs}, float Time{params}, {outputs}) {{\n    {TIME_GLOBAL} = Time;\n{assign}{body}}}\n\n")
+    let signature = |precision: &str| {
+        let ins: Vec<String> = inputs.iter().map(|(ty, n)| format!("{precision}{ty} {n}")).collect();
+        let outs: Vec<String> = outputs.iter().map(|(ty, n)| format!("out {precision}{ty} {n}")).collect();
+        let half_params: String = s.params.iter().map(|p| format!(", {precision} {}", p.ident)).collect();
+        let params = if precision == "float" { params.clone() } else { half_params };
+        format!("void {name}_{precision}({}, {precision} Time{params}, {})", ins.join(", "), outs.join(", "))
+    };
+    let locals: String = outputs.iter().map(|(ty, n)| format!("    float{ty} {n}_float;\n")).collect();
+    let args: String = inputs
+        .iter()
+        .map(|(_, n)| n.to_string())
+        .chain(std::iter::once("Time".to_string()))
+        .chain(s.params.iter().map(|p| p.ident.clone()))
+        .chain(outputs.iter().map(|(_, n)| format!("{n}_float")))
+        .collect::<Vec<_>>()
+        .join(", ");
+    let narrow: String = outputs.iter().map(|(_, n)| format!("    {n} = {n}_float;\n")).collect();
+    format!(
+        "{} {{\n    {TIME_GLOBAL} = Time;\n{assign}{body}}}\n\n{} {{\n{locals}    {name}_float({args});\n{narrow}}}\n\n",
+        signature("float"),
+        signature("half")
+    )
 }
 
 pub(super) fn files(s: &Source) -> Vec<PackageFile> {
@@ -23,29 +46,29 @@ pub(super) fn files(s: &Source) -> Vec<PackageFile> {
     library.push_str(&custom_function(
         s,
         "FractalSdf",
-        "float3 Position",
-        "out float Distance",
+        &[("3", "Position")],
+        &[("", "Distance")],
         "    Distance = sdf(Position);\n",
     ));
     library.push_str(&custom_function(
         s,
         "FractalSdfNormal",
-        "float3 Position",
-        "out float3 Normal",
+        &[("3", "Position")],
+        &[("3", "Normal")],
         "    Normal = sdf_normal(Position);\n",
     ));
     library.push_str(&custom_function(
         s,
         "FractalSdfMaterial",
-        "float3 Position",
-        "out float3 Albedo",
+        &[("3", "Position")],
+        &[("3", "Albedo")],
         "    Albedo = sdf_material(Position);\n",
     ));
     library.push_str(&custom_function(
         s,
         "FractalRaymarch",
-        "float3 Origin, float3 Direction, float Footprint",
-        "out float3 Colour, out float Distance",
+        &[("3", "Origin"), ("3", "Direction"), ("", "Footprint")],
+        &[("3", "Colour"), ("", "Distance")],
         "    float4 hit = sdf_raymarch(Origin, Direction, Footprint);\n    Colour = hit.xyz;\n    Distance = hit.w;\n",
     ));
 
@@ -64,7 +87,13 @@ pub(super) fn files(s: &Source) -> Vec<PackageFile> {
             )
         })
         .collect();
-    let declarations: String = s.params.iter().map(|p| format!("            float _{};\n", p.ident)).collect();
+    // The properties in the SRP Batcher's per-material constant buffer.
+    let declarations: String = if s.params.is_empty() {
+        String::new()
+    } else {
+        let fields: String = s.params.iter().map(|p| format!("                float _{};\n", p.ident)).collect();
+        format!("            CBUFFER_START(UnityPerMaterial)\n{fields}            CBUFFER_END\n")
+    };
     let assignments: String =
         s.params.iter().map(|p| format!("                {} = _{};\n", p.global(), p.ident)).collect();
     let material = format!(
@@ -93,12 +122,18 @@ pub(super) fn files(s: &Source) -> Vec<PackageFile> {
          \x20               float3 ro = _WorldSpaceCameraPos;\n\
          \x20               float3 rd = normalize(i.world - ro);\n\
          \x20               // The pixel's angle: 2·tan(fov/2)/height, from the projection's y scale.\n\
-         \x20               float footprint = 2.0 / (UNITY_MATRIX_P[1][1] * _ScreenParams.y);\n\
+         \x20               // (negative when Unity flips y to render into a texture: the footprint takes its size)\n\
+         \x20               float footprint = 2.0 / abs(UNITY_MATRIX_P[1][1] * _ScreenParams.y);\n\
          \x20               float4 hit = sdf_raymarch(ro, rd, footprint);\n\
          \x20               clip(hit.w);\n\
          \x20               float4 hit_clip = mul(UNITY_MATRIX_VP, float4(ro + rd * hit.w, 1.0));\n\
          \x20               depth = hit_clip.z / hit_clip.w;\n\
-         \x20               return float4(hit.xyz, 1.0);\n            }}\n\
+         \x20               // Reversed-z and Direct3D-like targets keep clip z in 0..1 already; OpenGL-like ones in -1..1.\n\
+         \x20           #if !defined(UNITY_REVERSED_Z) && (defined(SHADER_API_GLCORE) || defined(SHADER_API_GLES3) || defined(SHADER_API_GLES))\n\
+         \x20               depth = depth * 0.5 + 0.5;\n\
+         \x20           #endif\n\
+         \x20               // The linear colour an sRGB target (Linear colour space) encodes back to the project's pixel.\n\
+         \x20               return float4(sdf_display_linear(hit.xyz), 1.0);\n            }}\n\
          \x20           ENDHLSL\n        }}\n    }}\n}}\n"
     );
     let inputs: String =
@@ -109,9 +144,20 @@ pub(super) fn files(s: &Source) -> Vec<PackageFile> {
          **Shader Graph:** add a Custom Function node, Type *File*, Source `{include}`, Name `FractalSdf` (or\n\
          `FractalSdfNormal`, `FractalSdfMaterial`, `FractalRaymarch`); its inputs are the position (or ray), `Time`{inputs};\n\
          outputs as in the signature:\n\n\
-         ```hlsl\nvoid FractalSdf_float(float3 Position, float Time{}, out float Distance)\n```\n\n{}",
+         ```hlsl\nvoid FractalSdf_float(float3 Position, float Time{}, out float Distance)\n```\n\n\
+         Each entry point has a `_half` twin for nodes set to half precision (it computes in float).\n\n\
+         The ready material returns `sdf_display_linear(colour)`, which a project in the Linear colour space (Unity's\n\
+         default) shows as the project's own pixel; in a Gamma-space project return `sdf_display(colour)` instead.\n\
+         `FractalRaymarch`'s `Colour` is the raw linear colour.\n\n\
+         ## What was tested, and how\n\n\
+         Written for **Unity 6** (built-in pipeline and URP). No Unity editor runs where this package is made: the\n\
+         library, the entry points and the material's program compile with glslang's HLSL front end, with Unity's\n\
+         few symbols stood in; the rest was checked against Unity's documentation only: the depth (clip z / w on\n\
+         reversed-z and Direct3D-like targets, remapped from -1..1 on OpenGL-like ones), the footprint's sign (the\n\
+         projection's y scale turns negative when Unity renders into a texture), the properties in\n\
+         `UnityPerMaterial` (SRP Batcher), and the `_half` entry points Shader Graph looks for.\n\n{}",
         s.readme_head(
-            "Unity",
+            "Unity 6",
             &format!("`{include}`: the library and Shader Graph Custom Function entry points.\n`{shader}`: a ready unlit material (built-in pipeline; URP draws it as an unlit pass)."),
             "float3"
         ),

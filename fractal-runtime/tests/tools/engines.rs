@@ -1,7 +1,7 @@
 //! Engine packages of every built-in scene, each checked by the nearest thing to its engine this machine has:
-//! - WGSL (plain and Bevy): the library validates with naga; Bevy's material composes with naga_oil's `Composer`
-//!   (as Bevy does) against stand-ins of the two Bevy modules it imports, and validates; the library runs on wgpu
-//!   and agrees with the scene's own probe kernel.
+//! - WGSL (plain and Bevy): the library validates with naga; Bevy's material validates with its imports replaced by
+//!   what they name (Bevy itself runs it in `tests/engines/bevy`); the library runs on wgpu and agrees with the
+//!   scene's own probe kernel.
 //! - GLSL (plain, Godot, Shadertoy): glslang, as GLSL 4.50 and GLSL ES 3.00 behind a thin wrapper that calls every
 //!   function; Godot's files after removing its own syntax (`hint_range`, `shader_type`, built-ins as uniforms).
 //!   Godot itself is not run: its shading language's own rules stay unchecked.
@@ -10,13 +10,11 @@
 //!
 //! External validators are skipped with a note when missing, unless FRACTAL_REQUIRE_GPU_BACKENDS=1.
 
-use std::collections::HashMap;
 use std::path::PathBuf;
 
 use fractal_dsl::back::{wgsl, Entry};
 use fractal_render::{Frame, KernelSources, RenderJob, Renderer, WgpuRenderer};
 use fractal_runtime::package::{package, Engine, Package};
-use naga_oil::compose::{ComposableModuleDescriptor, Composer, NagaModuleDescriptor, ShaderDefValue};
 
 use crate::common::{available, run_validator, tool_available};
 
@@ -78,13 +76,29 @@ fn a_sphere_library_holds_only_the_sphere() {
     }
 }
 
-#[test]
-fn wgsl_libraries_validate_and_bevy_materials_compose_with_naga_oil() {
-    const FORWARD_IO: &str = "#define_import_path bevy_pbr::forward_io\n\n\
-        struct VertexOutput {\n    @builtin(position) position: vec4<f32>,\n    @location(0) world_position: vec4<f32>,\n    @location(1) world_normal: vec3<f32>,\n}\n";
-    const VIEW: &str = "#define_import_path bevy_pbr::mesh_view_bindings\n\n\
+/// The Bevy material with its WESL imports replaced by what they name: `VertexOutput` and `view` as Bevy 0.20.1
+/// declares them (the fields the material reads), the scene's module inlined, `constants::MATERIAL_BIND_GROUP` as
+/// Bevy sets it (3). Bevy itself composes it in `tests/engines/bevy` (its own command: it needs Bevy's toolchain).
+fn bevy_material_as_wgsl(material: &str, module: &str, name: &str) -> String {
+    const BEVY: &str = "struct VertexOutput {\n    @builtin(position) position: vec4<f32>,\n    @location(0) world_position: vec4<f32>,\n    @location(1) world_normal: vec3<f32>,\n}\n\n\
         struct View {\n    clip_from_world: mat4x4<f32>,\n    clip_from_view: mat4x4<f32>,\n    world_position: vec3<f32>,\n    viewport: vec4<f32>,\n}\n\n\
         @group(0) @binding(0) var<uniform> view: View;\n";
+    let imports = [
+        "import bevy_pbr::render::forward_io::VertexOutput;\n".to_string(),
+        "import bevy_pbr::render::mesh_view_bindings::view;\n".to_string(),
+        format!("import super::{name} as scene;\n"),
+    ];
+    let mut body = material.to_string();
+    for import in &imports {
+        assert!(body.contains(import.as_str()), "{name}: the Bevy material lacks `{}`", import.trim());
+        body = body.replace(import.as_str(), "");
+    }
+    let body = body.replace("constants::MATERIAL_BIND_GROUP", "3").replace("scene::", "");
+    format!("{BEVY}{module}{body}")
+}
+
+#[test]
+fn wgsl_libraries_and_bevy_materials_validate() {
     for (name, scene) in scenes::ALL.iter().map(|(n, c)| (*n, c.scene())) {
         let plain = packaged(name, scene, Engine::Wgsl);
         let source = file(&plain, &format!("{name}.wgsl"));
@@ -93,41 +107,15 @@ fn wgsl_libraries_validate_and_bevy_materials_compose_with_naga_oil() {
         validate_wgsl(name, &module, source);
 
         let bevy = packaged(name, scene, Engine::Bevy);
-        let mut composer = Composer::default();
-        for (path, stub) in [("forward_io.wgsl", FORWARD_IO), ("mesh_view_bindings.wgsl", VIEW)] {
-            let added = composer
-                .add_composable_module(ComposableModuleDescriptor {
-                    source: stub,
-                    file_path: path,
-                    ..Default::default()
-                })
-                .map(|_| ())
-                .map_err(|e| e.emit_to_string(&composer));
-            added.unwrap_or_else(|e| panic!("{path}: {e}"));
-        }
-        let module_file = format!("{name}.wgsl");
-        let added = composer
-            .add_composable_module(ComposableModuleDescriptor {
-                source: file(&bevy, &module_file),
-                file_path: &module_file,
-                ..Default::default()
-            })
-            .map(|_| ())
-            .map_err(|e| e.emit_to_string(&composer));
-        added.unwrap_or_else(|e| panic!("{name}: the Bevy module: {e}"));
-        let material_file = format!("{name}_material.wgsl");
-        let material = file(&bevy, &material_file);
-        let shader_defs = HashMap::from([("MATERIAL_BIND_GROUP".to_string(), ShaderDefValue::UInt(2))]);
-        let composed = composer
-            .make_naga_module(NagaModuleDescriptor {
-                source: material,
-                file_path: &material_file,
-                shader_defs,
-                ..Default::default()
-            })
-            .unwrap_or_else(|e| panic!("{name}: the Bevy material: {}", e.emit_to_string(&composer)));
-        validate_wgsl(&format!("{name}: the composed Bevy material"), &composed, material);
-        let fragment = composed.entry_points.iter().find(|e| e.name == "fragment");
+        let composed = bevy_material_as_wgsl(
+            file(&bevy, &format!("{name}_material.wesl")),
+            file(&bevy, &format!("{name}.wesl")),
+            name,
+        );
+        let module = naga::front::wgsl::parse_str(&composed)
+            .unwrap_or_else(|e| panic!("{name}: the Bevy material: {}", e.emit_to_string(&composed)));
+        validate_wgsl(&format!("{name}: the Bevy material"), &module, &composed);
+        let fragment = module.entry_points.iter().find(|e| e.name == "fragment");
         assert_eq!(fragment.map(|e| e.stage), Some(naga::ShaderStage::Fragment), "{name}: no fragment entry");
     }
 }
@@ -309,10 +297,16 @@ fn godot_packages_pass_glslang_after_a_thin_wrapper() {
             "uniform vec3 CAMERA_POSITION_WORLD;\nuniform mat4 PROJECTION_MATRIX;\nuniform mat4 VIEW_MATRIX;\n\
                        uniform vec2 VIEWPORT_SIZE;\nfloat DEPTH;\nvec3 ALBEDO;\nin vec3 world_position;\n\
                        const vec3 MIRROR = vec3(1.0, 1.0, -1.0);\n";
-        let wrapped = format!(
-            "#version 450\n{include}{globals}{fragment}\nout vec4 godot_out;\n\nvoid main() {{\n    fragment();\n    godot_out = vec4(ALBEDO, DEPTH);\n}}\n"
-        );
-        glslang(&format!("{name}.gdshader.frag"), &wrapped, &[]);
+        // Both sides of the renderer test (Godot's own values of its renderer macros).
+        for (renderer, current) in [("forward_plus", 0), ("compatibility", 2)] {
+            let macros = format!(
+                "#define RENDERER_FORWARD_PLUS 0\n#define RENDERER_MOBILE 1\n#define RENDERER_COMPATIBILITY 2\n#define CURRENT_RENDERER {current}\n"
+            );
+            let wrapped = format!(
+                "#version 450\n{macros}{include}{globals}{fragment}\nout vec4 godot_out;\n\nvoid main() {{\n    fragment();\n    godot_out = vec4(ALBEDO, DEPTH);\n}}\n"
+            );
+            glslang(&format!("{name}.{renderer}.gdshader.frag"), &wrapped, &[]);
+        }
     }
 }
 
@@ -346,7 +340,8 @@ fn unity_packages_pass_glslang_hlsl_front_end() {
     if !tool_available("glslangValidator") {
         return;
     }
-    const UNITY_CG: &str = "float4 _Time;\nfloat3 _WorldSpaceCameraPos;\nfloat4 _ScreenParams;\n\
+    const UNITY_CG: &str = "#define CBUFFER_START(name) cbuffer name {\n#define CBUFFER_END };\n\
+        float4 _Time;\nfloat3 _WorldSpaceCameraPos;\nfloat4 _ScreenParams;\n\
         float4x4 unity_ObjectToWorld;\nfloat4x4 UNITY_MATRIX_P;\nfloat4x4 UNITY_MATRIX_VP;\n\
         float4 UnityObjectToClipPos(float4 v) { return mul(UNITY_MATRIX_VP, mul(unity_ObjectToWorld, v)); }\n";
     for (name, scene) in scenes::ALL.iter().map(|(n, c)| (*n, c.scene())) {
@@ -362,7 +357,12 @@ fn unity_packages_pass_glslang_hlsl_front_end() {
              \x20   FractalSdfNormal_float(position.xyz, 1.0{params}, n);\n\
              \x20   FractalSdfMaterial_float(position.xyz, 1.0{params}, a);\n\
              \x20   FractalRaymarch_float(float3(0.0, 0.0, -3.0), float3(0.0, 0.0, 1.0), 0.001, 1.0{params}, c, t);\n\
-             \x20   return float4(n + a + c, d + t);\n}}\n"
+             \x20   half hd; half3 hn; half3 ha; half3 hc; half ht;\n\
+             \x20   FractalSdf_half(position.xyz, 1.0{params}, hd);\n\
+             \x20   FractalSdfNormal_half(position.xyz, 1.0{params}, hn);\n\
+             \x20   FractalSdfMaterial_half(position.xyz, 1.0{params}, ha);\n\
+             \x20   FractalRaymarch_half(half3(0.0, 0.0, -3.0), half3(0.0, 0.0, 1.0), 0.001, 1.0{params}, hc, ht);\n\
+             \x20   return float4(n + a + c + hn + ha + hc, d + t + hd + ht);\n}}\n"
         );
         glslang_hlsl(&format!("{name}.graph.hlsl"), &graph, "main");
 
@@ -382,8 +382,8 @@ fn unreal_packages_pass_glslang_hlsl_front_end() {
     if !tool_available("glslangValidator") {
         return;
     }
-    const VIEW: &str = "struct ViewParameters {\n    float4x4 ViewToClip;\n    float4 ViewSizeAndInvSize;\n};\n\
-        cbuffer View_ { ViewParameters View; };\n";
+    const VIEW: &str = "struct ViewParameters {\n    float4x4 ViewToClip;\n    float4 ViewSizeAndInvSize;\n    float3 ViewForward;\n};\n\
+        cbuffer View_ { ViewParameters ResolvedView; };\n";
     for (name, scene) in scenes::ALL.iter().map(|(n, c)| (*n, c.scene())) {
         let p = packaged(name, scene, Engine::Unreal);
         let library = file(&p, &format!("{name}.ush"));
@@ -393,10 +393,10 @@ fn unreal_packages_pass_glslang_hlsl_front_end() {
         let declared: String = params.iter().map(|p| format!(", float {p}")).collect();
         let passed: String = scene.params().iter().map(|d| format!(", {:?}", d.default as f32)).collect();
         let wrapped = format!(
-            "{VIEW}{library}\nfloat3 CustomExpression0(float3 WorldPosition, float3 CameraPosition, float3 ObjectPosition, \
+            "{VIEW}{library}\nfloat3 CustomExpression0(float3 PixelFromCamera, float3 CameraFromObject, \
              float Scale, float Time{declared}, out float DepthOffset) {{\n{body}}}\n\n\
              float4 main(float4 position : SV_Position) : SV_Target {{\n    float depth_offset;\n\
-             \x20   float3 c = CustomExpression0(position.xyz, float3(0.0, 100.0, -300.0), float3(0.0, 0.0, 0.0), 100.0, 1.0{passed}, depth_offset);\n\
+             \x20   float3 c = CustomExpression0(position.xyz, float3(0.0, 100.0, -300.0), 100.0, 1.0{passed}, depth_offset);\n\
              \x20   return float4(c, depth_offset);\n}}\n"
         );
         glslang_hlsl(&format!("{name}.unreal.hlsl"), &wrapped, "main");
