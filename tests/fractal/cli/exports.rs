@@ -29,7 +29,7 @@ fn export_writes_every_target() {
 fn export_writes_engine_packages() {
     let dir = scratch("export_engines");
     let expected: [(&str, &[&str]); 8] = [
-        ("bevy", &["README.md", "sphere_box.wgsl", "sphere_box_material.wgsl"]),
+        ("bevy", &["README.md", "sphere_box.wesl", "sphere_box_material.wesl"]),
         ("godot", &["README.md", "sphere_box.gdshader", "sphere_box.gdshaderinc"]),
         ("unity", &["README.md", "sphere_box.hlsl", "sphere_box.shader"]),
         ("unreal", &["README.md", "sphere_box.ush", "sphere_box_custom_node.hlsl"]),
