@@ -170,7 +170,8 @@ fn the_window_shows_the_offline_render_of_the_scripted_pose() {
     if xwd.is_none() {
         eprintln!("note: not comparing the X server's copy of the window (needs our own Xvfb and xwd)");
     }
-    for mode in ["auto", "cpu-softbuffer", "hot-reload", "animated", "still-auto", "still-cpu", "deep", "ui"] {
+    for mode in ["auto", "cpu-softbuffer", "hot-reload", "animated", "still-auto", "still-cpu", "deep", "ui", "ui-gpu"]
+    {
         let dir = scratch_dir(mode);
         let mut child = spawn_child(mode, &dir, &display);
         let last_shot = dir.join(LAST_SHOT);
@@ -222,7 +223,7 @@ fn the_window_shows_the_offline_render_of_the_scripted_pose() {
             let _ = std::fs::remove_dir_all(&dir);
             continue;
         }
-        if mode.starts_with("still") || mode == "ui" {
+        if mode.starts_with("still") || mode.starts_with("ui") {
             let _ = std::fs::remove_dir_all(&dir);
             continue;
         }
@@ -275,7 +276,8 @@ fn viewer_child_process() {
         "still-cpu" => return still::still_child(&dir, true),
         "still-figures" => return still::figures_child(&dir),
         "deep" => return precision::deep_child(&dir),
-        "ui" => return ui::ui_child(&dir),
+        "ui" => return ui::ui_child(&dir, PresentMode::Softbuffer),
+        "ui-gpu" => return ui::ui_child(&dir, PresentMode::Gpu),
         "picture" => return ui::picture_child(&dir),
         _ => {}
     }

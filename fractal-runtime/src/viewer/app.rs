@@ -46,7 +46,7 @@ use super::script::ScriptPlayer;
 use super::session::{PresentMode, ScreenshotInfo, ViewerError, ViewerOptions, ViewerScene, ViewerSummary};
 use super::still::{Accumulator, Plan, StillKey};
 use super::title::{title, FrameClock, TitleFacts};
-use super::ui::{Overlay, PanelView, Ui, UiAction};
+use super::ui::{PanelView, Ui, UiAction};
 
 /// Longest time step of one frame: after a stall (a slow recompile, a dragged window) the camera does not jump.
 const MAX_DT: f64 = 0.25;
@@ -168,7 +168,6 @@ struct App {
     /// it, applied at the start of the next frame.
     panel_shown: bool,
     ui: Ui,
-    overlay: Option<Overlay>,
     ui_actions: Vec<UiAction>,
     /// The bookmarks beside the scene (read when first needed) and the size stills are rendered at.
     bookmarks: Option<Bookmarks>,
@@ -239,7 +238,6 @@ impl App {
             // A scripted run (tests, benchmarks) draws the frame alone, so its screenshots are the render's.
             panel_shown: options.script.is_none(),
             ui: Ui::new(None),
-            overlay: None,
             ui_actions: Vec::new(),
             bookmarks: None,
             still_size: DEFAULT_STILL_SIZE,
@@ -258,8 +256,9 @@ impl App {
     }
 
     /// A wgpu surface for wgpu frames when allowed and possible, softbuffer otherwise; without a window, a texture
-    /// or host memory in their place.
-    fn make_presenter(&self) -> Result<Presenter, ViewerError> {
+    /// or host memory in their place. The UI's next frame gives it every texture egui has sent.
+    fn make_presenter(&mut self) -> Result<Presenter, ViewerError> {
+        self.ui.resend_textures();
         let gpu = match (self.options.present, &self.engine) {
             (PresentMode::Gpu, _) => true,
             (PresentMode::Auto, Engine::Wgpu(renderer)) => renderer.adapter_info().device_type != wgpu::DeviceType::Cpu,
@@ -299,8 +298,7 @@ impl App {
         let bookmarks = if self.panel_shown { self.bookmark_names() } else { Vec::new() };
         let view = self.panel_shown.then(|| self.panel_view(bookmarks));
         let window = self.window.clone();
-        let (overlay, actions) = self.ui.frame(window.as_deref(), window_size, view.as_ref());
-        self.overlay = overlay;
+        let actions = self.ui.frame(window.as_deref(), window_size, view.as_ref());
         self.ui_actions.extend(actions);
     }
 
@@ -497,8 +495,8 @@ impl App {
     fn draw(&mut self, frame: &Frame, window_size: (u32, u32), screenshot: bool) -> Result<Option<Image>, DrawError> {
         match (&mut self.presenter, &mut self.engine) {
             (Some(Presenter::Gpu(gpu)), Engine::Wgpu(renderer)) => {
-                let overlay = self.overlay.as_ref();
-                gpu.draw(renderer, (self.live.wgsl(), frame), window_size, screenshot, overlay).map_err(|e| match e {
+                let ui = Some(self.ui.paint());
+                gpu.draw(renderer, (self.live.wgsl(), frame), window_size, screenshot, ui).map_err(|e| match e {
                     GpuFrameError::Render(e) => DrawError::Render(e),
                     GpuFrameError::Surface(e) => DrawError::Present(e),
                 })
@@ -506,7 +504,7 @@ impl App {
             (Some(Presenter::Soft(soft)), engine) => {
                 let image =
                     engine.renderer().render(&RenderJob::new(self.live.kernels(), frame)).map_err(DrawError::Render)?;
-                soft.present(&image, window_size, self.overlay.as_ref()).map_err(DrawError::Present)?;
+                soft.present(&image, window_size, self.ui.overlay().as_ref()).map_err(DrawError::Present)?;
                 Ok(if screenshot { soft.screenshot() } else { None })
             }
             (Some(Presenter::Gpu(_)), Engine::Other(_)) => {
@@ -543,7 +541,7 @@ impl App {
                     device: self.engine.device(),
                     presenter: self.presenter.as_ref().map_or("none", Presenter::name),
                     passes: self.still.shown(),
-                    ui_rect: self.overlay.as_ref().map(|o| (o.origin.0, o.origin.1, o.image.width, o.image.height)),
+                    ui_rect: self.ui.rect(),
                     source_error: self.ui.editor.as_ref().and_then(|e| e.error.as_ref()).map(|e| match e.at {
                         Some((line, column)) => format!("{line}:{column}: {}", e.message),
                         None => e.message.clone(),

@@ -18,8 +18,9 @@
 //!   effects, scene, sizes), each frame adds a progressive pass and the window shows their mean, refining it to the
 //!   pixel-integrated image, up to 256 passes; any change starts over (module `still`;
 //!   [`ViewerOptions::accumulate`] turns it off).
-//! - The panel and the scene editor are egui, drawn on the host into an overlay both presenters blend (module `ui`);
-//!   bookmarks (module `bookmarks`) and flights (module `flight`) are written beside the scene.
+//! - The panel and the scene editor are egui (module `ui`), drawn by egui-wgpu on the wgpu surface and rasterised
+//!   on the host for softbuffer; bookmarks (module `bookmarks`) and flights (module `flight`) are written beside the
+//!   scene.
 //! - With no display, [`run`] returns [`ViewerError::NoDisplay`] and [`run_or_render`] renders a PNG instead.
 //!
 //! Controls (also printed at start-up, and again with H):

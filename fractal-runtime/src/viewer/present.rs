@@ -13,6 +13,8 @@ mod blit;
 mod gpu;
 mod soft;
 mod stretch;
+#[cfg(test)]
+mod ui_agreement;
 
 pub use gpu::{GpuFrameError, GpuPresenter, PassTimes};
 pub use soft::SoftPresenter;

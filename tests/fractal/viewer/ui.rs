@@ -1,5 +1,6 @@
 //! The viewer's UI used the way a person uses it, through egui's own input (a pointer pressing widgets, keys and
-//! typed text), in a window under Xvfb (`ui_child`, run in its own process by the window test):
+//! typed text), in a window under Xvfb (`ui_child`, run in its own process by the window test, twice: through
+//! softbuffer, where the UI is rasterised on the host, and through the wgpu surface, where egui-wgpu draws it):
 //!
 //! - the panel shows: shown with O, it covers a block of the window's top-left corner and leaves the rest as it was;
 //! - a slider moves the picture: pressing near the end of the `radius` slider's rail sets the parameter near its
@@ -15,7 +16,7 @@ use std::time::Duration;
 
 use fractal_render::Image;
 use fractal_runtime::viewer::{
-    read_png, Action, Move, RenderScale, ScreenshotInfo, ScriptedStep, UiInput, ViewerOptions, ViewerScene,
+    read_png, Action, Move, PresentMode, RenderScale, ScreenshotInfo, ScriptedStep, UiInput, ViewerOptions, ViewerScene,
 };
 
 use super::{spawn_child, test_display, STEP};
@@ -69,7 +70,7 @@ fn changed_outside(a: &Image, b: &Image, skip: &[Option<(u32, u32, u32, u32)>]) 
 }
 
 /// Views [`SOURCE`] and works its panel and editor.
-pub(super) fn ui_child(dir: &Path) {
+pub(super) fn ui_child(dir: &Path, present: PresentMode) {
     let file = dir.join(SCENE);
     std::fs::write(&file, SOURCE).expect("write the scene");
     let shot = |name: &str| ScriptedStep::Screenshot(dir.join(name));
@@ -105,6 +106,7 @@ pub(super) fn ui_child(dir: &Path) {
     script.extend(click("save", (0.5, 0.5)));
     script.push(ScriptedStep::Frames(2));
     let options = ViewerOptions {
+        present,
         window_size: WINDOW,
         render_scale: RenderScale::Fixed(0.5),
         fixed_time_step: Some(STEP),
@@ -120,6 +122,9 @@ pub(super) fn ui_child(dir: &Path) {
     };
     let image = |s: &ScreenshotInfo| read_png(&s.path).expect("read a screenshot");
     let (plain_image, panel_image) = (image(plain), image(panel));
+
+    let presenter = if present == PresentMode::Gpu { "wgpu surface" } else { "softbuffer" };
+    assert!(summary.screenshots.iter().all(|s| s.presenter == presenter), "every picture through the {presenter}");
 
     // The panel shows: a block in the top-left corner, over an unchanged picture.
     assert_eq!(plain.ui_rect, None, "a scripted run starts with the panel hidden");

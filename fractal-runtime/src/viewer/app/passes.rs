@@ -59,12 +59,12 @@ impl App {
     ) -> Result<Option<Image>, DrawError> {
         // After the pass, so the panel counts it.
         self.draw_ui(window_size);
-        let overlay = self.overlay.as_ref();
         match (&mut self.presenter, &mut self.engine) {
             (Some(Presenter::Gpu(gpu)), Engine::Wgpu(renderer)) => {
+                let ui = Some(self.ui.paint());
                 let shown = match picture {
-                    Some(image) => gpu.show(renderer, image, window_size, screenshot, overlay),
-                    None => gpu.redraw(renderer, window_size, screenshot, overlay),
+                    Some(image) => gpu.show(renderer, image, window_size, screenshot, ui),
+                    None => gpu.redraw(renderer, window_size, screenshot, ui),
                 };
                 shown.map_err(|e| match e {
                     GpuFrameError::Render(e) => DrawError::Render(e),
@@ -72,6 +72,8 @@ impl App {
                 })
             }
             (Some(Presenter::Soft(soft)), _) => {
+                let overlay = self.ui.overlay();
+                let overlay = overlay.as_ref();
                 match picture {
                     Some(image) => soft.present(image, window_size, overlay),
                     None => soft.redraw(window_size, overlay),

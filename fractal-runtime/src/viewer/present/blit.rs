@@ -1,18 +1,12 @@
 //! The full-screen pass that draws a frame's pixel buffer to the window (or to the texture that stands in for it),
-//! stretched by the rule of module `stretch`, with the UI overlay blended over its rectangle. Its uniform, the
-//! overlay's buffer and the bind group are kept from frame to frame and rewritten in place (`Queue::write_buffer`
-//! lands at the next submission, in queue order), so a frame allocates nothing on the device.
-
-use wgpu::util::DeviceExt;
-
-use crate::viewer::ui::Overlay;
+//! stretched by the rule of module `stretch`; the UI is drawn over it in the same pass (module `gpu`). Its uniform
+//! and the bind group are kept from frame to frame and rewritten in place (`Queue::write_buffer` lands at the next
+//! submission, in queue order), so a frame allocates nothing on the device.
 
 const BLIT_WGSL: &str = r#"
 struct Blit {
     src_size: vec2<u32>,
     dst_size: vec2<u32>,
-    overlay_origin: vec2<u32>,
-    overlay_size: vec2<u32>,
     decode_srgb: u32,
     pad0: u32,
     pad1: u32,
@@ -21,8 +15,6 @@ struct Blit {
 
 @group(0) @binding(0) var<storage, read> pixels: array<u32>;
 @group(0) @binding(1) var<uniform> blit: Blit;
-// The UI overlay (RGBA8 with straight alpha, R in the low byte), blended over its rectangle of the window.
-@group(0) @binding(2) var<storage, read> overlay: array<u32>;
 
 @vertex
 fn vs_main(@builtin(vertex_index) index: u32) -> @builtin(position) vec4<f32> {
@@ -46,12 +38,6 @@ fn fs_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
     let x = source_index(u32(position.x), blit.dst_size.x, blit.src_size.x);
     let y = source_index(u32(position.y), blit.dst_size.y, blit.src_size.y);
     var rgb = unpack4x8unorm(pixels[y * blit.src_size.x + x]).rgb;
-    let d = vec2<u32>(position.xy);
-    if all(d >= blit.overlay_origin) && all(d < blit.overlay_origin + blit.overlay_size) {
-        let o = d - blit.overlay_origin;
-        let over = unpack4x8unorm(overlay[o.y * blit.overlay_size.x + o.x]);
-        rgb = mix(rgb, over.rgb, over.a);
-    }
     // The kernels write display-encoded colour; an sRGB target would encode it again.
     if blit.decode_srgb == 1u {
         rgb = srgb_to_linear(rgb);
@@ -61,15 +47,13 @@ fn fs_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
 "#;
 
 /// Words of the blit uniform.
-const UNIFORM_WORDS: usize = 12;
+const UNIFORM_WORDS: usize = 8;
 
 /// The blit pipeline for one target format and what it binds, kept from frame to frame.
 pub struct Blit {
     pipeline: wgpu::RenderPipeline,
     format: wgpu::TextureFormat,
     uniform: wgpu::Buffer,
-    /// The overlay's pixels; grown (never shrunk) when a larger overlay comes.
-    overlay: wgpu::Buffer,
     /// The bind group and the pixel buffer it binds; made again when either buffer is.
     group: Option<(wgpu::Buffer, wgpu::BindGroup)>,
 }
@@ -83,34 +67,20 @@ impl Blit {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        Blit { pipeline: pipeline(device, format), format, uniform, overlay: overlay_buffer(device, &[0]), group: None }
+        Blit { pipeline: pipeline(device, format), format, uniform, group: None }
     }
 
-    /// Writes this frame's uniform and overlay (which land at the next submission) and returns the bind group that
-    /// draws `pixels`, `src` pixels in size, over a target of `window` pixels. Call inside an error scope.
+    /// Writes this frame's uniform (which lands at the next submission) and returns the bind group that draws
+    /// `pixels`, `src` pixels in size, over a target of `window` pixels. Call inside an error scope.
     pub fn prepare(
         &mut self,
         (device, queue): (&wgpu::Device, &wgpu::Queue),
         (pixels, src): (&wgpu::Buffer, (u32, u32)),
         window: (u32, u32),
-        overlay: Option<&Overlay>,
     ) -> wgpu::BindGroup {
-        // No overlay: an empty rectangle (a binding cannot be empty, so the buffer keeps at least a word).
-        let (origin, size, words) = match overlay {
-            Some(o) => (o.origin, (o.image.width, o.image.height), o.image.pixels.as_slice()),
-            None => ((0, 0), (0, 0), &[][..]),
-        };
         let decode_srgb = self.format.is_srgb() as u32;
-        let uniform: [u32; UNIFORM_WORDS] =
-            [src.0, src.1, window.0, window.1, origin.0, origin.1, size.0, size.1, decode_srgb, 0, 0, 0];
+        let uniform: [u32; UNIFORM_WORDS] = [src.0, src.1, window.0, window.1, decode_srgb, 0, 0, 0];
         queue.write_buffer(&self.uniform, 0, bytemuck::cast_slice(&uniform));
-        let bytes = std::mem::size_of_val(words) as u64;
-        if bytes > self.overlay.size() {
-            self.overlay = overlay_buffer(device, words);
-            self.group = None;
-        } else if bytes > 0 {
-            queue.write_buffer(&self.overlay, 0, bytemuck::cast_slice(words));
-        }
         if let Some((bound, group)) = &self.group {
             if bound == pixels {
                 return group.clone();
@@ -122,23 +92,24 @@ impl Blit {
             entries: &[
                 wgpu::BindGroupEntry { binding: 0, resource: pixels.as_entire_binding() },
                 wgpu::BindGroupEntry { binding: 1, resource: self.uniform.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 2, resource: self.overlay.as_entire_binding() },
             ],
         });
         self.group = Some((pixels.clone(), group.clone()));
         group
     }
 
-    /// Records the pass that draws `group`'s pixels over `view`, writing timestamps 2 and 3 of `timestamps` where
-    /// it begins and ends.
+    /// Records the pass that draws `group`'s pixels over `view` and then what `over` records in the same pass (the
+    /// UI), writing timestamps 2 and 3 of `timestamps` where it begins and ends.
     pub fn record(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         view: &wgpu::TextureView,
         group: &wgpu::BindGroup,
         timestamps: Option<&wgpu::QuerySet>,
+        over: impl FnOnce(&mut wgpu::RenderPass<'static>),
     ) {
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        // 'static, as egui-wgpu's painter takes the pass: the encoder is not touched until the pass ends.
+        let pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("blit"),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {
                 view,
@@ -153,18 +124,12 @@ impl Blit {
             }),
             ..Default::default()
         });
+        let mut pass = pass.forget_lifetime();
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, group, &[]);
         pass.draw(0..3, 0..1);
+        over(&mut pass);
     }
-}
-
-fn overlay_buffer(device: &wgpu::Device, words: &[u32]) -> wgpu::Buffer {
-    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("ui overlay"),
-        contents: bytemuck::cast_slice(if words.is_empty() { &[0u32][..] } else { words }),
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-    })
 }
 
 fn pipeline(device: &wgpu::Device, format: wgpu::TextureFormat) -> wgpu::RenderPipeline {

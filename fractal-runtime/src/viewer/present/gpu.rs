@@ -1,6 +1,7 @@
 //! [`GpuPresenter`]: the WGSL kernel computes into a storage buffer and the blit (module `blit`) draws that buffer
 //! to the window's wgpu surface, in one submission; nothing crosses back to the host except screenshots. A host
-//! image (a progressive picture, a frame in f64) is uploaded into the same buffer and drawn the same way. Without a
+//! image (a progressive picture, a frame in f64) is uploaded into the same buffer and drawn the same way. The UI is
+//! drawn over it in the blit's pass by egui-wgpu, from the meshes egui laid out (`UiPaint`). Without a
 //! window (`fractal view --headless`) the target is a texture of the window's size, frames are kept in flight as a
 //! swapchain keeps them, and the device's timestamps time the kernel and the blit of each frame.
 
@@ -18,7 +19,7 @@ use winit::window::Window;
 
 use super::blit::Blit;
 use super::stretch::upscale;
-use crate::viewer::ui::Overlay;
+use crate::viewer::ui::UiPaint;
 
 /// Frames a texture target keeps in flight: the surface's `desired_maximum_frame_latency`.
 const MAX_LATENCY: usize = 2;
@@ -107,6 +108,9 @@ struct PendingStamps {
 pub struct GpuPresenter {
     target: Target,
     blit: Blit,
+    /// egui's painter for the target's format, and the textures egui freed, forgotten before the next frame.
+    ui: egui_wgpu::Renderer,
+    ui_freed: Vec<egui::TextureId>,
     /// The kernel's pixels (or an uploaded image) and their size.
     pixels: Option<((u32, u32), wgpu::Buffer)>,
     /// The frame uniform, rewritten per frame.
@@ -164,14 +168,14 @@ impl GpuPresenter {
             color_space: wgpu::SurfaceColorSpace::Auto,
         };
         let device = renderer.wgpu_device();
-        let (blit, error) = capture(device, || {
+        let ((blit, ui), error) = capture(device, || {
             surface.configure(device, &config);
-            Blit::new(device, format)
+            (Blit::new(device, format), ui_painter(device, format))
         });
         if let Some(e) = error {
             return Err(e.to_string());
         }
-        Ok(GpuPresenter::with_target(Target::Surface { surface, config, copyable }, blit, None))
+        Ok(GpuPresenter::with_target(Target::Surface { surface, config, copyable }, (blit, ui), None))
     }
 
     /// A presenter with no window: frames are drawn into a texture of the window's size, as they would be to a
@@ -179,17 +183,20 @@ impl GpuPresenter {
     pub fn offscreen(renderer: &WgpuRenderer) -> Result<GpuPresenter, String> {
         let device = renderer.wgpu_device();
         let format = wgpu::TextureFormat::Rgba8Unorm;
-        let ((blit, stamps), error) = capture(device, || (Blit::new(device, format), stamps(renderer)));
+        let ((blit, ui, stamps), error) =
+            capture(device, || (Blit::new(device, format), ui_painter(device, format), stamps(renderer)));
         if let Some(e) = error {
             return Err(e.to_string());
         }
-        Ok(GpuPresenter::with_target(Target::Texture { texture: None, format }, blit, stamps))
+        Ok(GpuPresenter::with_target(Target::Texture { texture: None, format }, (blit, ui), stamps))
     }
 
-    fn with_target(target: Target, blit: Blit, stamps: Option<Stamps>) -> GpuPresenter {
+    fn with_target(target: Target, (blit, ui): (Blit, egui_wgpu::Renderer), stamps: Option<Stamps>) -> GpuPresenter {
         GpuPresenter {
             target,
             blit,
+            ui,
+            ui_freed: Vec::new(),
             pixels: None,
             uniform: None,
             stamps,
@@ -208,18 +215,18 @@ impl GpuPresenter {
         }
     }
 
-    /// Renders `frame` with the WGSL kernel into the pixel buffer and draws it to a window of `window` pixels.
-    /// Returns the presented image when `screenshot` is set. `Ok(None)` for a frame skipped because the surface was
-    /// busy or being resized.
+    /// Renders `frame` with the WGSL kernel into the pixel buffer and draws it to a window of `window` pixels, with
+    /// the UI over it. Returns the presented image when `screenshot` is set. `Ok(None)` for a frame skipped because
+    /// the surface was busy or being resized.
     pub fn draw(
         &mut self,
         renderer: &mut WgpuRenderer,
         (wgsl, frame): (&str, &Frame),
         window: (u32, u32),
         screenshot: bool,
-        overlay: Option<&Overlay>,
+        ui: Option<&mut UiPaint>,
     ) -> Result<Option<Image>, GpuFrameError> {
-        self.present(renderer, Fill::Kernel { wgsl, frame }, window, screenshot, overlay)
+        self.present(renderer, Fill::Kernel { wgsl, frame }, window, screenshot, ui)
     }
 
     /// Uploads a host `image` (a progressive picture) into the pixel buffer and draws it, as [`GpuPresenter::draw`].
@@ -229,21 +236,21 @@ impl GpuPresenter {
         image: &Image,
         window: (u32, u32),
         screenshot: bool,
-        overlay: Option<&Overlay>,
+        ui: Option<&mut UiPaint>,
     ) -> Result<Option<Image>, GpuFrameError> {
-        self.present(renderer, Fill::Image(image), window, screenshot, overlay)
+        self.present(renderer, Fill::Image(image), window, screenshot, ui)
     }
 
-    /// Draws the pixel buffer again as it is (with this `overlay`), as [`GpuPresenter::draw`]; nothing before the
+    /// Draws the pixel buffer again as it is (with this `ui`), as [`GpuPresenter::draw`]; nothing before the
     /// first frame.
     pub fn redraw(
         &mut self,
         renderer: &mut WgpuRenderer,
         window: (u32, u32),
         screenshot: bool,
-        overlay: Option<&Overlay>,
+        ui: Option<&mut UiPaint>,
     ) -> Result<Option<Image>, GpuFrameError> {
-        self.present(renderer, Fill::Kept, window, screenshot, overlay)
+        self.present(renderer, Fill::Kept, window, screenshot, ui)
     }
 
     /// The time the host has spent waiting for a texture target's frames in flight, so far.
@@ -266,7 +273,7 @@ impl GpuPresenter {
         fill: Fill,
         window: (u32, u32),
         screenshot: bool,
-        overlay: Option<&Overlay>,
+        mut ui: Option<&mut UiPaint>,
     ) -> Result<Option<Image>, GpuFrameError> {
         if window.0 == 0 || window.1 == 0 {
             return Ok(None);
@@ -297,13 +304,16 @@ impl GpuPresenter {
             let ((), error) = capture(&device, || queue.write_buffer(&pixels, 0, bytemuck::cast_slice(&image.pixels)));
             error.map_or(Ok(()), |e| Err(device_error(e.to_string())))?;
         }
+        // egui's textures are applied whether or not this frame is shown: egui sends each change once.
+        let ((), error) = capture(&device, || self.apply_ui_textures((&device, &queue), ui.as_deref_mut()));
+        error.map_or(Ok(()), |e| Err(device_error(e.to_string())))?;
         let Some(drawable) = self.acquire(&device, window)? else {
             return Ok(None);
         };
         let row_bytes = (window.0 * 4).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
         let slot = self.submitted % (MAX_LATENCY + 1);
         let ((submission, readback), error) = capture(&device, || {
-            let group = self.blit.prepare((&device, &queue), (&pixels, size), window, overlay);
+            let group = self.blit.prepare((&device, &queue), (&pixels, size), window);
             let uniform = match fill {
                 Fill::Kernel { frame, .. } => Some(self.write_uniform((&device, &queue), frame.as_bytes())),
                 _ => None,
@@ -314,7 +324,21 @@ impl GpuPresenter {
             if let (Some(passes), Some(uniform)) = (&passes, &uniform) {
                 passes.record_timed(&device, &mut encoder, (uniform, &pixels, None), stamps.map(|s| &s.set));
             }
-            self.blit.record(&mut encoder, &view, &group, stamps.map(|s| &s.set));
+            let ui = ui.as_deref().filter(|ui| ui.rect.is_some() && ui.window == window);
+            let screen = ui.map(|ui| egui_wgpu::ScreenDescriptor {
+                size_in_pixels: [window.0, window.1],
+                pixels_per_point: ui.pixels_per_point,
+            });
+            let mut prepared = Vec::new();
+            if let (Some(ui), Some(screen)) = (ui, &screen) {
+                prepared = self.ui.update_buffers(&device, &queue, &mut encoder, &ui.primitives, screen);
+            }
+            let painter = &self.ui;
+            self.blit.record(&mut encoder, &view, &group, stamps.map(|s| &s.set), |pass| {
+                if let (Some(ui), Some(screen)) = (ui, &screen) {
+                    painter.render(pass, &ui.primitives, screen);
+                }
+            });
             if let Some(s) = stamps {
                 encoder.resolve_query_set(&s.set, 0..4, &s.resolve, 0);
                 encoder.copy_buffer_to_buffer(&s.resolve, 0, &s.reads[slot], 0, 32);
@@ -340,7 +364,7 @@ impl GpuPresenter {
                 );
                 buffer
             });
-            (queue.submit([encoder.finish()]), readback)
+            (queue.submit(prepared.into_iter().chain([encoder.finish()])), readback)
         });
         if let Some(e) = error {
             // The compute pass and the blit share the submission; the surface path is given up first, and the
@@ -362,6 +386,24 @@ impl GpuPresenter {
                 .map(|words| upscale(&Image { width: size.0, height: size.1, pixels: words }, window.0, window.1)),
         };
         image.map(Some).map_err(device_error)
+    }
+
+    /// Forgets the textures egui freed after the frame before, and applies the ones `ui` set since the last frame
+    /// this presenter drew (taking them from it). Call inside an error scope.
+    fn apply_ui_textures(&mut self, (device, queue): (&wgpu::Device, &wgpu::Queue), ui: Option<&mut UiPaint>) {
+        for id in self.ui_freed.drain(..) {
+            self.ui.free_texture(&id);
+        }
+        let Some(ui) = ui else {
+            return;
+        };
+        let textures = &mut ui.textures;
+        for (id, deltas) in textures.set.drain() {
+            for delta in &deltas {
+                self.ui.update_texture(device, queue, id, delta);
+            }
+        }
+        self.ui_freed.extend(textures.free.drain());
     }
 
     /// The pixel buffer for images of `size`, made where the kept one has another size.
@@ -523,6 +565,13 @@ impl GpuPresenter {
         }
         Ok(Image { width: window.0, height: window.1, pixels })
     }
+}
+
+/// egui-wgpu's painter for targets of `format`: no depth, one sample, no dithering (the UI's pixels are the same
+/// from frame to frame, as the host's overlay's are). Call inside an error scope.
+fn ui_painter(device: &wgpu::Device, format: wgpu::TextureFormat) -> egui_wgpu::Renderer {
+    let options = egui_wgpu::RendererOptions { dithering: false, ..egui_wgpu::RendererOptions::default() };
+    egui_wgpu::Renderer::new(device, format, options)
 }
 
 fn configure(

@@ -1,7 +1,8 @@
 //! The viewer's UI: egui, fed by the window's events through egui-winit (or by a script's [`UiInput`]), laid out
-//! each frame — the panel (module `panel`) and the scene editor (module `editor`) — and drawn on the host into an
-//! [`Overlay`] (module `raster`) that both presenters blend over the frame. What the user changes comes back as
-//! [`UiAction`]s; the game loop applies them as it applies keys.
+//! each frame — the panel (module `panel`) and the scene editor (module `editor`) — into a [`UiPaint`]: egui's
+//! meshes and textures, which the wgpu surface draws with egui-wgpu after the frame's blit, and the host presenter
+//! takes as an [`Overlay`] rasterised here (module `raster`). What the user changes comes back as [`UiAction`]s; the
+//! game loop applies them as it applies keys.
 
 mod editor;
 mod overlay;
@@ -17,6 +18,7 @@ use winit::window::Window;
 pub use editor::{EditError, Editor};
 pub use overlay::Overlay;
 pub use panel::{PanelView, ParamRow, UiAction};
+pub use raster::covered;
 
 use raster::Rasterizer;
 use widgets::Widgets;
@@ -40,11 +42,32 @@ pub enum UiInput {
     Key(String),
 }
 
+/// What the UI draws over a frame, as egui gave it: the wgpu surface's painter takes it as it is (module
+/// `present::gpu`), the host presenter as [`Ui::overlay`] rasterises it.
+#[derive(Default)]
+pub struct UiPaint {
+    /// The frame's meshes, positions in points.
+    pub primitives: Vec<egui::epaint::ClippedPrimitive>,
+    pub pixels_per_point: f32,
+    /// The window's size in pixels the meshes were laid out for.
+    pub window: (u32, u32),
+    /// Textures set and freed since a GPU painter last took them (egui sends each change once).
+    pub textures: egui::TexturesDelta,
+    /// The window pixels the meshes cover (left, top, width, height); `None` when nothing is drawn.
+    pub rect: Option<(u32, u32, u32, u32)>,
+}
+
 /// egui's state and what draws it.
 pub struct Ui {
     ctx: egui::Context,
     winit: Option<egui_winit::State>,
+    /// The host's copy of egui's textures and the overlay it last drew.
     raster: Rasterizer,
+    /// The last frame's drawing, and the textures its frame freed (forgotten on the host once it is painted).
+    paint: UiPaint,
+    freed: egui::TexturesDelta,
+    /// A presenter started since the last frame: the next frame's textures are all of them, whole.
+    resend: bool,
     widgets: Widgets,
     /// Scripted events for the next frame, and where the scripted pointer is.
     scripted: Vec<egui::Event>,
@@ -59,6 +82,9 @@ impl Ui {
             ctx: egui::Context::default(),
             winit: None,
             raster: Rasterizer::default(),
+            paint: UiPaint::default(),
+            freed: egui::TexturesDelta::default(),
+            resend: false,
             widgets: Widgets::default(),
             scripted: Vec::new(),
             pointer: egui::Pos2::ZERO,
@@ -134,14 +160,9 @@ impl Ui {
         Ok(())
     }
 
-    /// Lays the UI out for a `size`-pixel window and draws it: the panel when `panel` is given, the editor when open.
-    /// Returns the overlay (`None`: nothing to draw) and what the user changed.
-    pub fn frame(
-        &mut self,
-        window: Option<&Window>,
-        size: (u32, u32),
-        panel: Option<&PanelView>,
-    ) -> (Option<Overlay>, Vec<UiAction>) {
+    /// Lays the UI out for a `size`-pixel window: the panel when `panel` is given, the editor when open. What it
+    /// draws is kept for the presenters ([`Ui::paint`], [`Ui::overlay`]); what the user changed is returned.
+    pub fn frame(&mut self, window: Option<&Window>, size: (u32, u32), panel: Option<&PanelView>) -> Vec<UiAction> {
         let mut input = match (&mut self.winit, window) {
             (Some(state), Some(window)) => state.take_egui_input(window),
             _ => egui::RawInput {
@@ -161,7 +182,7 @@ impl Ui {
         let mut actions = Vec::new();
         let (widgets, editor) = (&mut self.widgets, &mut self.editor);
         widgets.begin(self.ctx.pixels_per_point());
-        let mut output = self.ctx.run_pass(input, |ctx| {
+        let output = self.ctx.run_pass(input, |ctx| {
             if let Some(view) = panel {
                 panel::show(ctx, view, widgets, &mut actions);
             }
@@ -173,12 +194,61 @@ impl Ui {
         if let (Some(state), Some(window)) = (&mut self.winit, window) {
             state.handle_platform_output(window, output.platform_output);
         }
+        // The host's copy: the last frame's freed textures go now that it is painted; this frame's arrive.
+        self.raster.free_textures(&self.freed);
+        self.freed.clear();
         self.raster.set_textures(&output.textures_delta);
-        let primitives = self.ctx.tessellate(output.shapes, output.pixels_per_point);
-        let overlay = self.raster.paint(&primitives, output.pixels_per_point, size);
-        self.raster.free_textures(&output.textures_delta);
-        // Applied: egui checks that no delta is dropped unseen.
-        output.textures_delta.clear();
-        (overlay, actions)
+        self.freed.free = output.textures_delta.free.clone();
+        let mut textures = std::mem::take(&mut self.paint.textures);
+        if std::mem::take(&mut self.resend) {
+            textures.append(self.raster.full_textures());
+        }
+        textures.append(output.textures_delta);
+        let ppp = output.pixels_per_point;
+        let primitives = self.ctx.tessellate(output.shapes, ppp);
+        let rect = covered(&primitives, ppp, size);
+        self.paint = UiPaint { primitives, pixels_per_point: ppp, window: size, textures, rect };
+        actions
+    }
+
+    /// The last frame's drawing, for a painter that draws egui's meshes itself; it takes the textures it applies.
+    pub fn paint(&mut self) -> &mut UiPaint {
+        &mut self.paint
+    }
+
+    /// The window pixels the last frame's UI covers (left, top, width, height); `None` when nothing is drawn.
+    pub fn rect(&self) -> Option<(u32, u32, u32, u32)> {
+        self.paint.rect
+    }
+
+    /// The last frame's drawing rasterised on the host, for the host presenter; kept while it does not change. The
+    /// host presenter needs no textures sent: they are forgotten here, so they do not pile up.
+    pub fn overlay(&mut self) -> Option<Overlay> {
+        self.paint.textures.clear();
+        let paint = &self.paint;
+        self.raster.paint(&paint.primitives, paint.pixels_per_point, paint.window)
+    }
+
+    /// A presenter has started: the next frame hands it every texture, whole (the textures egui sent before are on
+    /// the host only).
+    pub fn resend_textures(&mut self) {
+        self.resend = true;
+        self.paint.textures.clear();
+    }
+}
+
+/// `paint` drawn by the host rasteriser alone, from its own textures (which it leaves in place).
+#[cfg(test)]
+pub(crate) fn host_overlay(paint: &UiPaint) -> Option<Overlay> {
+    let mut raster = Rasterizer::default();
+    raster.set_textures(&paint.textures);
+    raster.paint(&paint.primitives, paint.pixels_per_point, paint.window)
+}
+
+impl Drop for Ui {
+    /// Textures no painter took are the host's copy only (egui checks that none is dropped unseen).
+    fn drop(&mut self) {
+        self.paint.textures.clear();
+        self.freed.clear();
     }
 }

@@ -1,6 +1,6 @@
-//! The viewer's UI as the presenters take it: an image with straight alpha placed at a window pixel. Both presenters
-//! blend it over the frame (the wgpu surface in its blit pass, softbuffer on the host here), so the UI looks the same
-//! on every backend.
+//! The viewer's UI as the host presenter takes it: an image with straight alpha placed at a window pixel, rasterised
+//! from egui's meshes (module `raster`) and blended over the frame on the host. The wgpu surface draws the same meshes
+//! with egui-wgpu instead; `present::ui_agreement` checks the two drawings agree.
 
 use fractal_render::image::{unpack_rgba8, Image};
 

@@ -1,7 +1,8 @@
 //! Draws egui's output on the host: its textures (the font atlas, the images it uploads) and its triangle meshes,
-//! rasterised into an [`Overlay`] that both presenters blend over the frame. One path for every backend — the CPU,
-//! OpenCL and lavapipe frames are presented through softbuffer, where no GPU pipeline could draw the UI — and the
-//! window's pixels are the ones a test reads back.
+//! rasterised into an [`Overlay`] that the host presenter (softbuffer, or host memory without a window) blends over
+//! the frame — the CPU and OpenCL frames, and wgpu frames where no surface can present, have no GPU pipeline to draw
+//! the UI with. The wgpu surface draws the same meshes with egui-wgpu. The store of textures here is also what a
+//! presenter made later (after a fallback) is given again, since egui sends each texture once.
 //!
 //! Triangles are sampled at pixel centres with barycentric interpolation of colour and texture coordinates; egui
 //! feathers its shapes' edges itself, so one sample a pixel is what its own renderers do. Colours are sRGB with
@@ -9,8 +10,8 @@
 
 use std::collections::HashMap;
 
-use egui::epaint::{ClippedPrimitive, ImageData, Primitive, TextureId, Vertex};
-use egui::TexturesDelta;
+use egui::epaint::{ClippedPrimitive, ImageData, ImageDelta, Primitive, TextureId, Vertex};
+use egui::{Color32, ColorImage, TextureOptions, TexturesDelta};
 use fractal_render::image::{pack_rgba8, Image};
 
 use super::overlay::Overlay;
@@ -19,6 +20,7 @@ use super::overlay::Overlay;
 struct Texture {
     size: [usize; 2],
     texels: Vec<[u8; 4]>,
+    options: TextureOptions,
 }
 
 impl Texture {
@@ -84,7 +86,7 @@ impl Rasterizer {
                 let texels: Vec<[u8; 4]> = image.pixels.iter().map(|c| c.to_array()).collect();
                 match patch.pos {
                     None => {
-                        self.textures.insert(*id, Texture { size: image.size, texels });
+                        self.textures.insert(*id, Texture { size: image.size, texels, options: patch.options });
                     }
                     Some([px, py]) => {
                         let Some(texture) = self.textures.get_mut(id) else {
@@ -103,6 +105,18 @@ impl Rasterizer {
                 }
             }
         }
+    }
+
+    /// Every texture kept, whole: what a presenter that starts now needs before it draws a frame.
+    pub fn full_textures(&self) -> TexturesDelta {
+        let mut delta = TexturesDelta::default();
+        for (id, texture) in &self.textures {
+            let pixels =
+                texture.texels.iter().map(|&[r, g, b, a]| Color32::from_rgba_premultiplied(r, g, b, a)).collect();
+            let image = ColorImage::new(texture.size, pixels);
+            delta.push(*id, ImageDelta::full(image, texture.options));
+        }
+        delta
     }
 
     /// Forgets the textures egui freed (after painting the frame).
@@ -133,27 +147,10 @@ impl Rasterizer {
 
     fn draw(&self, primitives: &[ClippedPrimitive], pixels_per_point: f32, window: (u32, u32)) -> Option<Overlay> {
         let ppp = pixels_per_point;
-        let meshes: Vec<_> = primitives
-            .iter()
-            .filter_map(|p| match &p.primitive {
-                Primitive::Mesh(mesh) if !mesh.indices.is_empty() => {
-                    let clip = p.clip_rect * ppp;
-                    let bounds = mesh.calc_bounds() * ppp;
-                    let area = clip.intersect(bounds).intersect(egui::Rect::from_min_size(
-                        egui::Pos2::ZERO,
-                        egui::vec2(window.0 as f32, window.1 as f32),
-                    ));
-                    (area.is_positive()).then_some((mesh, clip, area))
-                }
-                _ => None,
-            })
-            .collect();
-        let area = meshes.iter().map(|m| m.2).reduce(|a, b| a.union(b))?;
-        let (x0, y0) = (area.min.x.floor().max(0.0) as u32, area.min.y.floor().max(0.0) as u32);
-        let (x1, y1) = (area.max.x.ceil().min(window.0 as f32) as u32, area.max.y.ceil().min(window.1 as f32) as u32);
-        let mut canvas = Canvas { origin: (x0, y0), width: x1 - x0, height: y1 - y0, pixels: Vec::new() };
+        let (x0, y0, width, height) = covered(primitives, ppp, window)?;
+        let mut canvas = Canvas { origin: (x0, y0), width, height, pixels: Vec::new() };
         canvas.pixels = vec![[0.0; 4]; (canvas.width * canvas.height) as usize];
-        for (mesh, clip, _) in meshes {
+        for (mesh, clip, _) in meshes(primitives, ppp, window) {
             let texture = self.textures.get(&mesh.texture_id);
             for tri in mesh.indices.chunks_exact(3) {
                 let corner = |i: u32| mesh.vertices.get(i as usize).copied();
@@ -164,6 +161,50 @@ impl Rasterizer {
         }
         Some(canvas.into_overlay())
     }
+}
+
+/// The meshes that draw inside a `window` of that many pixels, with their clip rectangles and the area they cover, in
+/// pixels.
+fn meshes(
+    primitives: &[ClippedPrimitive],
+    pixels_per_point: f32,
+    window: (u32, u32),
+) -> impl Iterator<Item = (&egui::Mesh, egui::Rect, egui::Rect)> {
+    let screen = egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(window.0 as f32, window.1 as f32));
+    primitives.iter().filter_map(move |p| match &p.primitive {
+        Primitive::Mesh(mesh) if !mesh.indices.is_empty() => {
+            let clip = p.clip_rect * pixels_per_point;
+            let area = clip.intersect(mesh.calc_bounds() * pixels_per_point).intersect(screen);
+            area.is_positive().then_some((mesh, clip, area))
+        }
+        _ => None,
+    })
+}
+
+/// The smallest block of window pixels (left, top, width, height) that holds what `primitives` draw; `None` when
+/// they draw nothing.
+pub fn covered(
+    primitives: &[ClippedPrimitive],
+    pixels_per_point: f32,
+    window: (u32, u32),
+) -> Option<(u32, u32, u32, u32)> {
+    let area = meshes(primitives, pixels_per_point, window).map(|m| m.2).reduce(|a, b| a.union(b))?;
+    let (x0, y0) = (area.min.x.floor().max(0.0) as u32, area.min.y.floor().max(0.0) as u32);
+    let (x1, y1) = (area.max.x.ceil().min(window.0 as f32) as u32, area.max.y.ceil().min(window.1 as f32) as u32);
+    Some((x0, y0, x1 - x0, y1 - y0))
+}
+
+/// Whether a pixel centre whose barycentric weight is `weight` lies on the inner side of the edge whose weight is
+/// `(_, b, c)` (a + b·x + c·y). A centre on the edge itself (within 10⁻⁴ pixel: egui puts vertices on pixel centres)
+/// belongs to one of the two triangles sharing it, the one the edge bounds on its left or top (the top-left rule of
+/// GPU rasterisers), so a shared edge is neither drawn twice nor left out.
+fn covers(weight: f32, (_, b, c): (f32, f32, f32)) -> bool {
+    let distance = weight / b.hypot(c);
+    if distance.abs() > 1e-4 {
+        return distance > 0.0;
+    }
+    // The weight grows inwards along (b, c): a left edge has the triangle to its right (+x), a top edge below (+y).
+    b > 0.0 || (b == 0.0 && c > 0.0)
 }
 
 /// A window-aligned block of premultiplied RGBA pixels in 0..=1.
@@ -236,8 +277,7 @@ impl Canvas {
                     continue;
                 }
                 let wt = w.map(|(a, b, c)| a + b * cx + c * cy);
-                // Pixel centres on an edge belong to one of the two triangles sharing it (a small inward slack).
-                if wt.iter().any(|&w| w < -1e-6) {
+                if !(0..3).all(|i| covers(wt[i], w[i])) {
                     continue;
                 }
                 let mut src = if flat_colour {
