@@ -211,6 +211,10 @@ fn the_prelude_formulas_draw_the_built_in_sets() {
         ("julia", "julia", 1.3, 0.065),
         ("mandelbox", "mandelbox", 6.0, 0.01),
         ("menger", "sierpinski_cube", 1.3, 0.065),
+        ("mandelbulb", "mandelbulb", 1.3, 0.065),
+        ("juliabulb", "juliabulb", 1.3, 0.065),
+        ("sierpinski", "sierpinski_tetrahedron", 1.9, 0.065),
+        ("kifs", "kifs", 1.3, 0.065),
     ];
     let mut rng = Rng(5);
     for (prelude, built_in, half, outside) in pairs {
@@ -220,6 +224,10 @@ fn the_prelude_formulas_draw_the_built_in_sets() {
             "julia" => "julia(vec4(-0.2, 0.6, 0.2, 0.0)).iterations(11)",
             "mandelbox" => "mandelbox(2.0).iterations(14)",
             "sierpinski_cube" => "menger(5)",
+            "mandelbulb" => "mandelbulb(8.0).iterations(8).bailout(2.0)",
+            "juliabulb" => "juliabulb(vec3(0.45, 0.5, -0.15)).iterations(10).bailout(2.0)",
+            "sierpinski_tetrahedron" => "sierpinski_tetrahedron(10)",
+            "kifs" => "octahedral_kifs(2.0).iterations(12)",
             _ => "mandelbulb(8).iterations(8)",
         };
         let hand = Interpreter::new(&parse_str(hand).unwrap()).unwrap().without_bound_guards();
@@ -260,6 +268,7 @@ fn host_code_computes_what_the_tree_computes() {
         .iter()
         .chain(&["fractal/bristorbrot", "fractal/quaternion_mandelbrot", "fractal/cosine_bulb"])
         .chain(&["fractal/amazing_surf", "prelude/mandelbox", "prelude/julia", "formulas/bulb_box_hybrid"])
+        .chain(&["prelude/mandelbulb", "prelude/juliabulb", "prelude/sierpinski", "prelude/kifs"])
         .map(|f| std::fs::read_to_string(root.join(format!("{f}.fractal"))).unwrap())
         .collect();
     sources.push(BULB.into());
