@@ -194,17 +194,33 @@ pub fn covered(
     Some((x0, y0, x1 - x0, y1 - y0))
 }
 
-/// Whether a pixel centre whose barycentric weight is `weight` lies on the inner side of the edge whose weight is
-/// `(_, b, c)` (a + b·x + c·y). A centre on the edge itself (within 10⁻⁴ pixel: egui puts vertices on pixel centres)
-/// belongs to one of the two triangles sharing it, the one the edge bounds on its left or top (the top-left rule of
-/// GPU rasterisers), so a shared edge is neither drawn twice nor left out.
-fn covers(weight: f32, (_, b, c): (f32, f32, f32)) -> bool {
-    let distance = weight / b.hypot(c);
-    if distance.abs() > 1e-4 {
-        return distance > 0.0;
+/// One edge of a triangle for the coverage test: 1 / |∇weight| (the weight's change per pixel across the edge) and
+/// whether the triangle owns the pixel centres on the edge itself.
+#[derive(Clone, Copy)]
+struct Edge {
+    inverse_slope: f32,
+    owns_centres_on_it: bool,
+}
+
+impl Edge {
+    /// The edge opposite the vertex whose barycentric weight is a + b·x + c·y. A centre on the edge (egui puts
+    /// vertices on pixel centres) belongs to one of the two triangles sharing it, the one the edge bounds on its left
+    /// or top (the top-left rule of GPU rasterisers), so a shared edge is neither drawn twice nor left out. The weight
+    /// grows inwards along (b, c): a left edge has the triangle to its right (+x), a top edge below it (+y).
+    fn new((_, b, c): (f32, f32, f32)) -> Edge {
+        Edge { inverse_slope: 1.0 / b.hypot(c), owns_centres_on_it: b > 0.0 || (b == 0.0 && c > 0.0) }
     }
-    // The weight grows inwards along (b, c): a left edge has the triangle to its right (+x), a top edge below (+y).
-    b > 0.0 || (b == 0.0 && c > 0.0)
+
+    /// Whether a pixel centre of barycentric `weight` lies on the triangle's side of the edge (within 10⁻⁴ pixel of
+    /// it: on it).
+    fn covers(self, weight: f32) -> bool {
+        let distance = weight * self.inverse_slope;
+        if distance.abs() > 1e-4 {
+            distance > 0.0
+        } else {
+            self.owns_centres_on_it
+        }
+    }
 }
 
 /// A window-aligned block of premultiplied RGBA pixels in 0..=1.
@@ -230,6 +246,7 @@ impl Canvas {
             (-(b * q.x + c * q.y), b, c)
         };
         let w = [weight(0), weight(1), weight(2)];
+        let edges = w.map(Edge::new);
         let (ox, oy) = (self.origin.0 as f32, self.origin.1 as f32);
         let lo = |f: fn(f32, f32) -> f32, i: usize| f(f(p[0][i], p[1][i]), p[2][i]);
         let x_start = lo(f32::min, 0).max(clip.min.x).max(ox).floor() as i64;
@@ -277,7 +294,7 @@ impl Canvas {
                     continue;
                 }
                 let wt = w.map(|(a, b, c)| a + b * cx + c * cy);
-                if !(0..3).all(|i| covers(wt[i], w[i])) {
+                if !(0..3).all(|i| edges[i].covers(wt[i])) {
                     continue;
                 }
                 let mut src = if flat_colour {
