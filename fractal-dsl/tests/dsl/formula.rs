@@ -269,6 +269,7 @@ fn host_code_computes_what_the_tree_computes() {
         .chain(&["fractal/bristorbrot", "fractal/quaternion_mandelbrot", "fractal/cosine_bulb"])
         .chain(&["fractal/amazing_surf", "prelude/mandelbox", "prelude/julia", "formulas/bulb_box_hybrid"])
         .chain(&["prelude/mandelbulb", "prelude/juliabulb", "prelude/sierpinski", "prelude/kifs"])
+        .chain(&["formulas/makin_bulb", "formulas/lkmitch_bulb", "formulas/sym2_bulb", "formulas/riemann_bulb"])
         .map(|f| std::fs::read_to_string(root.join(format!("{f}.fractal"))).unwrap())
         .collect();
     sources.push(BULB.into());
