@@ -212,6 +212,12 @@ impl Truth {
         self.footprint * t
     }
 
+    /// The ray through pixel (x, y)'s centre: origin (relative to the frame's anchor) and unit direction.
+    pub fn centre_ray(&self, x: u32, y: u32) -> ([f64; 3], [f64; 3]) {
+        let (o, d) = self.view.ray(f64::from(x) + 0.5, f64::from(y) + 0.5);
+        ([o.x, o.y, o.z], [d.x, d.y, d.z])
+    }
+
     fn with_ray<R>(&self, px: f64, py: f64, f: impl FnOnce(&TruthRay) -> R) -> R {
         let env = self.env();
         let (ro, rd) = self.view.ray(px, py);

@@ -412,7 +412,19 @@ fn accuracy_sweeps_settings_against_the_truth_and_writes_a_report() {
     // The scene's own setting alone: its figures and verdict, no sweep.
     let out = run_in(
         &dir,
-        &["accuracy", "hello_world", "--size", "24x14", "--truth-step", "0.05", "--default-only", "--time", "0.5"],
+        &[
+            "accuracy",
+            "hello_world",
+            "--size",
+            "24x14",
+            "--truth-step",
+            "0.05",
+            "--default-only",
+            "--time",
+            "0.5",
+            "--normals-csv",
+            "n.csv",
+        ],
     );
     assert_ok(&out);
     let text = stdout(&out);
@@ -420,6 +432,11 @@ fn accuracy_sweeps_settings_against_the_truth_and_writes_a_report() {
     let rows = text.lines().filter(|l| l.starts_with("scene default ")).count();
     assert_eq!(rows, 1, "{text}");
     assert!(!text.contains("steps 32") && text.contains("the scene default is"), "{text}");
+    // Every pixel whose normal was judged, one CSV row each.
+    let normals = fs::read_to_string(dir.join("n.csv")).unwrap();
+    let count = normals.lines().count() - 1;
+    assert!(normals.starts_with("x,y,centre_deg,cone_deg,ox,oy,oz,dx,dy,dz,t_render,t_truth,"), "{normals}");
+    assert!(count > 0 && text.contains(&format!("wrote the {count} measured normals")), "{text}\n{normals}");
     // A named truth instead of the settling one.
     let out = run_in(
         &dir,

@@ -281,6 +281,87 @@ fn interior(truth: &Truth, x: u32, y: u32) -> bool {
 /// it overshot (`None`: no; `Some(cone)`: thin-ray, and `cone` when the pixel's cone does not explain it either).
 type PixelError = (Option<(f64, f64, bool, bool)>, Option<(f64, f64)>, Option<bool>);
 
+/// The (centre, cone-consistent) normal error of render pixel `r` at (x, y), where both hit the same surface
+/// (`thin`: the thin-ray depth error) and the true surface is smooth at the pixel's scale.
+fn normal_error(truth: &Truth, (x, y): (u32, u32), r: &PixelTrace, thin: f64) -> Option<(f64, f64)> {
+    let t = truth.at(x, y);
+    match (r.normal, t.normal) {
+        (Some(a), Some(b)) if !t.rough && thin <= NORMAL_SAME_SURFACE => {
+            let centre = angle_degrees(a, b);
+            let cone = if centre > NORMAL_CONE_CHECK {
+                truth.cone_normal_error(x, y, a).map_or(centre, |c| c.min(centre))
+            } else {
+                centre
+            };
+            Some((centre, cone))
+        }
+        _ => None,
+    }
+}
+
+/// One pixel whose normal was measured, with what was compared: for finding where a render's normals go wrong.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NormalSample {
+    pub x: u32,
+    pub y: u32,
+    /// Degrees, against the true normal at the pixel's centre and cone-consistent.
+    pub centre: f64,
+    pub cone: f64,
+    /// The ray through the pixel's centre (origin, unit direction), relative to the frame's anchor.
+    pub ray: ([f64; 3], [f64; 3]),
+    /// Ray distances of the render's and the truth's hits, and the footprint at the truth's.
+    pub t_render: f64,
+    pub t_truth: f64,
+    pub footprint: f64,
+    pub render_normal: [f64; 3],
+    pub true_normal: [f64; 3],
+}
+
+/// Every pixel of a traced render whose normal is measured against `truth` (as [`measure`] measures it), row-major.
+pub fn normal_samples(truth: &Truth, traces: &[PixelTrace]) -> Vec<NormalSample> {
+    use rayon::prelude::*;
+    (0..traces.len())
+        .into_par_iter()
+        .filter_map(|i| {
+            let (x, y) = ((i as u32) % truth.width, (i as u32) / truth.width);
+            let (r, t) = (&traces[i], truth.pixels[i]);
+            if !(r.hit && t.hit() && r.t.is_finite()) {
+                return None;
+            }
+            let thin = (r.t - t.t).abs() / truth.footprint_at(t.t);
+            let (centre, cone) = normal_error(truth, (x, y), r, thin)?;
+            Some(NormalSample {
+                x,
+                y,
+                centre,
+                cone,
+                ray: truth.centre_ray(x, y),
+                t_render: r.t,
+                t_truth: t.t,
+                footprint: truth.footprint_at(t.t),
+                render_normal: r.normal?,
+                true_normal: t.normal?,
+            })
+        })
+        .collect()
+}
+
+/// [`normal_samples`] as CSV, with a header.
+pub fn normal_samples_csv(samples: &[NormalSample]) -> String {
+    let mut out =
+        String::from("x,y,centre_deg,cone_deg,ox,oy,oz,dx,dy,dz,t_render,t_truth,footprint,rnx,rny,rnz,tnx,tny,tnz\n");
+    for s in samples {
+        let (o, d, a, b) = (s.ray.0, s.ray.1, s.render_normal, s.true_normal);
+        let nums = [o, d].iter().flatten().map(|v| v.to_string()).collect::<Vec<_>>().join(",");
+        let normals = [a, b].iter().flatten().map(|v| v.to_string()).collect::<Vec<_>>().join(",");
+        out += &format!(
+            "{},{},{},{},{nums},{},{},{},{normals}\n",
+            s.x, s.y, s.centre, s.cone, s.t_render, s.t_truth, s.footprint
+        );
+    }
+    out
+}
+
 fn traced_error(truth: &Truth, traces: &[PixelTrace]) -> TracedError {
     use rayon::prelude::*;
     let n = traces.len().max(1) as f64;
@@ -304,18 +385,7 @@ fn traced_error(truth: &Truth, traces: &[PixelTrace]) -> TracedError {
             } else {
                 thin
             };
-            let normal = match (r.normal, t.normal) {
-                (Some(a), Some(b)) if !t.rough && thin <= NORMAL_SAME_SURFACE => {
-                    let centre = angle_degrees(a, b);
-                    let cone = if centre > NORMAL_CONE_CHECK {
-                        truth.cone_normal_error(x, y, a).map_or(centre, |c| c.min(centre))
-                    } else {
-                        centre
-                    };
-                    Some((centre, cone))
-                }
-                _ => None,
-            };
+            let normal = normal_error(truth, (x, y), r, thin);
             let smooth = t.normal.is_some() && !t.rough;
             (Some((thin, cone, interior(truth, x, y), smooth)), normal, overshoot)
         })
@@ -354,5 +424,40 @@ fn traced_error(truth: &Truth, traces: &[PixelTrace]) -> TracedError {
             .map(|r| r.evaluations.map(|e| e as f64))
             .sum::<Option<f64>>()
             .map(|e| e / n),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::truth::TruthSettings;
+    use fractal_dsl::builder::*;
+    use fractal_dsl::eval::interp::Interpreter;
+    use fractal_render::backend::cpu::trace_scene;
+    use fractal_render::frame::Frame;
+
+    #[test]
+    fn the_normal_samples_are_the_pixels_measure_judges_normals_on() {
+        let s = scene(sphere(1.0).translate(vec3(0.2, -0.1, 0.3))).camera(camera([0.0, 0.5, -3.0], [0.0; 3]).fov(50.0));
+        let f = Frame::default_view(&s, 0.0, 40, 30).unwrap();
+        let truth = Truth::compute(&s, &f, TruthSettings::default()).unwrap();
+        let traces = trace_scene::<f32, _>(&Interpreter::new(&s).unwrap(), &s, &f).unwrap();
+        let traced = measure(&s, &truth, Observed::Traced(&traces)).traced.unwrap();
+        let samples = normal_samples(&truth, &traces);
+        let both = traces.iter().zip(&truth.pixels).filter(|(r, t)| r.hit && t.hit()).count();
+        assert_eq!(samples.len(), (traced.normal_measured * both as f64).round() as usize);
+        assert!(samples.len() > 100, "{} samples", samples.len());
+        assert_eq!(Spread::of(samples.iter().map(|s| s.centre).collect()), traced.normal);
+        for s in &samples {
+            // The truth's hit, from the sample's ray, lies on the sphere.
+            let (o, d) = s.ray;
+            let p: Vec<f64> = (0..3).map(|i| o[i] + d[i] * s.t_truth).collect();
+            let r = ((p[0] - 0.2).powi(2) + (p[1] + 0.1).powi(2) + (p[2] - 0.3).powi(2)).sqrt();
+            assert!((r - 1.0).abs() < 1e-9, "pixel ({}, {}): {r}", s.x, s.y);
+            assert!((angle_degrees(s.render_normal, s.true_normal) - s.centre).abs() < 1e-9);
+        }
+        let csv = normal_samples_csv(&samples);
+        assert_eq!(csv.lines().count(), samples.len() + 1);
+        assert!(csv.lines().all(|l| l.split(',').count() == 19));
     }
 }

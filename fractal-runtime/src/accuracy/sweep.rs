@@ -17,7 +17,7 @@ use crate::quality::{Quality, StepScaled};
 use crate::truth::Truth;
 use fractal_dsl::analyse::{bound, fold::fold_node};
 use fractal_dsl::validate::check_membership_hits;
-use fractal_render::backend::cpu::{trace_scene_with, MarchLevers};
+use fractal_render::backend::cpu::{trace_scene_with, MarchLevers, PixelTrace};
 use fractal_render::device::Backend;
 use fractal_render::error::RenderError;
 use fractal_render::frame::Frame;
@@ -302,7 +302,20 @@ pub fn escape_time_iterations(scene: &Scene) -> Option<u32> {
 /// Renders `quality` on the CPU with per-pixel traces, `TIMING_RUNS` times.
 fn run_cpu(scene: &Scene, quality: &Quality, frame: &Frame, truth: &Truth) -> Result<SweepPoint, RenderError> {
     let applied = quality.apply(scene);
-    let interpreter = Interpreter::new(&applied)?;
+    let mut times = Vec::new();
+    let mut traces = Vec::new();
+    for _ in 0..TIMING_RUNS {
+        let start = Instant::now();
+        traces = trace_cpu(&applied, quality, frame)?;
+        times.push(start.elapsed().as_secs_f64() * 1e3);
+    }
+    let error = measure(&applied, truth, Observed::Traced(&traces));
+    Ok(SweepPoint { quality: *quality, time_ms: median(times), error })
+}
+
+/// One CPU render of `applied` (a scene with `quality` applied) with per-pixel traces, as a sweep times it.
+pub fn trace_cpu(applied: &Scene, quality: &Quality, frame: &Frame) -> Result<Vec<PixelTrace>, RenderError> {
+    let interpreter = Interpreter::new(applied)?;
     let scaled = StepScaled { inner: &interpreter, scale: quality.step_scale() as f32 };
     let levers = MarchLevers {
         bound: match quality.bounds {
@@ -311,18 +324,10 @@ fn run_cpu(scene: &Scene, quality: &Quality, frame: &Frame, truth: &Truth) -> Re
         },
     };
     let wide = StepScaled { inner: &interpreter, scale: quality.step_scale() };
-    let mut times = Vec::new();
-    let mut traces = Vec::new();
-    for _ in 0..TIMING_RUNS {
-        let start = Instant::now();
-        traces = match quality.precision {
-            Some(Precision::F64) => trace_scene_with::<f64, _>(&wide, &applied, frame, levers)?,
-            _ => trace_scene_with::<f32, _>(&scaled, &applied, frame, levers)?,
-        };
-        times.push(start.elapsed().as_secs_f64() * 1e3);
+    match quality.precision {
+        Some(Precision::F64) => trace_scene_with::<f64, _>(&wide, applied, frame, levers),
+        _ => trace_scene_with::<f32, _>(&scaled, applied, frame, levers),
     }
-    let error = measure(&applied, truth, Observed::Traced(&traces));
-    Ok(SweepPoint { quality: *quality, time_ms: median(times), error })
 }
 
 /// Renders `quality` with the kernels compiled for it on a GPU backend.

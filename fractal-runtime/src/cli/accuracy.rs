@@ -13,7 +13,7 @@ use fractal_render::select::{BackendChoice, RendererOptions};
 use fractal_render::Pose;
 
 use crate::accuracy::sweep::{self, Budget};
-use crate::accuracy::{plot, table};
+use crate::accuracy::{metrics, plot, table};
 use crate::cli::args::AccuracyArgs;
 use crate::cli::error::CliError;
 use crate::cli::scene::{LoadedScene, SceneLibrary};
@@ -248,6 +248,20 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
     }
     if let Some(path) = &args.csv {
         append_csv(path, &table::csv_rows(&loaded.name, &backend.to_string(), args.size, &points, budget))?;
+    }
+    if let Some(path) = &args.normals_csv {
+        let default = Quality { precision: own(args).precision, ..Quality::default() };
+        let traces =
+            sweep::trace_cpu(&default.apply(scene), &default, &frame).map_err(|e| CliError::failure(e.to_string()))?;
+        let samples = metrics::normal_samples(judged, &traces);
+        std::fs::write(path, metrics::normal_samples_csv(&samples))
+            .map_err(|e| CliError::failure(format!("cannot write {}: {e}", path.display())))?;
+        let _ = writeln!(
+            out,
+            "  wrote the {} measured normals of the default's CPU render to {}",
+            samples.len(),
+            path.display()
+        );
     }
     Ok(md)
 }

@@ -310,6 +310,10 @@ pub struct AccuracyArgs {
     /// [default: docs/accuracy.md, with --image docs/image-accuracy.md]
     #[arg(long, value_name = "PATH")]
     pub out: Option<PathBuf>,
+    /// Write every pixel whose normal the scene default's CPU render is measured on to this CSV file: its ray, both
+    /// hits, both normals and the two errors (for finding where normals go wrong)
+    #[arg(long, value_name = "PATH", conflicts_with_all = ["report", "estimators", "image"])]
+    pub normals_csv: Option<PathBuf>,
     /// Write a time-against-error plot of each scene, SCENE.svg, into this folder
     #[arg(long, value_name = "DIR")]
     pub plot: Option<PathBuf>,
