@@ -10,7 +10,11 @@ pixel:
   every tap iterated as often as the hit's own orbit (the estimate's gradient without its jumps between bands);
 - the gradient of the potential, Jᵀz (∇|zₙ|), at the render's hit and at the truth's, against the true normal.
 
-Usage: benches/normal_split.py FILE.csv MAP [--iterations N] [--bailout B] [--pixel-epsilon E]
+With --out, writes the potential's gradient at each render hit as x,y,nx,ny,nz, which
+`fractal accuracy SCENE --default-only --judge-normals FILE` judges as the budget judges a render's normals (its
+cone-consistent p99 included, which this script cannot compute).
+
+Usage: benches/normal_split.py FILE.csv MAP [--iterations N] [--bailout B] [--pixel-epsilon E] [--out FILE]
 MAP: makin (Makin3D-2, scenes/formulas/makin_bulb.fractal), lkmitch (scenes/formulas/lkmitch_bulb.fractal), julia
 (the quaternion Julia set in the slice w = 0, scenes/fractal/julia.fractal at t = 0: --constant -0.2,0.8,0
 --iterations 16 --pixel-epsilon 0.05).
@@ -66,6 +70,7 @@ def main():
     ap.add_argument("--iterations", type=int, default=12)
     ap.add_argument("--bailout", type=float, default=4.0)
     ap.add_argument("--pixel-epsilon", type=float, default=0.1)
+    ap.add_argument("--out", help="write the potential's gradient at the render's hits here, for --judge-normals")
     ap.add_argument("--constant", default="0,0,0", help="a Julia set's constant c, x,y,z")
     a = ap.parse_args()
     step, jacobian, mandelbrot = MAPS[a.map]
@@ -102,6 +107,7 @@ def main():
 
     rows = list(csv.DictReader(open(a.csv)))
     mixed = 0
+    alt = []
     figures = {k: [] for k in ["render", "transcription", "estimate within the hit's band", "potential at the render's hit", "potential at the truth's hit"]}
     for r in rows:
         o = np.array([float(r[k]) for k in ("ox", "oy", "oz")])
@@ -119,10 +125,13 @@ def main():
         mixed += any(orbit(hit + k * h)[2] != band for k in TETRAHEDRON)
         figures["estimate within the hit's band"].append(angle(facing(tetrahedral(hit, h, band), d), tn))
         figures["potential at the render's hit"].append(angle(facing(potential(hit), d), tn))
+        alt.append((r["x"], r["y"], facing(potential(hit), d)))
         figures["potential at the truth's hit"].append(angle(facing(potential(o + d * tt), d), tn))
     away = sum(float(r["dx"]) * float(r["rnx"]) + float(r["dy"]) * float(r["rny"]) + float(r["dz"]) * float(r["rnz"]) > 0
                for r in rows)
     print(f"{len(rows)} pixels, {away} of them with a render normal facing away from the camera; degrees against the true normal at the pixel's centre (transcription: against the render's)")
+    if a.out:
+        open(a.out, "w").write("".join(f"{x},{y},{n[0]},{n[1]},{n[2]}\n" for x, y, n in alt))
     print(f"  {mixed} pixels' normal taps escape after different numbers of iterations")
     for name, v in figures.items():
         v = np.array(v)

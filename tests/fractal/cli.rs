@@ -437,6 +437,26 @@ fn accuracy_sweeps_settings_against_the_truth_and_writes_a_report() {
     let count = normals.lines().count() - 1;
     assert!(normals.starts_with("x,y,centre_deg,cone_deg,ox,oy,oz,dx,dy,dz,t_render,t_truth,"), "{normals}");
     assert!(count > 0 && text.contains(&format!("wrote the {count} measured normals")), "{text}\n{normals}");
+    // The truth's own normals given back are judged 0° off; a malformed file is said before any truth is computed.
+    let given: String = normals
+        .lines()
+        .skip(1)
+        .map(|l| {
+            let f: Vec<&str> = l.split(',').collect();
+            format!("{},{},{}\n", f[0], f[1], f[16..19].join(","))
+        })
+        .collect();
+    fs::write(dir.join("g.csv"), given).unwrap();
+    fs::write(dir.join("bad.csv"), "1,2,0.5\n").unwrap();
+    let judge = |file: &str| {
+        let args = ["accuracy", "hello_world", "--size", "24x14", "--truth-step", "0.05", "--default-only"];
+        run_in(&dir, &[&args[..], &["--time", "0.5", "--judge-normals", file]].concat())
+    };
+    let text = stdout(&judge("g.csv"));
+    assert!(text.contains("the normals of g.csv: median 0.00°"), "{text}");
+    assert!(text.contains(&format!("0.00° cone-consistent ({count} judged)")), "{text}");
+    let out = judge("bad.csv");
+    assert!(!out.status.success() && stderr(&out).contains("bad.csv:1: expected x,y,nx,ny,nz"), "{}", stderr(&out));
     // A named truth instead of the settling one.
     let out = run_in(
         &dir,

@@ -286,17 +286,20 @@ type PixelError = (Option<(f64, f64, bool, bool)>, Option<(f64, f64)>, Option<bo
 fn normal_error(truth: &Truth, (x, y): (u32, u32), r: &PixelTrace, thin: f64) -> Option<(f64, f64)> {
     let t = truth.at(x, y);
     match (r.normal, t.normal) {
-        (Some(a), Some(b)) if !t.rough && thin <= NORMAL_SAME_SURFACE => {
-            let centre = angle_degrees(a, b);
-            let cone = if centre > NORMAL_CONE_CHECK {
-                truth.cone_normal_error(x, y, a).map_or(centre, |c| c.min(centre))
-            } else {
-                centre
-            };
-            Some((centre, cone))
-        }
+        (Some(a), Some(b)) if !t.rough && thin <= NORMAL_SAME_SURFACE => Some(against_truth(truth, (x, y), a, b)),
         _ => None,
     }
+}
+
+/// The (centre, cone-consistent) angle of normal `n` at pixel (x, y) to the true normal `b` there.
+fn against_truth(truth: &Truth, (x, y): (u32, u32), n: [f64; 3], b: [f64; 3]) -> (f64, f64) {
+    let centre = angle_degrees(n, b);
+    let cone = if centre > NORMAL_CONE_CHECK {
+        truth.cone_normal_error(x, y, n).map_or(centre, |c| c.min(centre))
+    } else {
+        centre
+    };
+    (centre, cone)
 }
 
 /// One pixel whose normal was measured, with what was compared: for finding where a render's normals go wrong.
@@ -344,6 +347,21 @@ pub fn normal_samples(truth: &Truth, traces: &[PixelTrace]) -> Vec<NormalSample>
             })
         })
         .collect()
+}
+
+/// Normals from elsewhere (a method tried outside the renderer: (x, y, normal) per pixel) judged as [`measure`]
+/// judges a render's: (centre, cone-consistent) spreads over the given pixels where the true surface has a normal
+/// at the pixel's scale (the rest are skipped).
+pub fn judge_normals(truth: &Truth, normals: &[(u32, u32, [f64; 3])]) -> (Spread, Spread) {
+    let judged: Vec<(f64, f64)> = normals
+        .iter()
+        .filter(|&&(x, y, _)| x < truth.width && y < truth.height)
+        .filter_map(|&(x, y, n)| {
+            let t = truth.at(x, y);
+            Some(against_truth(truth, (x, y), n, t.normal.filter(|_| !t.rough)?))
+        })
+        .collect();
+    (Spread::of(judged.iter().map(|j| j.0).collect()), Spread::of(judged.iter().map(|j| j.1).collect()))
 }
 
 /// [`normal_samples`] as CSV, with a header.
@@ -456,6 +474,12 @@ mod tests {
             assert!((r - 1.0).abs() < 1e-9, "pixel ({}, {}): {r}", s.x, s.y);
             assert!((angle_degrees(s.render_normal, s.true_normal) - s.centre).abs() < 1e-9);
         }
+        // The render's normals given back are judged as measure judged them, and the truth's own are 0° off.
+        let given: Vec<(u32, u32, [f64; 3])> = samples.iter().map(|s| (s.x, s.y, s.render_normal)).collect();
+        assert_eq!(judge_normals(&truth, &given), (traced.normal, traced.normal_cone));
+        let exact: Vec<(u32, u32, [f64; 3])> = samples.iter().map(|s| (s.x, s.y, s.true_normal)).collect();
+        let (centre, cone) = judge_normals(&truth, &exact);
+        assert!(centre.count == samples.len() && centre.max < 1e-6 && cone.max < 1e-6, "{centre:?}");
         let csv = normal_samples_csv(&samples);
         assert_eq!(csv.lines().count(), samples.len() + 1);
         assert!(csv.lines().all(|l| l.split(',').count() == 19));

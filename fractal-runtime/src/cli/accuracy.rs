@@ -100,6 +100,8 @@ pub fn accuracy(args: &AccuracyArgs, library: &SceneLibrary) -> Result<(), CliEr
 /// One scene: truths, sweep, table, CSV; returns its Markdown section.
 fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &Budget) -> Result<String, CliError> {
     let scene = &loaded.scene;
+    // Read before the truth, so a malformed file is said at once.
+    let given_normals = args.judge_normals.as_deref().map(read_normals).transpose()?;
     let params = loaded.params(&[])?;
     let lookup = |p: &fractal_dsl::ParamDecl| params.lookup(p);
     let pose = Pose::from_camera(&scene.camera, args.time, &lookup).map_err(|e| CliError::failure(e.to_string()))?;
@@ -248,6 +250,18 @@ fn study(loaded: &LoadedScene, args: &AccuracyArgs, backend: Backend, budget: &B
     }
     if let Some(path) = &args.csv {
         append_csv(path, &table::csv_rows(&loaded.name, &backend.to_string(), args.size, &points, budget))?;
+    }
+    if let (Some(path), Some(normals)) = (&args.judge_normals, &given_normals) {
+        let (centre, cone) = metrics::judge_normals(judged, normals);
+        let _ = writeln!(
+            out,
+            "  the normals of {}: median {:.2}°, p99 {:.2}° at the centre / {:.2}° cone-consistent ({} judged)",
+            path.display(),
+            centre.median,
+            centre.p99,
+            cone.p99,
+            cone.count
+        );
     }
     if let Some(path) = &args.normals_csv {
         let default = Quality { precision: own(args).precision, ..Quality::default() };
@@ -463,6 +477,31 @@ fn estimator_table(
     }
     let _ = writeln!(out, "  ({:.1} s)", started.elapsed().as_secs_f64());
     md + "\n"
+}
+
+/// The `--judge-normals` file: x,y,nx,ny,nz per line.
+fn read_normals(path: &std::path::Path) -> Result<Vec<(u32, u32, [f64; 3])>, CliError> {
+    let text =
+        std::fs::read_to_string(path).map_err(|e| CliError::failure(format!("cannot read {}: {e}", path.display())))?;
+    let bad = |line: usize| CliError::usage(format!("{}:{line}: expected x,y,nx,ny,nz", path.display()));
+    text.lines()
+        .enumerate()
+        .filter(|(_, l)| !l.trim().is_empty())
+        .map(|(i, l)| {
+            let f: Vec<&str> = l.split(',').map(str::trim).collect();
+            if f.len() != 5 {
+                return Err(bad(i + 1));
+            }
+            let n: Result<Vec<f64>, _> = f[2..].iter().map(|v| v.parse::<f64>()).collect();
+            match (f[0].parse::<u32>(), f[1].parse::<u32>(), n) {
+                // A normal needs a direction: finite and not zero.
+                (Ok(x), Ok(y), Ok(n)) if n.iter().all(|v| v.is_finite()) && n.iter().any(|&v| v != 0.0) => {
+                    Ok((x, y, [n[0], n[1], n[2]]))
+                }
+                _ => Err(bad(i + 1)),
+            }
+        })
+        .collect()
 }
 
 fn append_csv(path: &std::path::Path, rows: &str) -> Result<(), CliError> {

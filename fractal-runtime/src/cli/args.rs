@@ -314,6 +314,10 @@ pub struct AccuracyArgs {
     /// hits, both normals and the two errors (for finding where normals go wrong)
     #[arg(long, value_name = "PATH", conflicts_with_all = ["report", "estimators", "image"])]
     pub normals_csv: Option<PathBuf>,
+    /// Judge these normals against the truth as the budget judges a render's: a CSV file of x,y,nx,ny,nz per pixel
+    /// (a way of taking normals tried outside the renderer; `benches/normal_split.py --out` writes one)
+    #[arg(long, value_name = "PATH", conflicts_with_all = ["report", "estimators", "image"])]
+    pub judge_normals: Option<PathBuf>,
     /// Write a time-against-error plot of each scene, SCENE.svg, into this folder
     #[arg(long, value_name = "DIR")]
     pub plot: Option<PathBuf>,
