@@ -77,9 +77,10 @@ def main():
     constant = np.array([float(v) for v in a.constant.split(",")])
 
     def orbit(p, steps=None):
-        # As the formula's orbit: stops once |z| passes the bailout, else after the iterations; or after `steps`.
+        # As the formula's orbit: stops once |z| passes the bailout or after the iterations; given `steps`, after
+        # exactly that many.
         z, J, n = p.copy(), np.eye(3), 0
-        while n < (steps or a.iterations) and (steps or np.linalg.norm(z) <= a.bailout):
+        while n < steps if steps else n < a.iterations and np.linalg.norm(z) <= a.bailout:
             J = jacobian(z) @ J + (np.eye(3) if mandelbrot else 0)
             z = step(z, p if mandelbrot else constant)
             n += 1
@@ -106,8 +107,8 @@ def main():
         return -n if n @ d > 0 else n
 
     rows = list(csv.DictReader(open(a.csv)))
-    mixed = 0
-    alt = []
+    mixed, away = 0, 0
+    potentials = []
     figures = {k: [] for k in ["render", "transcription", "estimate within the hit's band", "potential at the render's hit", "potential at the truth's hit"]}
     for r in rows:
         o = np.array([float(r[k]) for k in ("ox", "oy", "oz")])
@@ -124,14 +125,14 @@ def main():
         band = orbit(hit)[2]
         mixed += any(orbit(hit + k * h)[2] != band for k in TETRAHEDRON)
         figures["estimate within the hit's band"].append(angle(facing(tetrahedral(hit, h, band), d), tn))
-        figures["potential at the render's hit"].append(angle(facing(potential(hit), d), tn))
-        alt.append((r["x"], r["y"], facing(potential(hit), d)))
+        at_hit = facing(potential(hit), d)
+        figures["potential at the render's hit"].append(angle(at_hit, tn))
+        potentials.append((r["x"], r["y"], at_hit))
+        away += rn @ d > 0
         figures["potential at the truth's hit"].append(angle(facing(potential(o + d * tt), d), tn))
-    away = sum(float(r["dx"]) * float(r["rnx"]) + float(r["dy"]) * float(r["rny"]) + float(r["dz"]) * float(r["rnz"]) > 0
-               for r in rows)
     print(f"{len(rows)} pixels, {away} of them with a render normal facing away from the camera; degrees against the true normal at the pixel's centre (transcription: against the render's)")
     if a.out:
-        open(a.out, "w").write("".join(f"{x},{y},{n[0]},{n[1]},{n[2]}\n" for x, y, n in alt))
+        open(a.out, "w").write("".join(f"{x},{y},{n[0]},{n[1]},{n[2]}\n" for x, y, n in potentials))
     print(f"  {mixed} pixels' normal taps escape after different numbers of iterations")
     for name, v in figures.items():
         v = np.array(v)

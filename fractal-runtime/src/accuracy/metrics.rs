@@ -328,7 +328,7 @@ pub fn normal_samples(truth: &Truth, traces: &[PixelTrace]) -> Vec<NormalSample>
         .filter_map(|i| {
             let (x, y) = ((i as u32) % truth.width, (i as u32) / truth.width);
             let (r, t) = (&traces[i], truth.pixels[i]);
-            if !(r.hit && t.hit() && r.t.is_finite()) {
+            if !(r.hit && t.hit()) {
                 return None;
             }
             let thin = (r.t - t.t).abs() / truth.footprint_at(t.t);
@@ -369,13 +369,10 @@ pub fn normal_samples_csv(samples: &[NormalSample]) -> String {
     let mut out =
         String::from("x,y,centre_deg,cone_deg,ox,oy,oz,dx,dy,dz,t_render,t_truth,footprint,rnx,rny,rnz,tnx,tny,tnz\n");
     for s in samples {
-        let (o, d, a, b) = (s.ray.0, s.ray.1, s.render_normal, s.true_normal);
-        let nums = [o, d].iter().flatten().map(|v| v.to_string()).collect::<Vec<_>>().join(",");
-        let normals = [a, b].iter().flatten().map(|v| v.to_string()).collect::<Vec<_>>().join(",");
-        out += &format!(
-            "{},{},{},{},{nums},{},{},{},{normals}\n",
-            s.x, s.y, s.centre, s.cone, s.t_render, s.t_truth, s.footprint
-        );
+        let hits = [s.t_render, s.t_truth, s.footprint];
+        let fields = [&[s.centre, s.cone][..], &s.ray.0, &s.ray.1, &hits, &s.render_normal, &s.true_normal].concat();
+        let fields: Vec<String> = fields.iter().map(f64::to_string).collect();
+        out += &format!("{},{},{}\n", s.x, s.y, fields.join(","));
     }
     out
 }
