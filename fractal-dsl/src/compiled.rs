@@ -22,6 +22,17 @@ pub struct NativeFns {
     /// `distance_x8` over slices of one length (x, y, z, out), the loop compiled with the packet instance: one call
     /// for a whole slice ([`crate::eval::packet::each_packet`]).
     pub distance_slice_x8: DistanceSliceFn,
+    /// The normal of a scene shaded by its gradient ([`crate::lower::Program::normal`]), in f32, f64 and on
+    /// packets; `None` for any other scene.
+    pub normal: Option<NormalFns>,
+}
+
+/// The native evaluator's normal functions ([`NativeFns::normal`]).
+#[derive(Clone, Copy, Debug)]
+pub struct NormalFns {
+    pub f32: fn(V3<f32>, &Env<f32>) -> V3<f32>,
+    pub f64: fn(V3<f64>, &Env<f64>) -> V3<f64>,
+    pub x8: fn(V3<F32x8>, &Env<F32x8>) -> V3<F32x8>,
 }
 
 /// The native evaluator's packet distance over slices: `(x, y, z, out, env)`, `out[i]` the distance at the i-th point.
@@ -182,6 +193,9 @@ impl Evaluator<f32> for NativeFns {
     fn sample(&self, p: V3<f32>, env: &Env<f32>) -> Sample<f32> {
         (self.sample_f32)(p, env)
     }
+    fn normal(&self, p: V3<f32>, env: &Env<f32>) -> Option<V3<f32>> {
+        self.normal.map(|n| (n.f32)(p, env))
+    }
     fn packets(&self) -> Option<&dyn PacketEvaluator> {
         Some(self)
     }
@@ -194,6 +208,9 @@ impl PacketEvaluator for NativeFns {
     fn sample_x8(&self, p: V3<F32x8>, env: &Env<F32x8>) -> Sample<F32x8> {
         (self.sample_x8)(p, env)
     }
+    fn normal_x8(&self, p: V3<F32x8>, env: &Env<F32x8>) -> Option<V3<F32x8>> {
+        self.normal.map(|n| (n.x8)(p, env))
+    }
 }
 
 impl Evaluator<f64> for NativeFns {
@@ -202,6 +219,9 @@ impl Evaluator<f64> for NativeFns {
     }
     fn sample(&self, p: V3<f64>, env: &Env<f64>) -> Sample<f64> {
         (self.sample_f64)(p, env)
+    }
+    fn normal(&self, p: V3<f64>, env: &Env<f64>) -> Option<V3<f64>> {
+        self.normal.map(|n| (n.f64)(p, env))
     }
 }
 

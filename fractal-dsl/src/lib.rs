@@ -44,5 +44,5 @@ pub mod validate;
 pub mod visit;
 pub mod vocab;
 
-pub use compiled::{compile, CompiledScene, DefaultParams, Kernels, NativeFns};
+pub use compiled::{compile, CompiledScene, DefaultParams, Kernels, NativeFns, NormalFns};
 pub use ir::*;

@@ -109,6 +109,12 @@ fn expand(scene: &fractal_dsl::Scene, span: Span) -> TokenStream2 {
     };
     let distance = syn::Ident::new(fractal_dsl::back::rust::DISTANCE_FN, Span::call_site());
     let sample = syn::Ident::new(fractal_dsl::back::rust::SAMPLE_FN, Span::call_site());
+    let normal = if kernels.program.normal.is_some() {
+        let f = syn::Ident::new(fractal_dsl::back::rust::NORMAL_FN, Span::call_site());
+        quote! { ::core::option::Option::Some(#krate::NormalFns { f32: #f::<f32>, f64: #f::<f64>, x8: #f::<#krate::number::lanes::F32x8> }) }
+    } else {
+        quote! { ::core::option::Option::None }
+    };
     let ir = fractal_dsl::back::rust::ir_tokens::scene(scene, &krate);
     let (defaults_f32, defaults_f64) = fractal_dsl::back::rust::ir_tokens::default_params(scene);
     let (source, opencl, opencl_f64) = (kernels.source, kernels.opencl, kernels.opencl_f64);
@@ -186,6 +192,7 @@ fn expand(scene: &fractal_dsl::Scene, span: Span) -> TokenStream2 {
                 distance_x8: __fractal_distance_x8,
                 sample_x8: __fractal_sample_x8,
                 distance_slice_x8: __fractal_distance_slice_x8,
+                normal: #normal,
             },
             __fractal_scene,
             __FRACTAL_DEFAULTS,

@@ -7,7 +7,8 @@
 //! of its coordinates large. [`choose`] measures it on the frame itself: it marches a [`PROBE`] grid of the frame's
 //! rays in f64, and at each hit compares what f32 computes there with f64 ([`Probe`]): the hit point and the camera
 //! position as f32 stores them, against the pixel's footprint; the distance, against the hit epsilon; the normal's
-//! tetrahedral gradient, computed as the f32 render computes it, against f64's. A frame whose distance and normal
+//! normal the render shades with (tetrahedral, or a formula scene's gradient), computed as the f32 render computes
+//! it, against f64's. A frame whose distance and normal
 //! figures stay within [`Limits`] (at [`QUANTILE`] of the probe's hits) is drawn in f32; otherwise in f64. The figures
 //! say why. The rounding of the hit points is reported, not judged: a perturbed Mandelbrot zoom
 //! ([`fractal_dsl::formula::mandelbrot`](mod@fractal_dsl::formula::mandelbrot)) reads its pattern from the ray's offset, not from the rounded point, and
@@ -20,7 +21,6 @@
 use fractal_dsl::analyse::{bound, fold::fold_node};
 use fractal_dsl::eval::Evaluator;
 use fractal_dsl::number::math::{dot, length, v3, V3};
-use fractal_dsl::ray::scene::tetrahedron;
 use fractal_dsl::ray::SceneFns;
 use fractal_dsl::Scene;
 
@@ -118,21 +118,11 @@ pub fn probe(
             let d64 = on.distance(p);
             let d32 = f64::from(on32.distance(narrow_p));
             let distance = (d32 - d64).abs() / eps;
-            let mut g64 = v3(0.0, 0.0, 0.0);
-            let mut g32 = v3(0.0f32, 0.0, 0.0);
-            for (k64, k32) in tetrahedron::<f64>().into_iter().zip(tetrahedron::<f32>()) {
-                g64 = g64 + k64 * on.distance(p + k64 * tap);
-                g32 = g32 + k32 * on32.distance(narrow_p + k32 * (tap as f32));
-            }
-            let g32 = v3(f64::from(g32.x), f64::from(g32.y), f64::from(g32.z));
-            let (l64, l32) = (length(g64), length(g32));
-            let normal = if l64 > 0.0 && l32 > 0.0 {
-                (dot(g64, g32) / (l64 * l32)).clamp(-1.0, 1.0).acos().to_degrees()
-            } else if l64 == l32 {
-                0.0
-            } else {
-                180.0
-            };
+            // The normal each render shades with: the tetrahedral one, or a formula scene's gradient.
+            let n64 = on.normal(p, tap);
+            let n32 = on32.normal(narrow_p, tap as f32);
+            let n32 = v3(f64::from(n32.x), f64::from(n32.y), f64::from(n32.z));
+            let normal = (dot(n64, n32) / (length(n64) * length(n32))).clamp(-1.0, 1.0).acos().to_degrees();
             figures.push([position, distance, if normal.is_nan() { 180.0 } else { normal }]);
         }
     }

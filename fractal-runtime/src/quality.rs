@@ -178,4 +178,7 @@ impl<F: Real> Evaluator<F> for StepScaled<'_, F> {
         let s = self.inner.sample(p, env);
         Sample { distance: s.distance * self.scale, ..s }
     }
+    fn normal(&self, p: V3<F>, env: &Env<F>) -> Option<V3<F>> {
+        self.inner.normal(p, env)
+    }
 }

@@ -189,10 +189,11 @@ fn opencl_draws_what_the_cpu_draws() {
 }
 
 /// Scenes whose traces are compared: primitives, a fractal, an over-relaxed fractal with glow, a displaced surface
-/// refined by its sign, repetition, and a fractal starved of steps (rays out of steps).
+/// refined by its sign, repetition, a formula (shaded by its gradient) and a fractal starved of steps (rays out of
+/// steps).
 fn traced_scenes() -> Vec<(String, fractal::dsl::Scene)> {
     let mut out: Vec<(String, fractal::dsl::Scene)> =
-        ["sphere_box", "mandelbulb", "julia", "terrain", "infinite_spheres"]
+        ["sphere_box", "mandelbulb", "julia", "terrain", "infinite_spheres", "cosine_bulb"]
             .into_iter()
             .map(|name| (name.to_string(), compiled(name).scene().clone()))
             .collect();

@@ -169,3 +169,50 @@ fn distance_slice_refuses_slices_of_unequal_length() {
     let (_, scene) = fractal::scenes::ALL[0];
     scene.distance_slice(&[0.0; 3], &[0.0; 3], &[0.0; 2], &mut [0.0; 3]);
 }
+
+/// A built-in scene is shaded by its gradient exactly where its interpreter is (an escape-time formula), and there
+/// the native evaluator's normal — traced from the same walk in dual numbers — is the interpreter's in f64 and f32
+/// (to a few ulps of the orbit's rounding: the native code is the traced one, folded), and its packets' lane for lane.
+#[test]
+fn native_normals_are_the_interpreters() {
+    use fractal::dsl::eval::interp::Interpreter;
+    use fractal::dsl::eval::{Evaluator, PacketEvaluator};
+    use fractal::dsl::number::lanes::F32x8;
+    use fractal::dsl::number::math::v3;
+    // Divided by the lengths: an f32 unit vector is 10⁻⁷ off unit length, which acos near 1 reads as 0.03°.
+    let angle = |a: [f64; 3], b: [f64; 3]| {
+        let dot: f64 = a.iter().zip(&b).map(|(x, y)| x * y).sum();
+        let len = |v: [f64; 3]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        (dot / (len(a) * len(b))).clamp(-1.0, 1.0).acos().to_degrees()
+    };
+    let mut shaded = 0;
+    for (name, compiled) in scenes::ALL {
+        let interp = Interpreter::new(compiled.scene()).unwrap();
+        let native = compiled.native();
+        let defaults: Vec<f64> = compiled.scene().params().iter().map(|p| p.default).collect();
+        let defaults_f32: Vec<f32> = defaults.iter().map(|&d| d as f32).collect();
+        let (env, env_f32) = (Env::new(0.0f64, &defaults), Env::new(0.0f32, &defaults_f32));
+        let origin = v3(0.3, -0.2, 0.1);
+        let by_interp = Evaluator::<f64>::normal(&interp, origin, &env);
+        assert_eq!(by_interp.is_some(), native.normal.is_some(), "{name}: shaded by its gradient on one only");
+        let Some(fns) = native.normal else { continue };
+        shaded += 1;
+        for p in POINTS {
+            let q = v3(f64::from(p[0]), f64::from(p[1]), f64::from(p[2]));
+            let (a, b) = (Evaluator::<f64>::normal(&interp, q, &env).unwrap(), (fns.f64)(q, &env));
+            assert!(angle([a.x, a.y, a.z], [b.x, b.y, b.z]) < 1e-4, "{name} at {p:?}: {a:?} against {b:?}");
+            let single = v3(p[0], p[1], p[2]);
+            let (a, b) = (Evaluator::<f32>::normal(&interp, single, &env_f32).unwrap(), (fns.f32)(single, &env_f32));
+            let wide = |v: fractal::dsl::number::math::V3<f32>| [v.x, v.y, v.z].map(f64::from);
+            assert!(angle(wide(a), wide(b)) < 0.01, "{name} at {p:?} (f32): {a:?} against {b:?}");
+            let lanes = v3(F32x8::splat(p[0]), F32x8::splat(p[1]), F32x8::splat(p[2]));
+            let env_x8 = Env::new(F32x8::splat(0.0), &[]);
+            let params_x8: Vec<F32x8> = defaults_f32.iter().map(|&d| F32x8::splat(d)).collect();
+            let env_x8 = Env { params: &params_x8, ..env_x8 };
+            let n = (fns.x8)(lanes, &env_x8);
+            assert_eq!([n.x.0[5], n.y.0[5], n.z.0[5]], [b.x, b.y, b.z], "{name} at {p:?} (packets)");
+            let _ = PacketEvaluator::normal_x8(&native, lanes, &env_x8).expect("the packet instance has it too");
+        }
+    }
+    assert!(shaded >= 7, "{shaded} built-in scenes shaded by their gradient");
+}

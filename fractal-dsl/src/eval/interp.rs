@@ -9,20 +9,23 @@ use crate::eval::{Env, Evaluator, PacketEvaluator, Sample};
 use crate::formula::CallLeaf;
 use crate::ir::*;
 use crate::number::lanes::F32x8;
-use crate::number::math::{Real, V3};
+use crate::number::math::{direction, Real, V3};
 
 /// Evaluates a scene by walking its plan; see [`crate::eval`] for the rules.
 #[derive(Clone, Debug)]
 pub struct Interpreter {
     plan: Plan,
     guards: bool,
+    /// [`Plan::shaded_by_gradient`].
+    gradient: bool,
 }
 
 impl Interpreter {
     /// Validates, folds and prepares `scene`. [`Env::params`] slot i holds the value of `scene.params()[i]`.
     pub fn new(scene: &Scene) -> Result<Interpreter, crate::validate::InvalidScene> {
         crate::validate::checked(scene)?;
-        Ok(Interpreter { plan: Plan::new(scene), guards: true })
+        let plan = Plan::new(scene);
+        Ok(Interpreter { gradient: plan.shaded_by_gradient(), plan, guards: true })
     }
 
     /// The same scene with every union child evaluated, guard boxes ignored: the reference the guards are tested
@@ -58,6 +61,11 @@ impl Interpreter {
         self.walk().distance(p, env)
     }
 
+    /// The normal in precision `F` where the scene is shaded by its gradient ([`Evaluator::normal`]).
+    pub fn normal_in<F: Real + CallLeaf>(&self, p: V3<F>, env: &Env<F>) -> Option<V3<F>> {
+        self.gradient.then(|| direction(self.walk().gradient(p, env)))
+    }
+
     /// Distance and material in precision `F`.
     pub fn sample_in<F: Real + CallLeaf>(&self, p: V3<F>, env: &Env<F>) -> Sample<F> {
         self.walk().sample(p, env)
@@ -84,6 +92,9 @@ impl<F: Real + CallLeaf> Evaluator<F> for Interpreter {
     fn sample(&self, p: V3<F>, env: &Env<F>) -> Sample<F> {
         self.sample_in(p, env)
     }
+    fn normal(&self, p: V3<F>, env: &Env<F>) -> Option<V3<F>> {
+        self.normal_in(p, env)
+    }
     fn packets(&self) -> Option<&dyn PacketEvaluator> {
         Some(self)
     }
@@ -95,5 +106,8 @@ impl PacketEvaluator for Interpreter {
     }
     fn sample_x8(&self, p: V3<F32x8>, env: &Env<F32x8>) -> Sample<F32x8> {
         self.walk().sample(p, env)
+    }
+    fn normal_x8(&self, p: V3<F32x8>, env: &Env<F32x8>) -> Option<V3<F32x8>> {
+        self.gradient.then(|| direction(self.walk().gradient(p, env)))
     }
 }

@@ -92,6 +92,11 @@ pub trait Evaluator<F: Real>: Sync {
     fn distance(&self, p: V3<F>, env: &Env<F>) -> F;
     /// Distance and material at `p`; never called by the march loop, only where a ray has hit.
     fn sample(&self, p: V3<F>, env: &Env<F>) -> Sample<F>;
+    /// The normal at `p` of a scene shaded by its gradient ([`plan::Plan::shaded_by_gradient`]): the gradient's
+    /// [`crate::number::math::direction`]. `None` for any other scene: the ray program takes its tetrahedral normal.
+    fn normal(&self, _p: V3<F>, _env: &Env<F>) -> Option<V3<F>> {
+        None
+    }
     /// The same scene eight f32 points at a time, where the evaluator has a packet instance.
     fn packets(&self) -> Option<&dyn PacketEvaluator> {
         None
@@ -106,6 +111,14 @@ pub trait PacketEvaluator: Sync {
         p: V3<crate::number::lanes::F32x8>,
         env: &Env<crate::number::lanes::F32x8>,
     ) -> crate::number::lanes::F32x8;
+    /// Normals at eight points: [`Evaluator::normal`].
+    fn normal_x8(
+        &self,
+        _p: V3<crate::number::lanes::F32x8>,
+        _env: &Env<crate::number::lanes::F32x8>,
+    ) -> Option<V3<crate::number::lanes::F32x8>> {
+        None
+    }
     /// Distances and materials at eight points.
     fn sample_x8(
         &self,

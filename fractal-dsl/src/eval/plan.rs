@@ -410,6 +410,25 @@ impl Plan {
         }
         visit(&mut self.root, f)
     }
+
+    /// Whether the ray program's normal is the scene's gradient ([`crate::eval::walk::Walk::gradient`]) rather than
+    /// its tetrahedral difference: where the scene has an escape-time formula whose orbit carries a Jacobian. Its
+    /// estimate jumps between escape bands and its divisor wobbles within one, so taps a pixel apart straddle them;
+    /// the potential's direction does neither (`docs/formulas.md`, "Where the smooth maps' normals go wrong").
+    pub fn shaded_by_gradient(&self) -> bool {
+        fn visit(step: &Step) -> bool {
+            match step {
+                Step::Formula { call, .. } => {
+                    let f = &call.ready.formula;
+                    f.kind == crate::formula::lang::FormulaKind::EscapeTime && !f.own_scale()
+                }
+                Step::Op(op) => op.shapes.iter().any(|(s, _)| visit(s)),
+                Step::Material(s, _) => visit(s),
+                Step::Leaf(_) | Step::Fractal { .. } | Step::Empty => false,
+            }
+        }
+        visit(&self.root)
+    }
 }
 
 struct Compiler<'a> {

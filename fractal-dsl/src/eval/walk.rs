@@ -5,6 +5,7 @@
 
 use crate::eval::plan::{split_constant, Guard, LeafCall, Mat, OpStep, Paint, Plan, Step, Term};
 use crate::eval::{Env, Sample};
+use crate::formula::dual::Dual;
 use crate::formula::leaf::{LeafArg, LeafOut};
 use crate::formula::{CallLeaf, Leaf, TINY};
 use crate::ir::op::Meaning;
@@ -139,6 +140,24 @@ impl Walk<'_> {
     #[inline]
     pub fn distance<F: CallLeaf>(&self, p: V3<F>, env: &Env<F>) -> F {
         self.dist(&self.plan.root, At::of(p, env), env)
+    }
+
+    /// The distance's gradient at `p`, by forward-mode differentiation: the walk run in [`Dual`] numbers with the
+    /// point's coordinates as the variables. How a leaf and a formula are differentiated: `CallLeaf for Dual`
+    /// ([`crate::formula`]). The frame's time and parameters are constants; the walk reads no perturbation reference
+    /// here, as [`Walk::distance`] is called without one.
+    #[inline]
+    pub fn gradient<F: CallLeaf>(&self, p: V3<F>, env: &Env<F>) -> V3<F> {
+        let params: Vec<Dual<F>> = env.params.iter().map(|&x| Dual::constant(x)).collect();
+        let env = Env {
+            time: Dual::constant(env.time),
+            params: &params,
+            reference: None,
+            anchor: env.anchor.map(|a| v3(Dual::constant(a.x), Dual::constant(a.y), Dual::constant(a.z))),
+        };
+        let p = v3(Dual::variable(p.x, 0), Dual::variable(p.y, 1), Dual::variable(p.z, 2));
+        let [x, y, z] = self.distance(p, &env).d;
+        v3(x, y, z)
     }
 
     /// Distance and material at `p`.

@@ -100,6 +100,23 @@ impl CallLeaf for f64 {
     }
 }
 
+/// A scene run in dual numbers gives its gradient ([`crate::eval::walk::Walk::gradient`]): a leaf is differentiated
+/// through its own arithmetic; a formula's estimate with its divisor held constant, its gradient the potential's
+/// direction ([`user::estimate_and_gradient`]) carried back through the point's derivatives. A formula whose maps give
+/// their own scale carries no Jacobian: its estimate is differentiated through as it is.
+impl<F: Num> CallLeaf for dual::Dual<F> {
+    #[inline]
+    fn formula(ready: &user::Ready, nums: &[Self], p: V3<Self>, bailout: Self, signed: bool) -> LeafOut<Self> {
+        if ready.formula.own_scale() {
+            return LeafOut::Pair(user::estimate(ready, nums, p, bailout, signed));
+        }
+        let values: Vec<F> = nums.iter().map(|n| n.v).collect();
+        let ([e, trap], g) = user::estimate_and_gradient(ready, &values, v3(p.x.v, p.y.v, p.z.v), bailout.v, signed);
+        let d = [0, 1, 2].map(|i| g.x * p.x.d[i] + g.y * p.y.d[i] + g.z * p.z.d[i]);
+        LeafOut::Pair([dual::Dual { v: e, d }, dual::Dual::constant(trap)])
+    }
+}
+
 /// The interpreter's packets call leaves through here (the native evaluator calls its leaves directly, inside its
 /// own AVX2 copy): the leaf's formula runs in an AVX2 copy where the CPU has one. The walker around it stays baseline
 /// code: it recurses, so no AVX2 function can inline it whole.

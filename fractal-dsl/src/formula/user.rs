@@ -493,6 +493,16 @@ fn escape_radius<F: Num>(bailout: F) -> F {
 /// where the orbit never escapes, for `membership_hits`). `nums` are the formula's scene numbers.
 #[inline]
 pub fn estimate<F: Num>(ready: &Ready, nums: &[F], p: V3<F>, bailout: F, signed: bool) -> [F; 2] {
+    estimate_and_gradient(ready, nums, p, bailout, signed).0
+}
+
+/// [`estimate`], and the direction the potential grows in: Jᵀ·zₙ normalised (zero where the orbit carries no
+/// Jacobian, a map giving its own scale). This is the gradient of the estimate with its divisor held constant, up
+/// to its length: the normal a shaded surface takes ([`crate::eval::walk::Walk::gradient`]). The estimate's own
+/// gradient is not: its divisor |∇|zₙ|| wobbles at the scale of the orbit's detail, and its value jumps where the
+/// orbit escapes one iteration sooner, which tilts a normal by tens of degrees (`docs/formulas.md`).
+#[inline]
+pub fn estimate_and_gradient<F: Num>(ready: &Ready, nums: &[F], p: V3<F>, bailout: F, signed: bool) -> ([F; 2], V3<F>) {
     let escape = escape_radius(bailout);
     let (z, [r, jn, trap, _, _]) = orbit(ready, nums, p, escape);
     let jn = match ready.formula.kind {
@@ -502,14 +512,26 @@ pub fn estimate<F: Num>(ready: &Ready, nums: &[F], p: V3<F>, bailout: F, signed:
     };
     let jn = max(jn, F::lit(TINY));
     let trap = min(trap, F::lit(1.0));
-    match ready.formula.kind {
+    let estimate = match ready.formula.kind {
         FormulaKind::EscapeTime => {
             let e = F::lit(0.5) * ln(max(r, F::lit(TINY))) * r / jn;
             let e = if signed { select(le(r, escape), -abs(e), e) } else { e };
             [e, trap]
         }
         FormulaKind::Fold => [(r - bailout) / jn, trap],
-    }
+    };
+    (estimate, potential_direction(&z))
+}
+
+/// Jᵀ·zₙ normalised (zero where it is): the direction |zₙ| grows in. Scaled by its largest component first, as
+/// Jᵀ·zₙ may pass f32's range when squared.
+#[inline(always)]
+fn potential_direction<F: Num>(z: &[Dual<F>; 3]) -> V3<F> {
+    let g = |k: usize| z[0].v * z[0].d[k] + z[1].v * z[1].d[k] + z[2].v * z[2].d[k];
+    let g = v3(g(0), g(1), g(2));
+    let largest = max(max(max(abs(g.x), abs(g.y)), abs(g.z)), F::lit(TINY));
+    let scaled = g / largest;
+    scaled / max(length(scaled), F::lit(TINY))
 }
 
 /// The set's own membership test at `p`, from the orbit alone: −1 inside; outside, a lower bound on the distance to

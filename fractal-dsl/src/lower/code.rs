@@ -30,7 +30,7 @@ pub enum SceneFn {
     Distance,
     /// `scene_sample(p)` (or `scene_sample(p, dp)` with a perturbation reference): a [`Ty::Sample`].
     Sample,
-    /// `scene_normal(p, e)`: the unit normal at p, taps e apart (V3).
+    /// `scene_normal(p, e)`: the unit normal at p, taps e apart (V3); a scene shaded by its gradient reads no `e`.
     Normal,
     /// `scene_ao(p, n)`: ambient occlusion at p along the normal n.
     Occlusion,

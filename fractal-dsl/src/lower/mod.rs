@@ -55,6 +55,9 @@ pub struct Program {
     pub distance_result: Val,
     pub sample: Body,
     pub sample_result: SampleVals,
+    /// The normal of a scene shaded by its gradient ([`Plan::shaded_by_gradient`]): the walk differentiated
+    /// ([`Walk::gradient`]) at the point `p`, its direction (V3). `None`: the ray program's tetrahedral normal.
+    pub normal: Option<(Body, Val)>,
     /// The leaf functions the bodies call, traced, in [`crate::formula::Leaf`] order.
     pub functions: Vec<Function>,
     /// Uniform parameters, in slot order.
@@ -129,6 +132,14 @@ fn lower_with(scene: &Scene, kernel: bool) -> Program {
         }
     });
     let sample = sample.pruned(&sample_result.all());
+    let normal = plan.shaded_by_gradient().then(|| {
+        let (body, result) = trace(|| {
+            let (p, slots) = scene_inputs(params.len());
+            let env = Env { anchor: anchored.then(anchor), ..Env::new(Sym::time(), &slots) };
+            Sym::vector(crate::number::math::direction(walk.gradient(p, &env)))
+        });
+        (body.pruned(&[result]), result)
+    });
 
     let mut used = BTreeSet::new();
     let mut reads = [false, false];
@@ -166,6 +177,7 @@ fn lower_with(scene: &Scene, kernel: bool) -> Program {
         distance_result,
         sample,
         sample_result,
+        normal,
     }
 }
 

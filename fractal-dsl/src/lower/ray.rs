@@ -80,6 +80,10 @@ pub fn functions(program: &Program) -> Vec<RayFunction> {
                 SceneFn::Occlusion => vec![("p", Ty::V3), ("n", Ty::V3)],
                 _ => vec![("ro", Ty::V3), ("rd", Ty::V3), ("limit", Ty::F), ("eps", Ty::F)],
             };
+            if let (SceneFn::Normal, Some((body, result))) = (f, &program.normal) {
+                // The scene's gradient, traced with the scene functions ([`Program::normal`]); `e` goes unread.
+                return RayFunction { f, params, body: body.clone(), result: *result };
+            }
             let (body, result) = trace(|| {
                 let v = |i: usize| Sym::components(Sym::arg_of(params[i].0, Ty::V3));
                 let s = |i: usize| Sym::arg(params[i].0);

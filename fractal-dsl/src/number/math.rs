@@ -171,6 +171,14 @@ pub fn length<F: Num>(a: V3<F>) -> F {
 pub fn normalize<F: Num>(a: V3<F>) -> V3<F> {
     a / length(a)
 }
+/// A gradient as a normal: `a` normalised, +y where it has no length.
+#[inline(always)]
+pub fn direction<F: Num>(a: V3<F>) -> V3<F> {
+    let len = length(a);
+    let found = lt(F::lit(0.0), len);
+    let unit = a / len;
+    v3(select(found, unit.x, F::lit(0.0)), select(found, unit.y, F::lit(1.0)), select(found, unit.z, F::lit(0.0)))
+}
 #[inline(always)]
 pub fn cross<F: Num>(a: V3<F>, b: V3<F>) -> V3<F> {
     v3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x)

@@ -3,7 +3,7 @@
 
 use super::rules::{Rules, AO_SAMPLES, AO_SPAN, AO_START};
 use crate::eval::Sample;
-use crate::number::math::{length, v3, V3};
+use crate::number::math::{direction, v3, V3};
 use crate::number::{Mask, Num};
 use crate::Shadows;
 
@@ -39,19 +39,15 @@ pub fn tetrahedron<N: Num>() -> [V3<N>; 4] {
     [v3(one, neg, neg), v3(neg, neg, one), v3(neg, one, neg), v3(one, one, one)]
 }
 
-/// Step 4's normal at `p`: the normalised tetrahedral gradient of the distance, taps `h` apart (a flat gradient has
-/// no direction and gives +y).
+/// Step 4's normal at `p`: the normalised tetrahedral gradient of the distance, taps `h` apart. A scene shaded by
+/// its gradient ([`crate::eval::plan::Plan::shaded_by_gradient`]) overrides it with the [`direction`] of that.
 #[inline(always)]
 pub fn normal<N: Num, S: SceneFns<N>>(scene: &S, p: V3<N>, h: N) -> V3<N> {
     let mut gradient = V3::splat(N::lit(0.0));
     for k in tetrahedron::<N>() {
         gradient = gradient + k * scene.distance(p + k * h);
     }
-    let len = length(gradient);
-    let up = v3(N::lit(0.0), N::lit(1.0), N::lit(0.0));
-    let found = N::lt(N::lit(0.0), len);
-    let unit = gradient / len;
-    v3(N::select(found, unit.x, up.x), N::select(found, unit.y, up.y), N::select(found, unit.z, up.z))
+    direction(gradient)
 }
 
 /// Ambient occlusion at `p` along the normal `n`: 1 − 3·strength·Σ (h_i − d(p + n·h_i))·0.95^i, clamped to [0, 1]

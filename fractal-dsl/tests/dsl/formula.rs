@@ -269,7 +269,7 @@ fn host_code_computes_what_the_tree_computes() {
         .chain(&["fractal/bristorbrot", "fractal/quaternion_mandelbrot", "fractal/cosine_bulb"])
         .chain(&["fractal/amazing_surf", "prelude/mandelbox", "prelude/julia", "formulas/bulb_box_hybrid"])
         .chain(&["prelude/mandelbulb", "prelude/juliabulb", "prelude/sierpinski", "prelude/kifs"])
-        .chain(&["formulas/makin_bulb", "formulas/lkmitch_bulb", "formulas/sym2_bulb", "formulas/riemann_bulb"])
+        .chain(&["fractal/makin_bulb", "formulas/lkmitch_bulb", "formulas/sym2_bulb", "formulas/riemann_bulb"])
         .map(|f| std::fs::read_to_string(root.join(format!("{f}.fractal"))).unwrap())
         .collect();
     sources.push(BULB.into());
@@ -301,5 +301,87 @@ fn host_code_computes_what_the_tree_computes() {
                 assert_eq!(walked <= 0.0, compiled <= 0.0, "{src}\nmembership at {p:?}: {walked} against {compiled}");
             }
         }
+    }
+}
+
+/// |zₙ| of the formula's one map from `q` after exactly `n` iterations, or — with `n` None — at the iteration its
+/// orbit first passes `escape`, with that count (the iterations run out: None).
+fn orbit_length(ready: &Ready, nums: &[f64], q: [f64; 3], n: Option<usize>, escape: f64) -> Option<(f64, usize)> {
+    let c = v3(q[0], q[1], q[2]);
+    let mut z = c;
+    for k in 0..ready.iterations as usize {
+        let r = (z.x * z.x + z.y * z.y + z.z * z.z).sqrt();
+        if n == Some(k) || (n.is_none() && r > escape) {
+            return Some((r, k));
+        }
+        z = run_map(&ready.formula.maps[0], nums, &ready.literals, z, c).0;
+    }
+    let r = (z.x * z.x + z.y * z.y + z.z * z.z).sqrt();
+    (n == Some(ready.iterations as usize) || (n.is_none() && r > escape)).then_some((r, ready.iterations as usize))
+}
+
+fn angle(a: [f64; 3], b: [f64; 3]) -> f64 {
+    let dot = a.iter().zip(&b).map(|(x, y)| x * y).sum::<f64>();
+    let len = |v: [f64; 3]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+    (dot / (len(a) * len(b))).clamp(-1.0, 1.0).acos().to_degrees()
+}
+
+/// A scene with an escape-time formula is shaded by its gradient, the potential's direction: through a scale, a
+/// translation and a union, the interpreter's normal at a point near the bulb is ∇|zₙ| with the orbit's escape count
+/// n held (central differences in f64, 10⁻⁶ of the distance apart), and beside the sphere the sphere's normal. The
+/// f32 and packet instances give the same normal as f64 up to f32's rounding of the orbit.
+#[test]
+fn a_formula_scene_is_shaded_by_the_potential_gradient() {
+    use fractal_dsl::eval::{Env, Evaluator, PacketEvaluator};
+    use fractal_dsl::number::lanes::F32x8;
+    let (scale, shift, centre) = (0.8, [0.1, -0.2, 0.05], [2.0, 0.0, 0.0]);
+    let src = format!(
+        "union({BULB}.scale({scale}).translate(vec3({}, {}, {})), sphere(0.3).translate(vec3({}, {}, {})))",
+        shift[0], shift[1], shift[2], centre[0], centre[1], centre[2]
+    );
+    let scene = Interpreter::new(&parse_str(&src).unwrap()).unwrap();
+    let (ready, nums) = ready(&formula_of(BULB));
+    let ready = Ready { iterations: 8, ..ready };
+    let normal = |p: [f64; 3]| {
+        let n = Evaluator::<f64>::normal(&scene, v3(p[0], p[1], p[2]), &Env::still()).expect("shaded by its gradient");
+        [n.x, n.y, n.z]
+    };
+    let mut rng = Rng(5);
+    let (mut checked, mut worst, mut worst_f32) = (0, 0.0f64, Vec::new());
+    while checked < 300 {
+        let p = [0, 1, 2].map(|i| shift[i] + (rng.unit() * 2.4 - 1.2) * scale);
+        let q = [0, 1, 2].map(|i| (p[i] - shift[i]) / scale);
+        let d = d64(&scene, p);
+        let Some((_, n)) = orbit_length(&ready, &nums, q, None, 2.0) else { continue };
+        if n < 2 || !(1e-4..0.05).contains(&d) {
+            continue;
+        }
+        let h = 1e-6 * d;
+        let along = |axis: usize, sign: f64| {
+            let mut at = q;
+            at[axis] += sign * h;
+            orbit_length(&ready, &nums, at, Some(n), 2.0).unwrap().0
+        };
+        let potential = [0, 1, 2].map(|axis| along(axis, 1.0) - along(axis, -1.0));
+        worst = worst.max(angle(normal(p), potential));
+        let n32 = Evaluator::<f32>::normal(&scene, v3(p[0] as f32, p[1] as f32, p[2] as f32), &Env::still()).unwrap();
+        let lanes = |x: f64| F32x8::splat(x as f32);
+        let n8 = scene.normal_x8(v3(lanes(p[0]), lanes(p[1]), lanes(p[2])), &Env::still()).unwrap();
+        let n32 = [n32.x, n32.y, n32.z];
+        assert_eq!([n8.x.0[3], n8.y.0[3], n8.z.0[3]], n32, "packets at {p:?}");
+        worst_f32.push(angle(normal(p), n32.map(f64::from)));
+        checked += 1;
+    }
+    assert!(worst < 0.01, "the normal is {worst}° from the potential's gradient");
+    worst_f32.sort_by(f64::total_cmp);
+    let median = worst_f32[worst_f32.len() / 2];
+    eprintln!("f32 normal against f64: median {median:.4}°, max {:.3}°", worst_f32[worst_f32.len() - 1]);
+    assert!(median < 0.05, "the f32 normal is {median}° from the f64 one (median)");
+    for _ in 0..50 {
+        let u = [0, 1, 2].map(|_| rng.unit() - 0.5);
+        let len = (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt();
+        let p = [0, 1, 2].map(|i| centre[i] + u[i] / len * 0.31);
+        // 10⁻⁴°: acos near 1 reads the last bits of the dot product.
+        assert!(angle(normal(p), u) < 1e-4, "beside the sphere at {p:?}: {:?}", normal(p));
     }
 }

@@ -322,6 +322,14 @@ impl<F: Real, E: Evaluator<F> + ?Sized> Evaluator<F> for Counted<'_, E> {
         EVALUATIONS.with(|n| n.set(n.get() + 1));
         self.0.sample(p, env)
     }
+    /// A gradient normal counts as one evaluation: one walk of the scene, in dual numbers.
+    fn normal(&self, p: V3<F>, env: &Env<F>) -> Option<V3<F>> {
+        let n = self.0.normal(p, env);
+        if n.is_some() {
+            EVALUATIONS.with(|n| n.set(n.get() + 1));
+        }
+        n
+    }
 }
 
 /// The ray program's view of a scene through a scalar evaluator, at one frame's time and parameters.
@@ -341,6 +349,9 @@ impl<F: Real, E: Evaluator<F> + ?Sized> SceneFns<F> for Scalar<'_, F, E> {
         let reference = (!self.orbit.is_empty()).then_some(Reference { offset, orbit: self.orbit });
         self.eval.sample(p, &Env { reference, ..self.env })
     }
+    fn normal(&self, p: V3<F>, h: F) -> V3<F> {
+        self.eval.normal(p, &self.env).unwrap_or_else(|| ray::scene::normal(self, p, h))
+    }
 }
 
 /// The ray program's view of a scene through a packet evaluator.
@@ -358,6 +369,9 @@ impl SceneFns<F32x8> for Packets<'_> {
     fn sample(&self, p: V3<F32x8>, offset: V3<F32x8>) -> Sample<F32x8> {
         let reference = (!self.orbit.is_empty()).then_some(Reference { offset, orbit: self.orbit });
         self.packets.sample_x8(p, &Env { reference, ..self.env })
+    }
+    fn normal(&self, p: V3<F32x8>, h: F32x8) -> V3<F32x8> {
+        self.packets.normal_x8(p, &self.env).unwrap_or_else(|| ray::scene::normal(self, p, h))
     }
 }
 

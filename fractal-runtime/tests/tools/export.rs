@@ -204,6 +204,7 @@ fn export_compiled_exports_the_build_time_kernels() {
         distance_x8: unused_distance::<F32x8>,
         sample_x8: unused_sample::<F32x8>,
         distance_slice_x8: |_, _, _, _, _| unreachable!("export never evaluates"),
+        normal: None,
     };
     let leak = |s: &str| -> &'static str { Box::leak(s.to_owned().into_boxed_str()) };
     let compiled = CompiledScene::new(

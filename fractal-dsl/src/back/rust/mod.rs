@@ -4,4 +4,4 @@
 pub mod ir_tokens;
 mod writer;
 
-pub use writer::{write, DISTANCE_FN, SAMPLE_FN};
+pub use writer::{write, DISTANCE_FN, NORMAL_FN, SAMPLE_FN};

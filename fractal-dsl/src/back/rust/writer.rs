@@ -103,12 +103,15 @@ impl Syntax for RustSyntax {
     }
 }
 
-/// The names of the two functions [`write()`] emits.
+/// The names of the functions [`write()`] emits.
 pub const DISTANCE_FN: &str = "__fractal_distance";
 pub const SAMPLE_FN: &str = "__fractal_sample";
+/// Emitted only for a scene shaded by its gradient ([`Program::normal`]).
+pub const NORMAL_FN: &str = "__fractal_normal";
 
-/// Rust source of the native evaluator: `fn __fractal_distance<F: HostNum>(p, env) -> F` and
-/// `fn __fractal_sample<F: HostNum>(p, env) -> Sample<F>`. `krate` is the path of fractal-dsl in the user's crate.
+/// Rust source of the native evaluator: `fn __fractal_distance<F: HostNum>(p, env) -> F`,
+/// `fn __fractal_sample<F: HostNum>(p, env) -> Sample<F>` and, for a scene shaded by its gradient,
+/// `fn __fractal_normal<F: HostNum>(p, env) -> V3<F>`. `krate` is the path of fractal-dsl in the user's crate.
 pub fn write(program: &Program, krate: &str) -> String {
     let mut out = String::new();
     let header = |out: &mut String, name: &str, ret: &str| {
@@ -140,5 +143,14 @@ pub fn write(program: &Program, krate: &str) -> String {
         let _ = writeln!(out, "        {field}: {},", spelling.value(v));
     }
     out.push_str("    }\n}\n");
+
+    if let Some((body, result)) = &program.normal {
+        out.push('\n');
+        header(&mut out, NORMAL_FN, &format!("{krate}::number::math::V3<F>"));
+        let spelling = Spelling::new(body, &RustSyntax, &[*result]);
+        spelling.write(&mut out, Level(1));
+        let _ = writeln!(out, "    {}", spelling.value(*result));
+        out.push_str("}\n");
+    }
     out
 }
