@@ -4,6 +4,7 @@
 use super::problem::*;
 use super::rules::*;
 use super::size::*;
+use crate::analyse::fold::fold_expr;
 use crate::ir::arg::{ArgDecl, ArgShape, Rule};
 use crate::ir::fractal::{FractalArg, FractalArgShape, FractalArgValue, FractalRule, Setting, STEP_FACTOR_RANGE};
 use crate::ir::op::{Meaning, Operands};
@@ -211,6 +212,16 @@ fn formula_rules(o: &mut Vec<Problem>, name: &str, formula: &crate::ir::formula:
     }
     if formula.size() > MAX_FORMULA_NODES {
         o.push(Problem::new("map", format!("{name}'s formula has more than {MAX_FORMULA_NODES} nodes")));
+    }
+    // A number beyond f32's range is infinite in every f32 kernel but finite in f64: refused, as elsewhere.
+    let mut found = None;
+    formula.each_num(&mut |e| {
+        if found.is_none() {
+            found = literal_problem(&fold_expr(e));
+        }
+    });
+    if let Some(m) = found {
+        o.push(Problem::new("map", format!("{name}'s formula: {m}")));
     }
 }
 

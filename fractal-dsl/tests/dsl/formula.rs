@@ -191,6 +191,13 @@ fn hostile_formulas_give_finite_defined_results() {
         }
         assert!(!d64(&interp, [0.0; 3]).is_nan(), "{src} at the origin");
     }
+    // A number beyond f32's range is infinite in the f32 kernels and finite in f64: refused, as in the rest of a scene.
+    let src = "escape_time(|z, c| z * z + vec3(-0.2, 1e308, -0.1))";
+    let refused = match parse_str(src) {
+        Err(e) => e.to_string(),
+        Ok(scene) => Interpreter::new(&scene).expect_err("refused").to_string(),
+    };
+    assert!(refused.contains("±3.4e38") && refused.contains("1e308"), "{refused}");
 }
 
 /// The built-in families written as formulas (`scenes/prelude/`) draw the built-in scenes' sets: wherever the
