@@ -15,7 +15,7 @@ With --out, writes the potential's gradient at each render hit as x,y,nx,ny,nz, 
 cone-consistent p99 included, which this script cannot compute).
 
 Usage: benches/normal_split.py FILE.csv MAP [--iterations N] [--bailout B] [--pixel-epsilon E] [--out FILE]
-MAP: makin (Makin3D-2, scenes/formulas/makin_bulb.fractal), lkmitch (scenes/formulas/lkmitch_bulb.fractal), julia
+MAP: makin (Makin3D-2, scenes/fractal/makin_bulb.fractal), lkmitch (scenes/formulas/lkmitch_bulb.fractal), julia
 (the quaternion Julia set in the slice w = 0, scenes/fractal/julia.fractal at t = 0: --constant -0.2,0.8,0
 --iterations 16 --pixel-epsilon 0.05).
 Needs numpy.

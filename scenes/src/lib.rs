@@ -70,6 +70,12 @@ library! {
     MENGER_SMOOTH = "menger_smooth";
     /// The Amazing Surf, a Mandelbox variant folding only x and y, written as a fold.
     AMAZING_SURF = "amazing_surf";
+    /// Makin3D-2, David Makin's quadratic map with cross terms turning the axes in a cycle, written as a formula.
+    MAKIN_BULB = "makin_bulb";
+    /// Quickdudley, a quadratic map whose squares and cross terms trade places (a stack of sheets), as a formula.
+    QUICKDUDLEY_BULB = "quickdudley_bulb";
+    /// Xenodreambuie, the power-9 bulb with its polar angle folded onto the upper half, written as a formula.
+    XENODREAMBUIE = "xenodreambuie";
     /// The 2D Mandelbrot set as the material of a plane.
     MANDELBROT = "mandelbrot";
     /// A camera path zooming into the Mandelbrot set to the f32 limit.
