@@ -6,11 +6,10 @@
 //! Mandelbulb is 1e-7, about one f32 step of coordinates near 1 — and a scene far from the origin makes the f32 step
 //! of its coordinates large. [`choose`] measures it on the frame itself: it marches a [`PROBE`] grid of the frame's
 //! rays in f64, and at each hit compares what f32 computes there with f64 ([`Probe`]): the hit point and the camera
-//! position as f32 stores them, against the pixel's footprint; the distance, against the hit epsilon; the normal's
-//! normal the render shades with (tetrahedral, or a formula scene's gradient), computed as the f32 render computes
-//! it, against f64's. A frame whose distance and normal
-//! figures stay within [`Limits`] (at [`QUANTILE`] of the probe's hits) is drawn in f32; otherwise in f64. The figures
-//! say why. The rounding of the hit points is reported, not judged: a perturbed Mandelbrot zoom
+//! position as f32 stores them, against the pixel's footprint; the distance, against the hit epsilon; the normal the
+//! render shades with (tetrahedral, or a formula scene's gradient), computed as the f32 render computes it, against
+//! f64's. A frame whose distance and normal figures stay within [`Limits`] (at [`QUANTILE`] of the probe's hits) is
+//! drawn in f32; otherwise in f64. The figures say why. The rounding of the hit points is reported, not judged: a perturbed Mandelbrot zoom
 //! ([`fractal_dsl::formula::mandelbrot`](mod@fractal_dsl::formula::mandelbrot)) reads its pattern from the ray's offset, not from the rounded point, and
 //! is right in f32 where its points are rounded by millions of footprints; a distance or a normal that rounding
 //! spoils shows in their own figures.

@@ -62,7 +62,7 @@ impl Interpreter {
     }
 
     /// The normal in precision `F` where the scene is shaded by its gradient ([`Evaluator::normal`]).
-    pub fn normal_in<F: Real + CallLeaf>(&self, p: V3<F>, env: &Env<F>) -> Option<V3<F>> {
+    pub fn normal_in<F: CallLeaf>(&self, p: V3<F>, env: &Env<F>) -> Option<V3<F>> {
         self.gradient.then(|| direction(self.walk().gradient(p, env)))
     }
 
@@ -108,6 +108,6 @@ impl PacketEvaluator for Interpreter {
         self.walk().sample(p, env)
     }
     fn normal_x8(&self, p: V3<F32x8>, env: &Env<F32x8>) -> Option<V3<F32x8>> {
-        self.gradient.then(|| direction(self.walk().gradient(p, env)))
+        self.normal_in(p, env)
     }
 }

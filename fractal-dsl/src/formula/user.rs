@@ -493,7 +493,7 @@ fn escape_radius<F: Num>(bailout: F) -> F {
 /// where the orbit never escapes, for `membership_hits`). `nums` are the formula's scene numbers.
 #[inline]
 pub fn estimate<F: Num>(ready: &Ready, nums: &[F], p: V3<F>, bailout: F, signed: bool) -> [F; 2] {
-    estimate_and_gradient(ready, nums, p, bailout, signed).0
+    estimate_and_orbit(ready, nums, p, bailout, signed).0
 }
 
 /// [`estimate`], and the direction the potential grows in: Jᵀ·zₙ normalised (zero where the orbit carries no
@@ -503,6 +503,13 @@ pub fn estimate<F: Num>(ready: &Ready, nums: &[F], p: V3<F>, bailout: F, signed:
 /// orbit escapes one iteration sooner, which tilts a normal by tens of degrees (`docs/formulas.md`).
 #[inline]
 pub fn estimate_and_gradient<F: Num>(ready: &Ready, nums: &[F], p: V3<F>, bailout: F, signed: bool) -> ([F; 2], V3<F>) {
+    let (estimate, z) = estimate_and_orbit(ready, nums, p, bailout, signed);
+    (estimate, potential_direction(&z))
+}
+
+/// [`estimate`] and the orbit's last z with its Jacobian rows, which only the gradient reads.
+#[inline(always)]
+fn estimate_and_orbit<F: Num>(ready: &Ready, nums: &[F], p: V3<F>, bailout: F, signed: bool) -> ([F; 2], [Dual<F>; 3]) {
     let escape = escape_radius(bailout);
     let (z, [r, jn, trap, _, _]) = orbit(ready, nums, p, escape);
     let jn = match ready.formula.kind {
@@ -520,7 +527,7 @@ pub fn estimate_and_gradient<F: Num>(ready: &Ready, nums: &[F], p: V3<F>, bailou
         }
         FormulaKind::Fold => [(r - bailout) / jn, trap],
     };
-    (estimate, potential_direction(&z))
+    (estimate, z)
 }
 
 /// Jᵀ·zₙ normalised (zero where it is): the direction |zₙ| grows in. Scaled by its largest component first, as

@@ -16,8 +16,8 @@
 //!    **3b. Sign refinement** ([`crate::analyse::sign_refinement`]): near the surface a hit is a sign change, found
 //!    by sign steps and refined by the Illinois false position.
 //! 4. **Shading** at a hit: normal (tetrahedral; a scene with an escape-time formula takes its gradient, by
-//!    forward-mode differentiation: [`crate::eval::plan::Plan::shaded_by_gradient`]), material, ambient occlusion, per light diffuse, specular and
-//!    shadow, fog. 5. **Miss**: background. 6. **Glow** on hits and misses. 7. **Display**: clamp and gamma.
+//!    forward-mode differentiation: [`crate::eval::plan::Plan::shaded_by_gradient`]), material, ambient occlusion,
+//!    per light diffuse, specular and shadow, fog. 5. **Miss**: background. 6. **Glow** on hits and misses. 7. **Display**: clamp and gamma.
 
 pub mod march;
 pub mod pixel;
